@@ -1,0 +1,134 @@
+"""Local performance indices as pure functions of 2x2 Jacobian arrays.
+
+Convention (Liu 2006, eq. 1): ``theta_dot = J p_dot``. With the singular values
+``s_max >= s_min`` of ``J``:
+
+=====================  =====================  ============================
+index                  value                  source
+=====================  =====================  ============================
+LCI = 1/kappa_J        s_min / s_max          Liu eq. (3), Le eq. (20)
+|V|max, |V|min         1/s_min, 1/s_max       Liu eq. (10)
+|tau|max, |tau|min     s_max, s_min           Liu eq. (13)
+|D|max, |D|min         1/s_min^2, 1/s_max^2   Liu eq. (18), k_p = 1
+TQI                    2 kappa/(kappa^2 + 1)  Stan 2008 eq. (9), Frobenius
+manipulability         1/|det J|              sqrt(det(J^-1 J^-T))
+=====================  =====================  ============================
+
+All functions broadcast over leading axes: ``J`` has shape ``(..., 2, 2)``. Where
+``J`` contains NaN (unreachable pose) the result is NaN; callers decide how to
+count such points (``lci`` treats them as 0, see :func:`lci`).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "singular_values",
+    "lci",
+    "velocity_extremes",
+    "payload_extremes",
+    "stiffness_extremes",
+    "tqi",
+    "manipulability",
+    "LOCAL_INDEX_NAMES",
+    "local_indices",
+]
+
+LOCAL_INDEX_NAMES = (
+    "lci",
+    "v_max",
+    "v_min",
+    "tau_max",
+    "tau_min",
+    "d_max",
+    "d_min",
+)
+
+
+def _entries(J):
+    J = np.asarray(J, dtype=float)
+    if J.shape[-2:] != (2, 2):
+        raise ValueError(f"J must have shape (..., 2, 2), got {J.shape}")
+    return J[..., 0, 0], J[..., 0, 1], J[..., 1, 0], J[..., 1, 1]
+
+
+def singular_values(J):
+    """Closed-form singular values ``(s_max, s_min)`` of 2x2 matrices.
+
+    Uses ``S +- 2 det = (a +- d)^2 + (b -+ c)^2`` so that the discriminant
+    ``S^2 - 4 det^2`` is a product of sums of squares (no cancellation), then
+    ``s_min = |det| / s_max``.
+    """
+    a, b, c, d = _entries(J)
+    S = a * a + b * b + c * c + d * d
+    disc = np.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
+    s_max = np.sqrt(0.5 * (S + disc))
+    det = np.abs(a * d - b * c)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        s_min = np.where(s_max > 0, det / s_max, 0.0)
+    return s_max, s_min
+
+
+def lci(J):
+    """Local conditioning index ``s_min/s_max`` in [0, 1]; 0 where J is NaN or zero."""
+    a, b, c, d = _entries(J)
+    S = a * a + b * b + c * c + d * d
+    disc = np.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        # s_min/s_max = |det| / s_max^2 = 2|det| / (S + disc)
+        out = 2.0 * np.abs(a * d - b * c) / (S + disc)
+    return np.where(np.isfinite(out), out, 0.0)
+
+
+def velocity_extremes(J):
+    """``(|V|max, |V|min) = (1/s_min, 1/s_max)`` for a unit input rate (Liu eq. 10)."""
+    s_max, s_min = singular_values(J)
+    with np.errstate(divide="ignore"):
+        return 1.0 / s_min, 1.0 / s_max
+
+
+def payload_extremes(J):
+    """``(|tau|max, |tau|min) = (s_max, s_min)`` for a unit actuator effort (Liu eq. 13)."""
+    return singular_values(J)
+
+
+def stiffness_extremes(J):
+    """``(|D|max, |D|min) = (1/s_min^2, 1/s_max^2)``, K = J^T J, k_p = 1 (Liu eq. 16-18)."""
+    s_max, s_min = singular_values(J)
+    with np.errstate(divide="ignore"):
+        return 1.0 / s_min**2, 1.0 / s_max**2
+
+
+def tqi(J):
+    """Transmission quality index of Stan 2008 eq. (9) with Frobenius norms.
+
+    For a 2x2 matrix ``||J||_F ||J^-1||_F = kappa + 1/kappa`` with ``kappa`` the
+    2-norm condition number, so ``TQI = 2 / (kappa + 1/kappa) = 2 kappa / (kappa^2 + 1)``;
+    written here as ``2 LCI / (1 + LCI^2)``, which is 0 at a singularity.
+    """
+    c = lci(J)
+    return 2.0 * c / (1.0 + c * c)
+
+
+def manipulability(J):
+    """Yoshikawa manipulability of the forward map ``p_dot = J^-1 theta_dot``: ``1/|det J|``."""
+    a, b, c, d = _entries(J)
+    with np.errstate(divide="ignore"):
+        return 1.0 / np.abs(a * d - b * c)
+
+
+def local_indices(J) -> dict:
+    """All local indices of :data:`LOCAL_INDEX_NAMES` at once (one SVD)."""
+    s_max, s_min = singular_values(J)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = {
+            "lci": np.where(s_max > 0, s_min / s_max, 0.0),
+            "v_max": 1.0 / s_min,
+            "v_min": 1.0 / s_max,
+            "tau_max": s_max,
+            "tau_min": s_min,
+            "d_max": 1.0 / s_min**2,
+            "d_min": 1.0 / s_max**2,
+        }
+    out["lci"] = np.where(np.isfinite(out["lci"]), out["lci"], 0.0)
+    return out

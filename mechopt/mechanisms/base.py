@@ -1,0 +1,153 @@
+"""The mechanism protocol shared by every 2-DOF planar parallel manipulator.
+
+Every mechanism maps a platform point ``P = (x, y)`` to actuator coordinates
+``q = (q1, q2)`` (angles in rad or slider/strut lengths) and differentiates the
+closure equations of its two legs into
+
+    A(P) p_dot = B(P) q_dot,      B diagonal,
+
+so that the Jacobian used throughout mechopt is ``J = B^-1 A`` with
+``q_dot = J p_dot`` (Liu 2006 eq. 1). ``det A = 0`` is the type-II (parallel,
+"uncertainty") singularity and ``B_ii = 0`` the type-I (serial, "stationary") one
+(Gosselin & Angeles 1990). A subclass implements :meth:`closure`, :meth:`ik`,
+:meth:`fk`, :meth:`reachable`, :meth:`serial_clearance` and :meth:`bounding_box`;
+everything else (Jacobian, singular values, local indices, singularity
+classification) is derived here once.
+
+All methods broadcast over NumPy arrays of points; scalars give 0-d arrays.
+"""
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+
+import numpy as np
+
+from .. import indices as _ix
+
+__all__ = ["PlanarMechanism", "as_points"]
+
+
+def as_points(x, y):
+    """Broadcast ``x`` and ``y`` to float arrays of a common shape."""
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    try:
+        return np.broadcast_arrays(x, y)
+    except ValueError:
+        raise ValueError(
+            f"x and y must broadcast to a common shape, got {x.shape} and {y.shape}"
+        ) from None
+
+
+class PlanarMechanism(ABC):
+    """Abstract 2-DOF planar parallel mechanism (see the module docstring)."""
+
+    #: working modes (inverse-kinematics branches) the mechanism supports
+    modes: tuple[str, ...] = ()
+    #: names of the two actuator coordinates, for tables and plots
+    joint_names: tuple[str, str] = ("q1", "q2")
+    #: True when the actuator coordinates are angles (reported in degrees)
+    angular_joints: bool = False
+
+    # --- to implement -------------------------------------------------------
+    @abstractmethod
+    def closure(self, x, y):
+        """Return ``(A, b, reachable)`` of the differentiated closure equations.
+
+        ``A`` has shape ``(..., 2, 2)``, ``b`` shape ``(..., 2)`` holds the diagonal
+        of ``B``; both are NaN where ``reachable`` is False.
+        """
+
+    @abstractmethod
+    def ik(self, x, y):
+        """Inverse kinematics in the mechanism's working mode: ``(q1, q2, reachable)``."""
+
+    @abstractmethod
+    def fk(self, q1, q2, assembly):
+        """Forward kinematics for one assembly mode: ``(x, y, valid)``."""
+
+    @abstractmethod
+    def reachable(self, x, y):
+        """Boolean array: the point can be reached (all legs assemble)."""
+
+    @abstractmethod
+    def serial_clearance(self, x, y):
+        """Signed distance from a point to the boundary of the reachable set
+        (positive inside). Exact: the boundary is made of type-I loci."""
+
+    @abstractmethod
+    def bounding_box(self):
+        """``(xmin, xmax, ymin, ymax)`` enclosing every reachable point."""
+
+    @property
+    @abstractmethod
+    def length_scale(self) -> float:
+        """A characteristic length, used to set tolerances and grid steps."""
+
+    # --- derived once for every mechanism ------------------------------------
+    def jacobian(self, x, y):
+        """``J = B^-1 A`` with ``q_dot = J p_dot``; shape ``(..., 2, 2)``, NaN where unreachable."""
+        A, b, _ = self.closure(x, y)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return A / b[..., :, None]
+
+    def type2_function(self, x, y):
+        """``det A / (|a1| |a2|)``: the sine of the angle between the leg directions.
+
+        Zero on the type-II locus and changes sign across it; NaN where unreachable.
+        Dimensionless, so root finding needs no scale.
+        """
+        A, _, _ = self.closure(x, y)
+        det = A[..., 0, 0] * A[..., 1, 1] - A[..., 0, 1] * A[..., 1, 0]
+        n1 = np.hypot(A[..., 0, 0], A[..., 0, 1])
+        n2 = np.hypot(A[..., 1, 0], A[..., 1, 1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return det / (n1 * n2)
+
+    def singular_values(self, x, y):
+        """``(s_max, s_min)`` of J at each point."""
+        return _ix.singular_values(self.jacobian(x, y))
+
+    def lci(self, x, y):
+        """Local conditioning index ``1/kappa_J`` in [0, 1]; 0 where unreachable or singular."""
+        return _ix.lci(self.jacobian(x, y))
+
+    def tqi(self, x, y):
+        """Transmission quality index (Stan 2008 eq. 9); 0 where unreachable or singular."""
+        return _ix.tqi(self.jacobian(x, y))
+
+    def velocity_extremes(self, x, y):
+        """``(|V|max, |V|min)`` of Liu eq. (10)."""
+        return _ix.velocity_extremes(self.jacobian(x, y))
+
+    def payload_extremes(self, x, y):
+        """``(|tau|max, |tau|min)`` of Liu eq. (13)."""
+        return _ix.payload_extremes(self.jacobian(x, y))
+
+    def stiffness_extremes(self, x, y):
+        """``(|D|max, |D|min)`` of Liu eq. (18) with unit actuator stiffness."""
+        return _ix.stiffness_extremes(self.jacobian(x, y))
+
+    def manipulability(self, x, y):
+        """``sqrt(det(J^-1 J^-T)) = 1/|det J|`` (Yoshikawa), inf at type-II singularities."""
+        return _ix.manipulability(self.jacobian(x, y))
+
+    def local_indices(self, x, y) -> dict:
+        """Every local index of :data:`mechopt.indices.LOCAL_INDEX_NAMES`."""
+        return _ix.local_indices(self.jacobian(x, y))
+
+    def classify_singularity(self, x, y, tol: float = 1e-9):
+        """Array of strings: ``"none"``, ``"type-I"``, ``"type-II"``, ``"both"`` or
+        ``"unreachable"``. Measures are made dimensionless: ``|B_ii|`` relative to
+        ``|A_i| * length_scale`` and ``det A`` relative to ``|a1||a2|``."""
+        A, b, ok = self.closure(x, y)
+        n = np.hypot(A[..., :, 0], A[..., :, 1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t1 = np.any(np.abs(b) <= tol * n * self.length_scale, axis=-1)
+        t2 = np.abs(self.type2_function(x, y)) <= tol
+        out = np.full(np.shape(ok), "none", dtype=object)
+        out[t1 & ~t2] = "type-I"
+        out[t2 & ~t1] = "type-II"
+        out[t1 & t2] = "both"
+        out[~ok] = "unreachable"
+        return out

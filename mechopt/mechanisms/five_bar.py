@@ -1,0 +1,202 @@
+"""The symmetric five-bar (5R) planar parallel mechanism.
+
+Geometry (Liu 2006 Fig. 1; Le 2013 Fig. 1, with DESIGN conventions): base joints
+``A1 = (-r3, 0)`` and ``A2 = (r3, 0)`` (``r3`` is HALF the base distance, Le's
+``l0``, Liu's ``R3``); cranks ``A_i B_i`` of length ``r1`` (actuated angles
+``theta_i`` from the x axis); distal links ``B_i P`` of length ``r2``.
+
+Working modes (Le 2013 eq. 17-18): with ``beta1 = atan2(y, x + r3)``,
+``beta2 = atan2(y, r3 - x)`` and ``alpha_i`` the law-of-cosines angle at ``A_i``
+(eq. 13-14),
+
+    theta1 = beta1 (+/-) alpha1,     theta2 = pi - beta2 (+/-) alpha2,
+
+the first sign of the mode string applying to leg 1 and the second to leg 2. The
+default ``"+-"`` has both elbows outward and is the mode of Liu's numbers.
+Geometrically the elbow is ``B_i = A_i + r1 R(s_i alpha_i) (P - A_i)/|P - A_i|``
+with ``s_i = +1`` for ``"+"``; the fast kernels use that form (no trigonometry).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .. import validation as _v
+from .base import PlanarMechanism, as_points
+
+__all__ = ["FiveBar", "MODES", "ASSEMBLY_MODES"]
+
+MODES = ("+-", "-+", "++", "--")
+ASSEMBLY_MODES = ("up", "down")
+_SIGN = {"+": 1.0, "-": -1.0}
+
+
+class FiveBar(PlanarMechanism):
+    """Symmetric 5R mechanism ``FiveBar(r1, r2, r3, mode="+-")``.
+
+    Parameters
+    ----------
+    r1 : float
+        Crank (proximal link) length [L], > 0.
+    r2 : float
+        Distal link length [L], > 0.
+    r3 : float
+        Half of the base distance [L], >= 0.
+    mode : {"+-", "-+", "++", "--"}
+        Working mode of Le 2013 eq. (17)-(18).
+
+    Lengths may be in any consistent unit [L]; angles are in rad.
+
+    References
+    ----------
+    Le, Kang, Doan (2013), ICCAIS, doi:10.1109/ICCAIS.2013.6720521, eq. (9)-(19).
+    Liu, Wang, Pritschow (2006), Mech. Mach. Theory 41:119-144,
+    doi:10.1016/j.mechmachtheory.2005.05.003, eq. (1).
+    """
+
+    modes = MODES
+    joint_names = ("theta1", "theta2")
+    angular_joints = True
+
+    def __init__(self, r1, r2, r3, mode: str = "+-"):
+        self.r1 = _v.positive_length("r1", r1)
+        self.r2 = _v.positive_length("r2", r2)
+        self.r3 = _v.nonnegative_length("r3", r3)
+        self.mode = _v.choice("mode", mode, MODES)
+        self._s1 = _SIGN[mode[0]]
+        self._s2 = _SIGN[mode[1]]
+
+    def __repr__(self):
+        return f"FiveBar(r1={self.r1!r}, r2={self.r2!r}, r3={self.r3!r}, mode={self.mode!r})"
+
+    def with_mode(self, mode: str) -> "FiveBar":
+        """The same link lengths in another working mode."""
+        return FiveBar(self.r1, self.r2, self.r3, mode)
+
+    def scaled(self, factor: float) -> "FiveBar":
+        """All lengths multiplied by ``factor`` (Liu 2006 eq. 20: ``R_i = D r_i``)."""
+        factor = _v.positive_length("factor", factor)
+        return FiveBar(self.r1 * factor, self.r2 * factor, self.r3 * factor, self.mode)
+
+    @property
+    def length_scale(self) -> float:
+        return (self.r1 + self.r2 + self.r3) / 3.0
+
+    @property
+    def base_joints(self):
+        """``((-r3, 0), (r3, 0))``."""
+        return (-self.r3, 0.0), (self.r3, 0.0)
+
+    # --- elbows -------------------------------------------------------------
+    def elbows(self, x, y):
+        """Elbow points of the working mode by circle intersection.
+
+        Returns ``(b1x, b1y, b2x, b2y, reachable)``; NaN where unreachable.
+        """
+        x, y = as_points(x, y)
+        r1, r2, r3 = self.r1, self.r2, self.r3
+        out = []
+        ok = np.ones(x.shape, dtype=bool)
+        for ax, s in ((-r3, self._s1), (r3, self._s2)):
+            dx = x - ax
+            dsq = dx * dx + y * y
+            d = np.sqrt(dsq)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                # law of cosines at A_i (Le eq. 13-14), scaled by r1/d
+                c = (r1 * r1 + dsq - r2 * r2) / (2.0 * dsq)  # = r1 cos(alpha) / d
+                h2 = (r1 * r1) / dsq - c * c  # = (r1 sin(alpha) / d)^2
+            # reachable <=> |r1 - r2| <= d <= r1 + r2 (Le eq. 19); tiny negative
+            # h2 from rounding on the boundary is clipped to the boundary itself.
+            tol = 1e-12
+            leg_ok = (h2 >= -tol) & (d > 0)
+            h = np.sqrt(np.clip(h2, 0.0, None)) * s
+            bx = ax + c * dx - h * y
+            by = c * y + h * dx
+            out += [bx, by]
+            ok &= leg_ok
+        b1x, b1y, b2x, b2y = (np.where(ok, v, np.nan) for v in out)
+        return b1x, b1y, b2x, b2y, ok
+
+    # --- protocol ------------------------------------------------------------
+    def closure(self, x, y):
+        """``A p_dot = B theta_dot`` with ``a_i = P - B_i``, ``B_ii = (B_i - A_i) x a_i``."""
+        x, y = as_points(x, y)
+        b1x, b1y, b2x, b2y, ok = self.elbows(x, y)
+        a1x, a1y = x - b1x, y - b1y
+        a2x, a2y = x - b2x, y - b2y
+        A = np.stack([np.stack([a1x, a1y], -1), np.stack([a2x, a2y], -1)], -2)
+        # (B_i - A_i) x a_i = r1 (u_i x a_i): the closure |P - B_i|^2 = r2^2
+        # differentiated gives a_i . p_dot = r1 (u_i x a_i) theta_dot_i.
+        k1 = (b1x + self.r3) * a1y - b1y * a1x
+        k2 = (b2x - self.r3) * a2y - b2y * a2x
+        return A, np.stack([k1, k2], -1), ok
+
+    def reachable(self, x, y):
+        x, y = as_points(x, y)
+        lo, hi = abs(self.r1 - self.r2), self.r1 + self.r2
+        d1 = np.hypot(x + self.r3, y)
+        d2 = np.hypot(x - self.r3, y)
+        return (d1 >= lo) & (d1 <= hi) & (d2 >= lo) & (d2 <= hi) & (d1 > 0) & (d2 > 0)
+
+    def serial_clearance(self, x, y):
+        """Distance to the nearest of the four circles of Le eq. (19), signed."""
+        x, y = as_points(x, y)
+        lo, hi = abs(self.r1 - self.r2), self.r1 + self.r2
+        d1 = np.hypot(x + self.r3, y)
+        d2 = np.hypot(x - self.r3, y)
+        return np.minimum.reduce([hi - d1, d1 - lo, hi - d2, d2 - lo])
+
+    def bounding_box(self):
+        reach = self.r1 + self.r2
+        return (-reach + self.r3, reach - self.r3, -reach, reach)
+
+    def ik(self, x, y):
+        """Actuated angles of the working mode (Le eq. 13-18), in rad.
+
+        ``theta1`` lies in (-pi, 2 pi) and ``theta2`` in (-pi, 2 pi) as the
+        formulas give them (no wrapping), so that joint ranges over a region
+        are continuous (Liu 2006 3.2.3 prints theta1 in [36.40, 274.97] deg).
+        """
+        x, y = as_points(x, y)
+        r1, r2, r3 = self.r1, self.r2, self.r3
+        ok = self.reachable(x, y)
+        d1 = np.hypot(x + r3, y)
+        d2 = np.hypot(x - r3, y)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c1 = (r1 * r1 + d1 * d1 - r2 * r2) / (2 * r1 * d1)
+            c2 = (r1 * r1 + d2 * d2 - r2 * r2) / (2 * r1 * d2)
+        alpha1 = np.arccos(np.clip(c1, -1.0, 1.0))
+        alpha2 = np.arccos(np.clip(c2, -1.0, 1.0))
+        beta1 = np.arctan2(y, x + r3)
+        beta2 = np.arctan2(y, r3 - x)
+        th1 = beta1 + self._s1 * alpha1
+        th2 = np.pi - beta2 + self._s2 * alpha2
+        return np.where(ok, th1, np.nan), np.where(ok, th2, np.nan), ok
+
+    def fk(self, theta1, theta2, assembly: str = "up"):
+        """Forward kinematics (Le eq. 5-12) by intersecting the two distal circles.
+
+        ``assembly="up"`` is Le's solution 1: ``P`` on the left of the vector
+        ``B1 -> B2`` (above the line B1B2 when B1 is left of B2); ``"down"`` is
+        solution 2. Returns ``(x, y, valid)``; NaN where the circles do not meet.
+        """
+        _v.choice("assembly", assembly, ASSEMBLY_MODES)
+        t1, t2 = as_points(theta1, theta2)
+        r1, r2, r3 = self.r1, self.r2, self.r3
+        b1x, b1y = -r3 + r1 * np.cos(t1), r1 * np.sin(t1)
+        b2x, b2y = r3 + r1 * np.cos(t2), r1 * np.sin(t2)
+        mx, my = b2x - b1x, b2y - b1y
+        m2 = mx * mx + my * my
+        with np.errstate(divide="ignore", invalid="ignore"):
+            h2 = r2 * r2 / m2 - 0.25
+        valid = (h2 >= 0) & (m2 > 0)
+        h = np.sqrt(np.clip(h2, 0, None)) * (1.0 if assembly == "up" else -1.0)
+        x = b1x + 0.5 * mx - h * my
+        y = b1y + 0.5 * my + h * mx
+        return np.where(valid, x, np.nan), np.where(valid, y, np.nan), valid
+
+    def assembly_of(self, x, y):
+        """Which FK assembly mode (``"up"``/``"down"``) a pose of this working mode is in."""
+        b1x, b1y, b2x, b2y, _ = self.elbows(x, y)
+        x, y = as_points(x, y)
+        cross = (b2x - b1x) * (y - b1y) - (b2y - b1y) * (x - b1x)
+        return np.where(cross >= 0, "up", "down")

@@ -1,0 +1,107 @@
+"""Quadrature rules over disks and rasters, named in every output.
+
+Two rules exist for means over a disk (the MIW of Liu 2006 and its concentric
+disk of half radius):
+
+``area``
+    The true area mean ``int f dA / int dA``: Gauss-Legendre in the radius with
+    the Jacobian ``r`` folded into the weights, and the periodic trapezoid rule
+    in the angle. This is the default.
+``polar``
+    The plain mean of ``f`` over a uniform ``(r, theta)`` grid (mid-points in
+    ``r``), i.e. ``(1/R) int int f dr dtheta / 2 pi``. It weights the centre
+    more than the rim. Liu's tabulated global indices are reproduced by it (see
+    ``tests/test_liu2006.py``).
+
+Regions that are not disks (usable workspace, good-conditioning workspace) are
+integrated on a :class:`Grid` of square cells (mid-point rule on a mask).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from . import validation as _v
+
+__all__ = ["QUADRATURES", "disk_rule", "Grid", "grid_over"]
+
+QUADRATURES = ("area", "polar")
+
+#: default resolutions; ``tests/test_quadrature.py`` shows each converged to 1e-3
+DEFAULT_N_R = 48
+DEFAULT_N_THETA = 96
+
+
+@lru_cache(maxsize=32)
+def _unit_disk_rule(rule: str, n_r: int, n_theta: int):
+    th = (np.arange(n_theta) + 0.5) * (2 * np.pi / n_theta)
+    if rule == "area":
+        g, gw = np.polynomial.legendre.leggauss(n_r)
+        r = 0.5 * (g + 1.0)
+        wr = 0.5 * gw * r  # int_0^1 f r dr
+        wr = wr / wr.sum()
+    else:
+        r = (np.arange(n_r) + 0.5) / n_r
+        wr = np.full(n_r, 1.0 / n_r)
+    R, T = np.meshgrid(r, th, indexing="ij")
+    w = np.repeat(wr[:, None], n_theta, axis=1) / n_theta
+    out = (R * np.cos(T)).ravel(), (R * np.sin(T)).ravel(), w.ravel()
+    for a in out:
+        a.setflags(write=False)
+    return out
+
+
+def disk_rule(radius, rule: str = "area", n_r: int = DEFAULT_N_R, n_theta: int = DEFAULT_N_THETA):
+    """Nodes ``(dx, dy)`` relative to the disk centre and weights ``w`` summing to 1.
+
+    ``sum(w * f(cx + dx, cy + dy))`` is the mean of ``f`` over the disk of the
+    given radius under the named rule (see the module docstring).
+    """
+    _v.choice("quadrature", rule, QUADRATURES)
+    radius = _v.finite_number("radius", radius)
+    dx, dy, w = _unit_disk_rule(rule, int(n_r), int(n_theta))
+    return radius * dx, radius * dy, w
+
+
+@dataclass(frozen=True)
+class Grid:
+    """A raster of square cells of side ``step`` whose centres are ``x`` x ``y``."""
+
+    x: np.ndarray
+    y: np.ndarray
+    step: float
+
+    @property
+    def cell_area(self) -> float:
+        return self.step * self.step
+
+    @property
+    def shape(self):
+        return (self.y.size, self.x.size)
+
+    def points(self):
+        """``(X, Y)`` arrays of shape ``(ny, nx)``: row index is y."""
+        return np.meshgrid(self.x, self.y)
+
+    def area(self, mask) -> float:
+        """Area of the cells where ``mask`` is True (mid-point rule)."""
+        return float(np.count_nonzero(mask)) * self.cell_area
+
+    def mean(self, values, mask) -> float:
+        """Area mean of ``values`` over the cells where ``mask`` is True."""
+        if not np.any(mask):
+            raise ValueError("cannot average over an empty region")
+        return float(np.mean(np.asarray(values)[mask]))
+
+
+def grid_over(box, step) -> Grid:
+    """Cell-centred grid covering ``box = (xmin, xmax, ymin, ymax)`` with cells of ``step``."""
+    step = _v.positive_length("step", step)
+    xmin, xmax, ymin, ymax = (float(v) for v in box)
+    nx = max(1, int(np.ceil((xmax - xmin) / step)))
+    ny = max(1, int(np.ceil((ymax - ymin) / step)))
+    x = xmin + (np.arange(nx) + 0.5) * step
+    y = ymin + (np.arange(ny) + 0.5) * step
+    return Grid(x, y, step)
