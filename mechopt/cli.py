@@ -54,9 +54,17 @@ def _cmd_evaluate_five_bar(args):
 
 
 def _cmd_run(args):
-    from .experiments_liu_examples import liu_examples_table
+    import pandas as pd
 
-    print(liu_examples_table(quadrature=args.quadrature).to_string(index=False))
+    from .experiments.liu2006 import reproduce_section3
+
+    table = reproduce_section3(quadratures=(args.quadrature,))
+    cols = ["design", "quantity", "paper", "reproduced", "rel_error", "status"]
+    with pd.option_context("display.width", 120):
+        print(table[cols].to_string(index=False, float_format=lambda v: f"{v:.5g}"))
+    counts = table["status"].value_counts()
+    print(f"\n{counts.get('match', 0)} match, {counts.get('differs', 0)} differ "
+          f"(quadrature {args.quadrature}; notes: python -m mechopt.experiments.liu2006)")
     return 0
 
 
@@ -78,7 +86,8 @@ def build_parser() -> argparse.ArgumentParser:
     fb.set_defaults(func=_cmd_evaluate_five_bar)
 
     run = sub.add_parser("run", help="the main job: evaluate Liu 2006's five example designs")
-    run.add_argument("--quadrature", default="polar", help="area or polar (default polar)")
+    run.add_argument("--quadrature", default="polar", choices=("area", "polar"),
+                     help="quadrature of the disk means (default polar, the one of the paper)")
     run.set_defaults(func=_cmd_run)
     return p
 
