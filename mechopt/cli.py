@@ -13,6 +13,10 @@ from . import __version__
 
 EXIT_USAGE = 2
 
+#: modules that define ``register(subparsers)`` adding their own sub-command
+#: (each handler is set with ``set_defaults(func=...)`` and returns an exit status)
+_COMMAND_MODULES: tuple[str, ...] = ()
+
 
 class _Parser(argparse.ArgumentParser):
     """argparse with one-line errors (no usage block) and exit status 2."""
@@ -23,6 +27,9 @@ class _Parser(argparse.ArgumentParser):
 
 class _UsageError(Exception):
     pass
+
+
+Parser = _Parser  # for register() hooks: parser_class=cli.Parser
 
 
 def _fmt(v):
@@ -89,6 +96,12 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--quadrature", default="polar", choices=("area", "polar"),
                      help="quadrature of the disk means (default polar, the one of the paper)")
     run.set_defaults(func=_cmd_run)
+
+    # sub-commands that live with their own module register themselves here
+    for module in _COMMAND_MODULES:
+        import importlib
+
+        importlib.import_module(module).register(sub)
     return p
 
 

@@ -1,0 +1,82 @@
+"""The one place where mechopt writes files: atomically, or not at all.
+
+Every file is written under a temporary name in its destination folder and
+renamed over the final name (``os.replace`` is atomic on POSIX), so a killed
+run never leaves a truncated CSV, JSON or PNG under its final name.
+"""
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import tempfile
+from pathlib import Path
+
+__all__ = ["atomic_path", "write_text", "write_csv", "write_json", "save_figure", "prepare_out_dir"]
+
+
+@contextlib.contextmanager
+def atomic_path(path):
+    """Yield a temporary path next to ``path``; rename it to ``path`` on success."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
+        raise
+
+
+def write_text(path, text: str) -> Path:
+    with atomic_path(path) as tmp:
+        tmp.write_text(text)
+    return Path(path)
+
+
+def write_csv(df, path, **kw) -> Path:
+    """A DataFrame as CSV (floats with full precision, no index)."""
+    kw.setdefault("index", False)
+    kw.setdefault("float_format", "%.10g")
+    with atomic_path(path) as tmp:
+        df.to_csv(tmp, **kw)
+    return Path(path)
+
+
+def write_json(obj, path) -> Path:
+    return write_text(path, json.dumps(obj, indent=2, sort_keys=True, default=float) + "\n")
+
+
+def save_figure(fig, path, dpi: int = 120) -> Path:
+    """Save a matplotlib figure atomically and close it."""
+    import matplotlib.pyplot as plt
+
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=dpi, format=path.suffix.lstrip(".") or "png", bbox_inches="tight")
+    plt.close(fig)
+    return path
+
+
+def prepare_out_dir(path) -> Path:
+    """Create the output folder if needed and check that it is writable.
+
+    Raises ValueError (one line) when it cannot be created or written; nothing
+    is left behind in that case.
+    """
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise ValueError(f"--out must be a folder, got the file {str(path)!r}")
+    created = not path.exists()
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=path):
+            pass
+    except OSError as exc:
+        if created:
+            with contextlib.suppress(OSError):
+                path.rmdir()
+        raise ValueError(f"--out {str(path)!r} is not writable: {exc.strerror}") from None
+    return path
