@@ -44,61 +44,70 @@ class MIC:
     center_y: float
 
 
-def _first_sign_change(mech, cx, cy, phi, radius, n_r, n_bisect=48):
+def _first_sign_change(mech, cx, cy, phi, radius, n_r, n_bisect=36):
     """Radius of the first zero (or loss of reachability) of ``type2_function``
-    along each ray ``(cx, cy) + r (cos phi, sin phi)``, ``0 < r <= radius``;
-    ``radius`` where none is found."""
+    along rays ``(cx, cy) + r (cos phi, sin phi)``, ``0 < r <= radius``.
+
+    ``cx``, ``cy``, ``radius`` have shape ``(m,)`` (centres), ``phi`` shape
+    ``(m, k)`` or ``(k,)``; returns ``(m, k)``, equal to ``radius`` where no zero
+    is found and to 0 where the centre itself is singular or unreachable.
+    """
+    cx, cy, radius = (np.asarray(v, float)[:, None, None] for v in (cx, cy, radius))
+    phi = np.broadcast_to(np.asarray(phi, float), (cx.shape[0], np.shape(phi)[-1]))[:, :, None]
     f0 = mech.type2_function(cx, cy)
-    if not np.isfinite(f0) or f0 == 0.0:
-        return np.zeros_like(phi)
-    c, s = np.cos(phi)[:, None], np.sin(phi)[:, None]
-    r = radius * np.arange(1, n_r + 1)[None, :] / n_r
+    s0 = np.sign(f0)
+    c, s = np.cos(phi), np.sin(phi)
+    r = radius * (np.arange(1, n_r + 1) / n_r)
     f = mech.type2_function(cx + r * c, cy + r * s)
-    bad = ~(np.sign(f) == np.sign(f0))  # sign change, zero or NaN (unreachable)
-    hit = bad.any(axis=1)
-    k = np.where(hit, bad.argmax(axis=1), n_r - 1)
-    lo = np.where(k > 0, r[0, np.maximum(k - 1, 0)], 0.0)
-    hi = r[0, k]
-    c, s = c[:, 0], s[:, 0]
+    bad = ~(np.sign(f) == s0)  # sign change, zero or NaN (unreachable)
+    hit = bad.any(axis=2)
+    k = np.where(hit, bad.argmax(axis=2), n_r - 1)
+    step = radius[:, :, 0] / n_r
+    lo, hi = k * step, (k + 1) * step
+    c, s, cx, cy, s0 = c[..., 0], s[..., 0], cx[..., 0], cy[..., 0], s0[..., 0]
     for _ in range(n_bisect):
         mid = 0.5 * (lo + hi)
-        fm = mech.type2_function(cx + mid * c, cy + mid * s)
-        same = np.sign(fm) == np.sign(f0)
+        same = np.sign(mech.type2_function(cx + mid * c, cy + mid * s)) == s0
         lo = np.where(same, mid, lo)
         hi = np.where(same, hi, mid)
-    return np.where(hit, 0.5 * (lo + hi), radius)
+    out = np.where(hit, 0.5 * (lo + hi), radius[:, :, 0])
+    return np.where(np.isfinite(f0[..., 0]) & (s0 != 0), out, 0.0)
 
 
 def type2_clearance(mech, cx, cy, radius, n_phi=128, n_r=96, n_refine=64):
-    """Distance from ``(cx, cy)`` to the type-II locus, searched up to ``radius``.
+    """Distance from centres ``(cx, cy)`` to the type-II locus, searched up to ``radius``.
 
+    Vectorised over centres (arrays of shape ``(m,)``; scalars give a float).
     Rays on a uniform angle grid bracket the first sign change of
     ``type2_function`` on a radial grid and bisect it; the angle of the closest
-    hit is then refined on ``n_refine`` rays spanning the neighbouring grid cells.
-    At the closest point the locus is tangent to the circle, so the ray there
-    crosses it transversally and the bracketing cannot miss it.
+    hit is then refined on ``n_refine`` rays spanning the neighbouring grid
+    cells. At the closest point the locus is tangent to the circle, so the ray
+    there crosses it transversally and the bracketing cannot miss it.
     """
-    if radius <= 0:
-        return 0.0
-    phi = np.arange(n_phi) * (2 * np.pi / n_phi)
-    r = _first_sign_change(mech, cx, cy, phi, radius, n_r)
-    j = int(np.argmin(r))
-    if r[j] >= radius:
-        return float(radius)
-    dphi = 2 * np.pi / n_phi
-    phi2 = phi[j] + np.linspace(-dphi, dphi, n_refine)
-    r2 = _first_sign_change(mech, cx, cy, phi2, min(radius, r[j] * 1.05 + 1e-12), 2 * n_r)
-    return float(min(r[j], r2.min()))
+    scalar = np.ndim(cx) == 0 and np.ndim(cy) == 0 and np.ndim(radius) == 0
+    cx, cy, radius = (np.atleast_1d(np.asarray(v, float)) for v in np.broadcast_arrays(cx, cy, radius))
+    out = np.zeros(cx.shape)
+    live = radius > 0
+    if live.any():
+        cxl, cyl, rl = cx[live], cy[live], radius[live]
+        phi = np.arange(n_phi) * (2 * np.pi / n_phi)
+        r = _first_sign_change(mech, cxl, cyl, phi, rl, n_r)
+        j = np.argmin(r, axis=1)
+        best = r[np.arange(r.shape[0]), j]
+        dphi = 2 * np.pi / n_phi
+        phi2 = phi[j][:, None] + np.linspace(-dphi, dphi, n_refine)[None, :]
+        r2 = _first_sign_change(mech, cxl, cyl, phi2, np.minimum(rl, best * 1.05 + 1e-12), 2 * n_r)
+        out[live] = np.minimum(best, r2.min(axis=1))
+    return float(out[0]) if scalar else out
 
 
 def _mic_radius_at(mech, cy):
-    serial = float(mech.serial_clearance(0.0, cy))
-    if serial <= 0:
-        return 0.0
-    return type2_clearance(mech, 0.0, cy, serial)
+    cy = np.atleast_1d(np.asarray(cy, float))
+    serial = np.maximum(mech.serial_clearance(0.0, cy), 0.0)
+    return np.minimum(serial, type2_clearance(mech, np.zeros_like(cy), cy, serial))
 
 
-def mic(mech, n_y: int = 48, tol: float = 1e-7) -> MIC:
+def mic(mech, n_y: int = 48, tol: float = 1e-6) -> MIC:
     """Maximal inscribed circle of ``mech`` (centre on the y axis, ``y > 0``).
 
     A grid of ``n_y`` centres over ``(0, ymax]`` locates the best centre; a
@@ -108,7 +117,7 @@ def mic(mech, n_y: int = 48, tol: float = 1e-7) -> MIC:
     """
     ymax = mech.bounding_box()[3]
     ys = ymax * np.arange(1, n_y + 1) / (n_y + 1)
-    rs = np.array([_mic_radius_at(mech, y) for y in ys])
+    rs = _mic_radius_at(mech, ys)
     j = int(np.argmax(rs))
     if rs[j] <= 0:
         raise ValueError(f"{mech!r} has no singularity-free disk centred on the y axis (MIC radius 0)")
@@ -117,16 +126,16 @@ def mic(mech, n_y: int = 48, tol: float = 1e-7) -> MIC:
     # golden-section maximisation of the (locally unimodal) radius over [a, b]
     x1 = b - _GOLDEN * (b - a)
     x2 = a + _GOLDEN * (b - a)
-    f1, f2 = _mic_radius_at(mech, x1), _mic_radius_at(mech, x2)
+    f1, f2 = _mic_radius_at(mech, [x1, x2])
     while b - a > tol * mech.length_scale:
         if f1 >= f2:
             b, x2, f2 = x2, x1, f1
             x1 = b - _GOLDEN * (b - a)
-            f1 = _mic_radius_at(mech, x1)
+            f1 = float(_mic_radius_at(mech, x1)[0])
         else:
             a, x1, f1 = x1, x2, f2
             x2 = a + _GOLDEN * (b - a)
-            f2 = _mic_radius_at(mech, x2)
+            f2 = float(_mic_radius_at(mech, x2)[0])
     best = max((rs[j], ys[j]), (f1, x1), (f2, x2))
     return MIC(radius=float(best[0]), center_y=float(best[1]))
 
@@ -239,3 +248,33 @@ def joint_ranges(mech, region: Region):
     x, y = region.points()
     q1, q2, _ = mech.ik(x, y)
     return (float(np.nanmin(q1)), float(np.nanmax(q1))), (float(np.nanmin(q2)), float(np.nanmax(q2)))
+
+
+def largest_square_at(predicate, center_y: float, half_max: float, n_inner: int = 33,
+                      n_edge: int = 257, tol: float = 1e-6) -> float:
+    """Side of the largest square centred at ``(0, center_y)`` on which
+    ``predicate(x, y)`` holds at every sample point, ``side <= 2 half_max``.
+
+    Le 2013 sec. III (Fig. 4) shrinks the square inscribed in the MIC until the
+    constraints hold; since concentric squares are nested, feasibility is
+    monotone in the side and bisection finds the largest one (to ``tol`` relative
+    to ``half_max``). Each candidate is checked on ``n_edge`` points per edge and
+    an ``n_inner`` x ``n_inner`` interior grid.
+    """
+    u = np.linspace(-1.0, 1.0, n_edge)
+    one = np.ones_like(u)
+    g = np.linspace(-1.0, 1.0, n_inner)
+    GX, GY = np.meshgrid(g, g)
+    sx = np.concatenate([u, u, -one, one, GX.ravel()])
+    sy = np.concatenate([-one, one, u, u, GY.ravel()])
+
+    def ok(h):
+        return bool(np.all(predicate(h * sx, center_y + h * sy)))
+
+    if ok(half_max):
+        return 2.0 * half_max
+    lo, hi = 0.0, half_max
+    while hi - lo > tol * half_max:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if ok(mid) else (lo, mid)
+    return 2.0 * lo

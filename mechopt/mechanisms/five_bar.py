@@ -200,3 +200,14 @@ class FiveBar(PlanarMechanism):
         x, y = as_points(x, y)
         cross = (b2x - b1x) * (y - b1y) - (b2y - b1y) * (x - b1x)
         return np.where(cross >= 0, "up", "down")
+
+    def type2_function(self, x, y):
+        """``(a1 x a2) / (|a1| |a2|)`` with ``a_i = P - B_i``: the sine of the angle
+        between the distal links; zero when B1, P, B2 are collinear (type II).
+
+        Same value as the protocol's generic version (``|a_i| = r2``), without
+        building the matrices: the MIC root finding calls it most.
+        """
+        x, y = as_points(x, y)
+        b1x, b1y, b2x, b2y, _ = self.elbows(x, y)
+        return ((x - b1x) * (y - b2y) - (y - b1y) * (x - b2x)) / (self.r2 * self.r2)
