@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 
 from . import __version__
@@ -75,6 +76,76 @@ def _cmd_run(args):
     return 0
 
 
+def _cmd_problems(args):
+    from .problems import available
+
+    rows = available()
+    w = max(len(n) for n, _ in rows)
+    for name, summary in rows:
+        print(f"{name:<{w}}  {summary}")
+    return 0
+
+
+def _client(args):
+    from .parallel import connect
+
+    return connect(args.dask) if args.dask else None
+
+
+def _cmd_optimize(args):
+    from .problems import get
+    from .runner import optimize
+
+    problem = get(args.problem)
+    client = _client(args)
+    try:
+        res = optimize(problem, args.algorithm, args.pop, args.gen, args.seed, args.n_jobs, client,
+                       args.out, progress=True)
+    finally:
+        if client is not None:
+            client.close()
+    print(f"{len(res.front)} designs on the front; wrote {args.out}/front.csv, history.csv, "
+          f"run.json, front.png ({res.info['wall_time_s']:.1f} s)")
+    return 0
+
+
+def _cmd_sweep(args):
+    from .problems import get
+    from .runner import parse_weights, sweep
+
+    problem = get(args.problem)
+    weights = parse_weights(args.weights)
+    client = _client(args)
+    try:
+        table = sweep(problem, weights, args.pop, args.gen, args.seed, args.n_jobs, client, args.out)
+    finally:
+        if client is not None:
+            client.close()
+    print(f"{len(table)} weighted-sum optima; wrote {args.out}/sweep.csv, sweep.png, front.csv")
+    return 0
+
+
+def _add_run_options(p):
+    p.add_argument("problem", help="a registered problem (see: mechopt problems)")
+    p.add_argument("--pop", type=int, default=None, help="population size (default: the problem's)")
+    p.add_argument("--gen", type=int, default=None, help="generations (default: the problem's)")
+    p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    p.add_argument("--n-jobs", type=int, default=2, help="joblib worker processes (default 2)")
+    p.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None,
+                   help="evaluate on a Dask cluster instead of joblib")
+    p.add_argument("--out", required=True, help="output folder")
+
+
+def _remove_if_we_made_it_empty(out_before):
+    """Nothing is left behind on failure: drop an output folder this run created
+    if it is still empty."""
+    if out_before and not out_before[1]:
+        try:
+            os.rmdir(out_before[0])
+        except OSError:
+            pass
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="mechopt", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"mechopt {__version__}")
@@ -97,6 +168,19 @@ def build_parser() -> argparse.ArgumentParser:
                      help="quadrature of the disk means (default polar, the one of the paper)")
     run.set_defaults(func=_cmd_run)
 
+    pr = sub.add_parser("problems", help="list every registered problem, one line each")
+    pr.set_defaults(func=_cmd_problems)
+
+    op = sub.add_parser("optimize", help="run a problem with a seeded pymoo algorithm")
+    _add_run_options(op)
+    op.add_argument("--algorithm", default=None, help="ga, nsga2 or nsga3 (default: the problem's)")
+    op.set_defaults(func=_cmd_optimize)
+
+    sw = sub.add_parser("sweep", help="weighted-sum optima of a 2-objective problem for a range of weights")
+    _add_run_options(sw)
+    sw.add_argument("--weights", default="0:1:0.1", help="start:stop:step or a comma list, in [0, 1]")
+    sw.set_defaults(func=_cmd_sweep)
+
     # sub-commands that live with their own module register themselves here
     for module in _COMMAND_MODULES:
         import importlib
@@ -107,10 +191,14 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     parser = build_parser()
+    out_before = None
     try:
         args = parser.parse_args(argv)
+        out = getattr(args, "out", None)
+        out_before = (out, os.path.exists(out)) if out else None
         return args.func(args)
     except (_UsageError, ValueError) as exc:
+        _remove_if_we_made_it_empty(out_before)
         msg = " ".join(str(exc).split())
         print(f"mechopt: error: {msg}", file=sys.stderr)
         return EXIT_USAGE

@@ -1,0 +1,40 @@
+"""The paper formulations as pymoo Problems, and their registry.
+
+``get(name)`` returns a fresh Problem; ``available()`` lists ``(name, summary)``.
+Installed as ``mechopt.problems``.
+"""
+from __future__ import annotations
+
+import importlib
+
+__all__ = ["get", "available", "names"]
+
+# name -> (module, class name, constructor kwargs)
+_REGISTRY = {
+    "le2013": ("le2013", "LeSquare", {}),
+    "le2013-relaxed": ("le2013", "LeSquareRelaxed", {}),
+    "le2013-gamma": ("le2013", "LeSquareGamma", {}),
+    "le2013-gamma-relaxed": ("le2013", "LeSquareGammaRelaxed", {}),
+    **{f"liu2006-{r}": ("liu2006", "LiuRegion", {"region": r})
+       for r in ("w-gci", "w-gci-prime", "w-gci-gvi", "w-gci-gpi", "w-gci-gsi", "all")},
+    "liu2006-many": ("liu2006", "LiuManyObjective", {}),
+}
+
+
+def names() -> tuple[str, ...]:
+    return tuple(_REGISTRY)
+
+
+def get(name: str):
+    """A new instance of the registered Problem ``name``."""
+    from mechopt import validation as _v
+
+    _v.choice("problem", name, names())
+    module, cls, kw = _REGISTRY[name]
+    mod = importlib.import_module(f"{__name__}.{module}")
+    return getattr(mod, cls)(**kw)
+
+
+def available():
+    """``[(name, one-line summary)]`` of every registered problem."""
+    return [(n, get(n).summary) for n in names()]

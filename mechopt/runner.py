@@ -1,0 +1,217 @@
+"""One seeded runner for every Problem: ``optimize`` and weighted-sum ``sweep``.
+
+Population evaluation goes through the Problem's chunked
+:func:`mechopt.parallel.parallel_map` (joblib or Dask), so the same seed gives
+the same front for any ``n_jobs`` and either backend. Outputs go through
+:mod:`mechopt.io` (atomic writes):
+
+``front.csv``    one row per non-dominated feasible design (variables, objectives
+                 with their natural sign, constraint values, derived indices)
+``history.csv``  per generation: evaluations, best objective values, hypervolume
+``run.json``     problem, algorithm and parameters, seed, versions, wall time
+``front.png``    the front (or the convergence curve of a single objective)
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from . import __version__
+from . import io as _io
+from . import validation as _v
+from .progress import Progress
+
+__all__ = ["ALGORITHMS", "make_algorithm", "optimize", "sweep", "parse_weights", "RunResult"]
+
+ALGORITHMS = ("ga", "nsga2", "nsga3")
+
+
+def make_algorithm(name: str, pop: int, n_obj: int):
+    """A pymoo algorithm by name with population ``pop`` (NSGA-III: Das-Dennis
+    reference directions, as many partitions as fit in ``pop``)."""
+    _v.choice("algorithm", name, ALGORITHMS)
+    if name == "ga":
+        if n_obj != 1:
+            raise ValueError(f"algorithm 'ga' needs a single objective, the problem has {n_obj}")
+        from pymoo.algorithms.soo.nonconvex.ga import GA
+
+        return GA(pop_size=pop, eliminate_duplicates=True)
+    if name == "nsga2":
+        from pymoo.algorithms.moo.nsga2 import NSGA2
+
+        return NSGA2(pop_size=pop)
+    from pymoo.algorithms.moo.nsga3 import NSGA3
+    from pymoo.util.ref_dirs import get_reference_directions
+
+    from math import comb
+
+    p = 1
+    while comb(p + 1 + n_obj - 1, n_obj - 1) <= pop:
+        p += 1
+    ref = get_reference_directions("das-dennis", n_obj, n_partitions=p)
+    return NSGA3(ref_dirs=ref, pop_size=pop)
+
+
+@dataclass
+class RunResult:
+    front: pd.DataFrame
+    history: pd.DataFrame
+    info: dict
+
+
+def _check_sizes(pop, gen):
+    pop = int(_v.finite_number("pop", pop))
+    gen = int(_v.finite_number("gen", gen))
+    if pop < 2:
+        raise ValueError(f"pop must be at least 2, got {pop}")
+    if gen < 1:
+        raise ValueError(f"gen must be at least 1, got {gen}")
+    return pop, gen
+
+
+class _History:
+    """pymoo callback: one history row per generation, and the progress line."""
+
+    def __init__(self, problem, progress: Progress | None):
+        self.problem, self.progress, self.rows, self.ref = problem, progress, [], None
+
+    def __call__(self, algorithm):
+        F = algorithm.opt.get("F")
+        feas = algorithm.opt.get("feasible")[:, 0]
+        row = {"generation": algorithm.n_gen, "evaluations": algorithm.evaluator.n_eval,
+               "n_front": int(len(F))}
+        sense = np.array([ob.sense for ob in self.problem.objectives])
+        info = ""
+        for j, ob in enumerate(self.problem.objectives):
+            best = (F[:, j].min() if len(F) else np.nan) * ob.sense
+            row[f"best_{ob.name}"] = float(best) if feas.any() else np.nan
+        if 2 <= F.shape[1] <= 3:
+            if self.ref is None:
+                pf = algorithm.pop.get("F")
+                lo, hi = pf.min(axis=0), pf.max(axis=0)
+                self.ref = hi + 0.1 * np.maximum(hi - lo, 1e-12)
+            from pymoo.indicators.hv import HV
+
+            row["hypervolume"] = float(HV(ref_point=self.ref)(F[feas])) if feas.any() else 0.0
+            info = f"hv {row['hypervolume']:.5g}"
+        elif F.shape[1] == 1:
+            info = f"best {self.problem.objectives[0].name} {row[f'best_{self.problem.objectives[0].name}']:.6g}"
+        self.rows.append(row)
+        if self.progress is not None:
+            self.progress.update(algorithm.n_gen, info)
+
+
+def _front_table(problem, X) -> pd.DataFrame:
+    df = pd.DataFrame(problem.describe(X))
+    keys = [ob.name for ob in problem.objectives] + list(problem.var_names)
+    return df.sort_values(keys, kind="mergesort").reset_index(drop=True)
+
+
+def optimize(problem, algorithm: str | None = None, pop: int | None = None, gen: int | None = None,
+             seed: int = 1, n_jobs: int = 2, client=None, out=None, progress: bool = True,
+             plot: bool = True) -> RunResult:
+    """Run ``problem`` with a seeded pymoo algorithm; write the run folder if ``out``."""
+    from pymoo.optimize import minimize
+
+    algorithm = algorithm or problem.default_algorithm
+    pop, gen = _check_sizes(pop or problem.default_pop, gen or problem.default_gen)
+    seed = int(_v.finite_number("seed", seed))
+    algo = make_algorithm(algorithm, pop, problem.n_obj)
+    out = _io.prepare_out_dir(out) if out is not None else None
+    problem.use_parallel(n_jobs, client)
+    bar = Progress(gen, f"{problem.name} {algorithm}") if progress else None
+    hist = _History(problem, bar)
+    t0 = time.perf_counter()
+    res = minimize(problem, algo, ("n_gen", gen), seed=seed, callback=hist, verbose=False)
+    wall = time.perf_counter() - t0
+    if bar is not None:
+        bar.close()
+    problem.use_parallel(1, None)
+    X = res.opt.get("X") if res.opt is not None else np.empty((0, problem.n_var))
+    feas = res.opt.get("feasible")[:, 0] if res.opt is not None else np.zeros(0, bool)
+    front = _front_table(problem, X[feas]) if feas.any() else pd.DataFrame(columns=list(problem.var_names))
+    history = pd.DataFrame(hist.rows)
+    info = _run_info(problem, algorithm, pop, gen, seed, n_jobs, client, wall)
+    if out is not None:
+        _io.write_csv(front, out / "front.csv")
+        _io.write_csv(history, out / "history.csv")
+        _io.write_json(info, out / "run.json")
+        if plot:
+            from .plotting import plot_front
+
+            _io.save_figure(plot_front(problem, front, history), out / "front.png")
+    return RunResult(front, history, info)
+
+
+def _run_info(problem, algorithm, pop, gen, seed, n_jobs, client, wall) -> dict:
+    import pymoo
+
+    return {
+        "problem": problem.name,
+        "summary": problem.summary,
+        "algorithm": {"name": algorithm, "pop": pop, "gen": gen},
+        "seed": seed,
+        "n_jobs": n_jobs,
+        "backend": "dask" if client is not None else "joblib",
+        "versions": {"mechopt": __version__, "pymoo": pymoo.__version__, "numpy": np.__version__},
+        "wall_time_s": round(wall, 3),
+    }
+
+
+def parse_weights(text: str) -> np.ndarray:
+    """``"0:1:0.1"`` (start:stop:step, inclusive) or ``"0,0.25,1"``; each in [0, 1]."""
+    try:
+        if ":" in text:
+            a, b, s = (float(v) for v in text.split(":"))
+            if not s > 0 or b < a:
+                raise ValueError
+            w = a + s * np.arange(int(np.floor((b - a) / s + 1e-9)) + 1)
+        else:
+            w = np.array([float(v) for v in text.split(",")])
+    except ValueError:
+        raise ValueError(f"weights must be start:stop:step or a comma list, got {text!r}") from None
+    if w.size == 0 or not np.all(np.isfinite(w)) or w.min() < 0 or w.max() > 1:
+        raise ValueError(f"weights must lie in [0, 1], got {text!r}")
+    return np.round(w, 12)
+
+
+def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int = 2, client=None,
+          out=None, progress: bool = True) -> pd.DataFrame:
+    """Weighted-sum optima of a 2-objective problem for each weight ``w`` of objective 1.
+
+    The objectives are scaled by the span of the NSGA-II front of the same seed
+    (``Z = w f1/s1 + (1 - w) f2/s2`` in minimisation form), unless the problem
+    defines ``weighted_sum(w)`` itself (e.g. Stan 2008's ``Z = W1 T + W2 W``).
+    Writes ``sweep.csv``, the front run's files and ``sweep.png`` when ``out``.
+    """
+    from .problems.weighted import WeightedSum  # noqa: F401 (installed sub-package)
+
+    if problem.n_obj != 2:
+        raise ValueError(f"sweep needs a 2-objective problem, {problem.name} has {problem.n_obj}")
+    out = _io.prepare_out_dir(out) if out is not None else None
+    front_run = optimize(problem, "nsga2", pop, gen, seed, n_jobs, client, out, progress, plot=False)
+    F = np.column_stack([ob.sense * front_run.front[ob.name].to_numpy() for ob in problem.objectives])
+    scales = np.ptp(F, axis=0) if len(F) > 1 else np.ones(2)
+    scales = np.where(scales > 0, scales, 1.0)
+    rows = []
+    bar = Progress(len(weights), f"{problem.name} sweep") if progress else None
+    for i, w in enumerate(weights):
+        single = WeightedSum(problem, float(w), scales)
+        r = optimize(single, "ga", pop, gen, seed, n_jobs, client, None, progress=False, plot=False)
+        best = r.front.iloc[0].to_dict() if len(r.front) else {}
+        rows.append({"weight": float(w), **best})
+        if bar is not None:
+            bar.update(i + 1, f"w={w:.3g}")
+    if bar is not None:
+        bar.close()
+    table = pd.DataFrame(rows)
+    if out is not None:
+        from .plotting import plot_sweep
+
+        _io.write_csv(table, out / "sweep.csv")
+        _io.save_figure(plot_sweep(problem, front_run.front, table), out / "sweep.png")
+    return table

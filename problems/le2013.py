@@ -1,0 +1,146 @@
+"""Le, Kang, Doan (2013): the largest square inside the MIC of a five-bar.
+
+Le 2013 sec. III, eq. (23)-(26): with ``l1 = 1`` and ``rho = l2/l1``, find the
+largest square ``W_o(rho)`` centred at the MIC centre, inside the MIC, on which
+``1/kappa >= gamma`` (23) and the actuated angles stay within their limits
+(25)-(26); the half base ``l0`` is tied by the closed-form optimum (24),
+``l0 = sqrt(2)/2 (l2 - l1)``. The paper's example: ``gamma = 0.5``, limits
+``[-pi/3, 4 pi/3]`` for both actuators, ``rho in [1.2, 4]``; it reports
+``rho* = 1.9721`` and ``a_MAX = 1.3142``.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from mechopt import FiveBar
+from mechopt.workspace import largest_square_at, mic
+
+from .base import MechoptProblem, Objective
+
+__all__ = ["square_side", "LeSquare", "LeSquareRelaxed", "LeSquareGamma", "THETA_LIMITS", "GAMMA"]
+
+#: Le 2013 sec. IV: theta_a{1,2} in [-pi/3, 4 pi/3]
+THETA_LIMITS = (-np.pi / 3, 4 * np.pi / 3)
+#: Le 2013 sec. IV: gamma = 0.5
+GAMMA = 0.5
+RHO_BOUNDS = (1.2, 4.0)
+
+
+def tied_half_base(rho: float, l1: float = 1.0) -> float:
+    """Le eq. (24): ``l0 = sqrt(2)/2 (l2 - l1)`` with ``l2 = rho l1``."""
+    return np.sqrt(2.0) / 2.0 * (rho - 1.0) * l1
+
+
+def square_side(l1, l2, l0, gamma=GAMMA, theta_limits=THETA_LIMITS) -> dict:
+    """``a_MAX`` of Le Fig. 4 for one design (``l0`` is the half base, our ``r3``).
+
+    Returns ``a_max``, ``r_mic``, ``mic_center_y`` and the LCI range inside the
+    square; ``a_max = 0`` when the design has no MIC.
+    """
+    try:
+        fb = FiveBar(l1, l2, l0)
+        m = mic(fb)
+    except ValueError:
+        return dict(a_max=0.0, r_mic=0.0, mic_center_y=np.nan, lci_min=np.nan, lci_max=np.nan)
+    lo, hi = theta_limits
+
+    def feasible(x, y):
+        t1, t2, ok = fb.ik(x, y)
+        with np.errstate(invalid="ignore"):
+            return ok & (fb.lci(x, y) >= gamma) & (t1 >= lo) & (t1 <= hi) & (t2 >= lo) & (t2 <= hi)
+
+    # the square inscribed in the MIC has half side r_MIC / sqrt(2) (Le sec. III)
+    a = largest_square_at(feasible, m.center_y, m.radius / np.sqrt(2.0))
+    s = np.linspace(-a / 2, a / 2, 81)
+    X, Y = np.meshgrid(s, m.center_y + s)
+    L = fb.lci(X, Y)
+    return dict(a_max=a, r_mic=m.radius, mic_center_y=m.center_y,
+                lci_min=float(L.min()) if a > 0 else np.nan, lci_max=float(L.max()) if a > 0 else np.nan)
+
+
+def _evaluate(rows, gamma_col=None, l0_col=None, tied=True):
+    out = {k: [] for k in ("a_max", "r_mic", "mic_center_y", "lci_min", "lci_max", "l0")}
+    for row in rows:
+        rho = row[0]
+        l0 = tied_half_base(rho) if tied else row[l0_col]
+        gamma = GAMMA if gamma_col is None else row[gamma_col]
+        res = square_side(1.0, rho, l0, gamma)
+        for k, v in res.items():
+            out[k].append(v)
+        out["l0"].append(l0)
+    return {k: np.asarray(v, float) for k, v in out.items()}
+
+
+class LeSquare(MechoptProblem):
+    """Le eq. (23)-(26): maximise the square side over ``rho`` with ``l0`` tied by eq. (24)."""
+
+    name = "le2013"
+    summary = "Le 2013: max square in the MIC of a 5R, LCI >= 0.5, joint limits, l0 tied (eq. 24); rho in [1.2, 4]"
+    var_names = ("rho",)
+    objectives = (Objective("a_max", -1, "l1"),)
+    default_algorithm = "ga"
+    default_pop = 12
+    default_gen = 15
+
+    def __init__(self):
+        super().__init__([RHO_BOUNDS[0]], [RHO_BOUNDS[1]])
+
+    def evaluate_designs(self, X):
+        ex = _evaluate(X)
+        return {"F": -ex["a_max"][:, None], "extra": ex}
+
+
+class LeSquareRelaxed(MechoptProblem):
+    """As :class:`LeSquare` with the half base ``l0`` free in [0, 2] (eq. 24 dropped)."""
+
+    name = "le2013-relaxed"
+    summary = "Le 2013 relaxed: as le2013 with the half base l0 free in [0, 2] (eq. 24 dropped)"
+    var_names = ("rho", "l0")
+    objectives = (Objective("a_max", -1, "l1"),)
+    default_algorithm = "ga"
+    default_pop = 20
+    default_gen = 15
+
+    def __init__(self):
+        super().__init__([RHO_BOUNDS[0], 0.0], [RHO_BOUNDS[1], 2.0])
+
+    def evaluate_designs(self, X):
+        ex = _evaluate(X, l0_col=1, tied=False)
+        return {"F": -ex["a_max"][:, None], "extra": ex}
+
+
+class LeSquareGamma(MechoptProblem):
+    """Two objectives: the square side and the LCI level gamma it guarantees.
+
+    With ``tied=True`` the half base follows eq. (24); with ``tied=False`` it is a
+    variable, so the gap between the two fronts is what eq. (24) costs.
+    """
+
+    name = "le2013-gamma"
+    summary = "Le 2013 two-objective: max square side and max gamma over (rho, gamma), l0 tied by eq. (24)"
+    objectives = (Objective("a_max", -1, "l1"), Objective("gamma", -1))
+    default_algorithm = "nsga2"
+    default_pop = 20
+    default_gen = 12
+
+    def __init__(self, tied: bool = True):
+        self.tied = bool(tied)
+        if self.tied:
+            self.var_names = ("rho", "gamma")
+            super().__init__([RHO_BOUNDS[0], 0.05], [RHO_BOUNDS[1], 0.95])
+        else:
+            self.var_names = ("rho", "gamma", "l0")
+            super().__init__([RHO_BOUNDS[0], 0.05, 0.0], [RHO_BOUNDS[1], 0.95, 2.0])
+
+    def evaluate_designs(self, X):
+        ex = _evaluate(X, gamma_col=1, l0_col=2, tied=self.tied)
+        F = np.column_stack([-ex["a_max"], -X[:, 1]])
+        return {"F": F, "extra": ex}
+
+
+class LeSquareGammaRelaxed(LeSquareGamma):
+    name = "le2013-gamma-relaxed"
+    summary = "Le 2013 two-objective with l0 free in [0, 2]: the front eq. (24) is measured against"
+
+    def __init__(self):
+        super().__init__(tied=False)
