@@ -350,6 +350,13 @@ def test_classify_unreachable(case):
     assert list(out) == ["unreachable", "unreachable"]
 
 
+# Mechanisms whose reachable set is bounded by type-I loci only (no actuator stroke
+# limits, where J stays regular): for them every boundary point is type I.
+FIVE_BAR_CASES = [c for c in CASES if isinstance(c[1](), FiveBar)]
+TYPE1_BOUNDARY_CASES = FIVE_BAR_CASES
+TYPE1_IDS = [c[0] for c in TYPE1_BOUNDARY_CASES]
+
+
 def _boundary_points_by_bisection(mech, cid, n=12):
     """Reachable points within a few ulps of the boundary of the reachable set,
     found by bisection on ``reachable`` along rays from well-conditioned points."""
@@ -369,14 +376,15 @@ def _boundary_points_by_bisection(mech, cid, n=12):
     return x, y
 
 
-def test_type1_on_reachable_boundary_loose_tol(case):
+@pytest.mark.parametrize("cid,factory,sampler", TYPE1_BOUNDARY_CASES, ids=TYPE1_IDS)
+def test_type1_on_reachable_boundary_loose_tol(cid, factory, sampler):
     """On the boundary of the reachable set a leg is stretched or folded (type I).
 
     The measure ``|B_ii|`` grows like the square root of the distance to the
     boundary, so a point within rounding of the boundary has ``|B_ii|`` of order
     sqrt(eps) ~ 1e-8: the tolerance here is above that.
     """
-    cid, mech, _ = case
+    mech = factory()
     x, y = _boundary_points_by_bisection(mech, cid)
     out = mech.classify_singularity(x, y, tol=1e-6)
     assert np.all(np.isin(out, ["type-I", "both"])), out
@@ -387,15 +395,15 @@ def test_type1_on_reachable_boundary_loose_tol(case):
     reason="known bug (reported): classify_singularity's default tol=1e-9 on |B_ii| is "
     "below sqrt(eps); points within rounding of the boundary come out 'none'",
 )
-def test_type1_on_reachable_boundary_default_tol(case):
-    cid, mech, _ = case
+@pytest.mark.parametrize("cid,factory,sampler", TYPE1_BOUNDARY_CASES, ids=TYPE1_IDS)
+def test_type1_on_reachable_boundary_default_tol(cid, factory, sampler):
+    mech = factory()
     x, y = _boundary_points_by_bisection(mech, cid)
     out = mech.classify_singularity(x, y)
     assert np.all(np.isin(out, ["type-I", "both"])), out
 
 
 # --- five-bar: constructed singular poses -------------------------------------------
-FIVE_BAR_CASES = [c for c in CASES if isinstance(c[1](), FiveBar)]
 
 
 def _five_bar_type2_candidates(r1, r2, r3):

@@ -334,3 +334,115 @@ def test_with_mode_validates():
 def test_repr_round_trips():
     m = FiveBar(0.7, 1.7, 0.6, "-+")
     assert eval(repr(m), {"FiveBar": FiveBar}).__dict__ == m.__dict__
+
+
+# --- the fused LCI fast path (mechopt.fast_lci) -----------------------------------------------
+from mechopt import indices as _ix  # noqa: E402
+from mechopt import fast_lci as _k  # noqa: E402
+
+FAST_LENGTHS = LENGTHS + [(1.0, 1.0, 0.3), (250.0, 400.0, 120.0), (2e-3, 3e-3, 1e-3)]
+
+
+def _generic_lci(m, x, y):
+    return _ix.lci(m.jacobian(x, y))
+
+
+def _cloud(m, seed, n=40000):
+    xmin, xmax, ymin, ymax = m.bounding_box()
+    w, h = xmax - xmin, ymax - ymin
+    rng = np.random.default_rng(seed)
+    return rng.uniform(xmin - 0.1 * w, xmax + 0.1 * w, n), rng.uniform(ymin - 0.1 * h, ymax + 0.1 * h, n)
+
+
+@pytest.mark.parametrize("lengths", FAST_LENGTHS, ids=str)
+@pytest.mark.parametrize("mode", MODES)
+def test_fast_lci_equals_generic_path(lengths, mode):
+    """FiveBar.lci (fused kernel) == indices.lci(FiveBar.jacobian) to 1e-12, everywhere
+    (unreachable points, both kinds of singularity and regular points)."""
+    m = FiveBar(*lengths, mode)
+    x, y = _cloud(m, 11)
+    fast, slow = m.lci(x, y), _generic_lci(m, x, y)
+    assert fast.shape == x.shape
+    np.testing.assert_allclose(fast, slow, rtol=0, atol=1e-12)
+    assert np.all(fast[~m.reachable(x, y)] == 0)
+    good = slow > 0.05
+    np.testing.assert_allclose(fast[good], slow[good], rtol=1e-12, atol=0)
+
+
+@pytest.mark.parametrize("kernel", ["numpy", "numba"])
+@pytest.mark.parametrize("mode", MODES)
+def test_fast_lci_kernels_agree(kernel, mode):
+    if kernel == "numba" and not _k.HAVE_NUMBA:
+        pytest.skip("numba not importable")
+    m = FiveBar(0.7, 1.7, 0.6, mode)
+    x, y = _cloud(m, 12, 50001)  # not a multiple of the NumPy block size
+    f = _k.five_bar_lci_numba if kernel == "numba" else _k.five_bar_lci_numpy
+    got = f(x, y, m.r1, m.r2, m.r3, m._s1, m._s2)
+    np.testing.assert_allclose(got, _generic_lci(m, x, y), rtol=0, atol=1e-12)
+    ref = _k.five_bar_lci_numpy(x, y, m.r1, m.r2, m.r3, m._s1, m._s2, chunk=1000)
+    np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-15)
+
+
+def test_fast_lci_shapes_and_special_inputs():
+    m = FiveBar(1.0, 1.5, 0.5)
+    assert isinstance(m.lci(0.1, 1.5), np.ndarray) and m.lci(0.1, 1.5).shape == ()
+    assert m.lci(0.1, 1.5) == pytest.approx(float(_generic_lci(m, 0.1, 1.5)), rel=1e-12)
+    assert m.lci(np.zeros((0,)), np.zeros((0,))).shape == (0,)
+    x = np.linspace(-1, 1, 7)
+    y = np.linspace(0.5, 2.0, 5)
+    grid = m.lci(x[:, None], y[None, :])
+    assert grid.shape == (7, 5)
+    np.testing.assert_allclose(grid, _generic_lci(m, x[:, None], y[None, :]), atol=1e-12)
+    # a non-contiguous view
+    X = np.tile(x, (4, 1)).T[:, ::2]
+    Y = np.full_like(X, 1.2)
+    np.testing.assert_allclose(m.lci(X, Y), _generic_lci(m, X, Y), atol=1e-12)
+    special = m.lci([np.nan, np.inf, -np.inf, 0.0, -0.5, 0.5], [1.0, 1.0, 0.0, np.nan, 0.0, 0.0])
+    np.testing.assert_array_equal(special, 0.0)
+    with pytest.raises(ValueError, match="broadcast"):
+        m.lci(np.zeros(3), np.zeros(2))
+
+
+def test_fast_lci_at_constructed_singularities():
+    """0 at coincident elbows (type II) and on the Le eq. (19) circles (type I)."""
+    m = FiveBar(1.0, 1.5, 0.5, "++")
+    b = np.array([0.0, np.sqrt(1.0 - 0.25)])  # B1 = B2: crank circles meet
+    psi = np.linspace(0.2, 2.8, 9)
+    x, y = b[0] + 1.5 * np.cos(psi), b[1] + 1.5 * np.sin(psi)
+    b1x, b1y, b2x, b2y, ok = m.elbows(x, y)
+    same = ok & (np.hypot(b1x - b2x, b1y - b2y) < 1e-9)
+    assert same.sum() >= 2
+    assert np.max(m.lci(x[same], y[same])) < 1e-7
+    np.testing.assert_allclose(m.lci(x, y), _generic_lci(m, x, y), atol=1e-12)
+    phi = np.linspace(0.3, 1.2, 10)
+    x, y = -0.5 + 2.5 * np.cos(phi), 2.5 * np.sin(phi)
+    assert np.max(m.lci(x, y)) < 1e-6
+
+
+def test_fast_lci_accuracy_against_extended_precision():
+    """Against the generic formulas evaluated in long double: the fused kernel is
+    at least as accurate (it uses Heron's form for the elbow height)."""
+    if np.finfo(np.longdouble).eps >= np.finfo(float).eps:
+        pytest.skip("no extended precision on this platform")
+    m = FiveBar(1.6, 0.9, 0.5, "+-")
+    x, y = sample_away_from_singularities(m, np.random.default_rng(13), 5000, lci_min=1e-4)
+    X, Y = x.astype(np.longdouble), y.astype(np.longdouble)
+    r1, r2, r3 = (np.longdouble(v) for v in (m.r1, m.r2, m.r3))
+    rows = []
+    for ax, s in ((-r3, m._s1), (r3, m._s2)):
+        dx = X - ax
+        q = dx * dx + Y * Y
+        c = (r1 * r1 + q - r2 * r2) / (2 * q)
+        h = s * np.sqrt((4 * q * r1 * r1 - (r1 * r1 - r2 * r2 + q) ** 2) / (4 * q * q))
+        bx, by = ax + c * dx - h * Y, c * Y + h * dx
+        kx, ky = X - bx, Y - by
+        bb = (bx - ax) * ky - by * kx
+        rows.append((kx / bb, ky / bb))
+    (a, b), (c, d) = rows
+    S = a * a + b * b + c * c + d * d
+    disc = np.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
+    ref = (2 * abs(a * d - b * c) / (S + disc)).astype(float)
+    err_fast = np.abs(m.lci(x, y) - ref)
+    err_generic = np.abs(_generic_lci(m, x, y) - ref)
+    assert err_fast.max() < 1e-13
+    assert err_fast.max() <= 2 * err_generic.max()

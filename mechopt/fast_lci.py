@@ -1,0 +1,221 @@
+"""Fused five-bar LCI: the hot loop of workspace/atlas evaluations over millions of points.
+
+:func:`five_bar_lci` gives the same values as the generic path
+``indices.lci(FiveBar.jacobian(x, y))`` (to rounding: tested to 1e-12) without its
+temporaries: no elbow coordinates, no ``(..., 2, 2)`` stacks, no trigonometry.
+:meth:`mechopt.mechanisms.five_bar.FiveBar.lci` calls it.
+
+Derivation (DESIGN conventions; Le 2013 eq. 13-19). For leg i with base joint
+``A_i = (ax_i, 0)``, ``v = P - A_i = (dx, y)``, ``w = (-y, dx)`` and ``q = |v|^2``, the
+circle intersection gives the elbow ``B_i = A_i + c v + h w`` with
+``c = (r1^2 - r2^2 + q) / (2 q)`` and ``h = s_i sqrt(n) / (2 q)``, where
+``n = (q - (r1 - r2)^2) ((r1 + r2)^2 - q)`` (Heron's form of
+``4 q r1^2 - (r1^2 - r2^2 + q)^2``, free of cancellation near the serial boundary).
+Then
+
+    a_i = P - B_i = ((q + r2^2 - r1^2) v - s_i sqrt(n) w) / (2 q) =: a~_i / (2 q)
+    b_i = (B_i - A_i) x a_i = -h q = -s_i sqrt(n) / 2
+
+so the Jacobian row ``a_i / b_i`` is ``a~_i`` divided by ``-s_i q sqrt(n)``. The LCI is
+invariant under scaling J and under row order, so it is evaluated on
+``M = [g1 a~2; g2 a~1]`` with ``g_i = q_i sqrt(n_i)`` (no division), and the closed
+form ``LCI = 2 |det| / (S + sqrt(S^2 - 4 det^2))`` with ``S = (P + Q) / 2``,
+``S^2 - 4 det^2 = P Q``, ``P = (m11 - m22)^2 + (m12 + m21)^2``,
+``Q = (m11 + m22)^2 + (m12 - m21)^2`` becomes
+
+    LCI = 4 |det M| / (sqrt(P) + sqrt(Q))^2.
+
+Coordinates are divided by the length scale first so that nothing over- or
+underflows in any unit. Unreachable points (``n < 0``), a base joint at P
+(``q = 0``) and type-I poses (``n = 0``) give 0, as on the generic path.
+
+The numba kernel is used when numba can be imported (the ``fast`` extra) and
+``MECHOPT_NO_NUMBA`` is not set; it is compiled (or loaded from numba's cache) on
+first use. The pure NumPy kernel is always available.
+"""
+from __future__ import annotations
+
+import importlib.util
+import os
+
+import numpy as np
+
+__all__ = ["five_bar_lci", "five_bar_lci_numpy", "five_bar_lci_numba", "HAVE_NUMBA"]
+
+#: points per block of the NumPy kernel: its 17 buffers stay in L2/L3 cache
+CHUNK = 16384
+
+
+def _consts(r1, r2, r3):
+    L = (r1 + r2 + r3) / 3.0
+    r1n, r2n, r3n = r1 / L, r2 / L, r3 / L
+    lo2 = (r1n - r2n) ** 2
+    hi2 = (r1n + r2n) ** 2
+    kk = r2n * r2n - r1n * r1n
+    return 1.0 / L, r3n, lo2, hi2, kk
+
+
+def five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2, chunk: int = CHUNK):
+    """LCI of the five-bar working mode with elbow signs ``s1, s2`` (+1/-1).
+
+    ``x`` and ``y`` must already have a common shape (see ``base.as_points``).
+    Pure NumPy, in blocks of ``chunk`` points with preallocated buffers.
+    """
+    shape = np.shape(x)
+    xf = np.ascontiguousarray(x, dtype=float).reshape(-1)
+    yf = np.ascontiguousarray(y, dtype=float).reshape(-1)
+    n = xf.size
+    out = np.empty(n)
+    inv_l, r3n, lo2, hi2, kk = _consts(r1, r2, r3)
+    m = min(chunk, n) if n else 0
+    buf = np.empty((17, m))
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        for i0 in range(0, n, chunk):
+            i1 = min(i0 + chunk, n)
+            k = i1 - i0
+            (xs, ys, y2, dx, q, t, u, g1, g2, m11, m12, m21, m22, p, pq, det, tmp) = (
+                b[:k] for b in buf
+            )
+            np.multiply(xf[i0:i1], inv_l, out=xs)
+            np.multiply(yf[i0:i1], inv_l, out=ys)
+            np.multiply(ys, ys, out=y2)
+            # leg 1's a~ goes to (m21, m22) with g1, leg 2's to (m11, m12) with g2
+            for ax, s, rx, ry, g in ((-r3n, s1, m21, m22, g1), (r3n, s2, m11, m12, g2)):
+                np.subtract(xs, ax, out=dx)  # dx = x - ax
+                np.multiply(dx, dx, out=q)
+                q += y2  # q = |P - A_i|^2
+                np.subtract(q, lo2, out=t)
+                np.subtract(hi2, q, out=u)
+                t *= u  # n_i
+                np.sqrt(t, out=t)  # sqrt(n_i), NaN where unreachable
+                np.multiply(q, t, out=g)  # g_i = q sqrt(n_i)
+                np.add(q, kk, out=u)  # E = q + r2^2 - r1^2
+                # a~ = E v - s sqrt(n) w  with v = (dx, y), w = (-y, dx)
+                np.multiply(u, dx, out=rx)
+                np.multiply(t, ys, out=tmp)
+                if s > 0:
+                    rx += tmp
+                else:
+                    rx -= tmp
+                np.multiply(u, ys, out=ry)
+                np.multiply(t, dx, out=tmp)
+                if s > 0:
+                    ry -= tmp
+                else:
+                    ry += tmp
+            # M = [g1 a~2; g2 a~1]: diag(g2, g1) A~ with its rows swapped, which
+            # leaves the LCI unchanged
+            m21 *= g2
+            m22 *= g2
+            m11 *= g1
+            m12 *= g1
+            # det M
+            np.multiply(m11, m22, out=det)
+            np.multiply(m12, m21, out=tmp)
+            det -= tmp
+            np.abs(det, out=det)
+            # sqrt(P) + sqrt(Q)
+            np.subtract(m11, m22, out=p)
+            p *= p
+            np.add(m12, m21, out=tmp)
+            tmp *= tmp
+            p += tmp
+            np.sqrt(p, out=p)
+            np.add(m11, m22, out=pq)
+            pq *= pq
+            np.subtract(m12, m21, out=tmp)
+            tmp *= tmp
+            pq += tmp
+            np.sqrt(pq, out=pq)
+            p += pq
+            p *= p
+            res = out[i0:i1]
+            np.divide(det, p, out=res)
+            res *= 4.0
+            # NaN (unreachable, 0/0 at type-I or q = 0) -> 0; fmax drops NaN
+            np.fmax(res, 0.0, out=res)
+    return out.reshape(shape)
+
+
+def _five_bar_lci_loop(xf, yf, inv_l, r3n, lo2, hi2, kk, s1, s2, out):
+    for i in range(xf.size):
+        xs = xf[i] * inv_l
+        ys = yf[i] * inv_l
+        y2 = ys * ys
+        dx = xs + r3n
+        q = dx * dx + y2
+        nn = (q - lo2) * (hi2 - q)
+        dx2 = xs - r3n
+        q2 = dx2 * dx2 + y2
+        nn2 = (q2 - lo2) * (hi2 - q2)
+        if not (nn > 0.0 and nn2 > 0.0):
+            out[i] = 0.0  # unreachable, type I, or P on a base joint
+            continue
+        t = np.sqrt(nn)
+        e = q + kk
+        a1x = e * dx + s1 * t * ys
+        a1y = e * ys - s1 * t * dx
+        g1 = q * t
+        t2 = np.sqrt(nn2)
+        e2 = q2 + kk
+        a2x = e2 * dx2 + s2 * t2 * ys
+        a2y = e2 * ys - s2 * t2 * dx2
+        g2 = q2 * t2
+        m11 = g1 * a2x
+        m12 = g1 * a2y
+        m21 = g2 * a1x
+        m22 = g2 * a1y
+        det = abs(m11 * m22 - m12 * m21)
+        d1 = m11 - m22
+        d2 = m12 + m21
+        d3 = m11 + m22
+        d4 = m12 - m21
+        r = np.sqrt(d1 * d1 + d2 * d2) + np.sqrt(d3 * d3 + d4 * d4)
+        v = 4.0 * det / (r * r)
+        out[i] = v if v >= 0.0 else 0.0  # NaN -> 0
+
+
+def _numba_wanted() -> bool:
+    if os.environ.get("MECHOPT_NO_NUMBA", "") not in ("", "0"):
+        return False
+    return importlib.util.find_spec("numba") is not None
+
+
+#: numba is importable and not disabled by ``MECHOPT_NO_NUMBA``
+HAVE_NUMBA = _numba_wanted()
+_loop_jit = None
+
+
+def _get_loop_jit():
+    global _loop_jit
+    if _loop_jit is None:
+        import numba as nb
+
+        sig = "void(f8[::1], f8[::1], f8, f8, f8, f8, f8, f8, f8, f8[::1])"
+        try:
+            _loop_jit = nb.njit(sig, cache=True, nogil=True, error_model="numpy")(
+                _five_bar_lci_loop
+            )
+        except Exception:  # e.g. no writable cache location: compile without caching
+            _loop_jit = nb.njit(sig, nogil=True, error_model="numpy")(_five_bar_lci_loop)
+    return _loop_jit
+
+
+def five_bar_lci_numba(x, y, r1, r2, r3, s1, s2):
+    """The same LCI as :func:`five_bar_lci_numpy`, by the numba-compiled loop."""
+    if not HAVE_NUMBA:
+        raise RuntimeError("numba is not available (install the 'fast' extra)")
+    shape = np.shape(x)
+    xf = np.ascontiguousarray(x, dtype=float).reshape(-1)
+    yf = np.ascontiguousarray(y, dtype=float).reshape(-1)
+    out = np.empty(xf.size)
+    inv_l, r3n, lo2, hi2, kk = _consts(r1, r2, r3)
+    _get_loop_jit()(xf, yf, inv_l, r3n, lo2, hi2, kk, float(s1), float(s2), out)
+    return out.reshape(shape)
+
+
+def five_bar_lci(x, y, r1, r2, r3, s1, s2):
+    """Five-bar LCI by the fastest kernel available (numba if importable, else NumPy)."""
+    if HAVE_NUMBA:
+        return five_bar_lci_numba(x, y, r1, r2, r3, s1, s2)
+    return five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2)
