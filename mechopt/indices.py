@@ -52,6 +52,12 @@ def _entries(J):
     return J[..., 0, 0], J[..., 0, 1], J[..., 1, 0], J[..., 1, 1]
 
 
+def _discriminant(a, b, c, d):
+    """``sqrt(S^2 - 4 det^2)`` as ``sqrt(S - 2 det) sqrt(S + 2 det)``: each factor is a
+    sum of squares (no cancellation) and the product of roots cannot overflow."""
+    return np.sqrt((a - d) ** 2 + (b + c) ** 2) * np.sqrt((a + d) ** 2 + (b - c) ** 2)
+
+
 def singular_values(J):
     """Closed-form singular values ``(s_max, s_min)`` of 2x2 matrices.
 
@@ -61,11 +67,12 @@ def singular_values(J):
     """
     a, b, c, d = _entries(J)
     S = a * a + b * b + c * c + d * d
-    disc = np.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
+    disc = _discriminant(a, b, c, d)
     s_max = np.sqrt(0.5 * (S + disc))
     det = np.abs(a * d - b * c)
     with np.errstate(invalid="ignore", divide="ignore"):
-        s_min = np.where(s_max > 0, det / s_max, 0.0)
+        # 0/0 only for J = 0; NaN entries (unreachable poses) stay NaN
+        s_min = np.where(s_max > 0, det / s_max, np.where(np.isnan(s_max), np.nan, 0.0))
     return s_max, s_min
 
 
@@ -73,7 +80,7 @@ def lci(J):
     """Local conditioning index ``s_min/s_max`` in [0, 1]; 0 where J is NaN or zero."""
     a, b, c, d = _entries(J)
     S = a * a + b * b + c * c + d * d
-    disc = np.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
+    disc = _discriminant(a, b, c, d)
     with np.errstate(invalid="ignore", divide="ignore"):
         # s_min/s_max = |det| / s_max^2 = 2|det| / (S + disc)
         out = 2.0 * np.abs(a * d - b * c) / (S + disc)

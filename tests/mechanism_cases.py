@@ -70,3 +70,44 @@ CASES = [
     for label, r1, r2, r3, modes in _FIVE_BAR_LENGTHS
     for mode in modes
 ]
+
+
+# --- Stan 2008: Bipod (RPRPR) and Biglide (PRRRP) --------------------------------
+# Their reachable sets are bounded by actuator stroke limits (J regular there), by
+# the type-II x axis (Bipod half-plane branches) and by type-I lines (Biglide).
+from mechopt.mechanisms.biglide import MODES as BIGLIDE_MODES  # noqa: E402
+from mechopt.mechanisms.biglide import Biglide  # noqa: E402
+from mechopt.mechanisms.bipod import Bipod  # noqa: E402
+
+# (label, b, q1_min, q1_max, q2_min, q2_max, branches): Stan sec. 5.1's design
+# (two separate regions), and an asymmetric one whose region crosses the x axis
+# (type-II line inside the "full" workspace).
+_BIPOD_DESIGNS = [
+    ("stan-b60-q80-130", 60.0, 80.0, 130.0, 80.0, 130.0, ("up", "down", "full")),
+    ("asym-crossing", 60.0, 20.0, 70.0, 30.0, 80.0, ("up", "full")),
+]
+CASES += [
+    (
+        f"Bipod[{label},{branch}]",
+        functools.partial(Bipod, b, q1lo, q1hi, q2lo, q2hi, branch),
+        sample_away_from_singularities,
+    )
+    for label, b, q1lo, q1hi, q2lo, q2hi, branches in _BIPOD_DESIGNS
+    for branch in branches
+]
+
+# (label, l1, l2, q1_min, q1_max, q2_min, q2_max, modes): equal strokes, and
+# unequal strokes with l2 > 2 l1 (a guide inside the x range).
+_BIGLIDE_DESIGNS = [
+    ("l1=40,l2=100,q0-200", 40.0, 100.0, 0.0, 200.0, 0.0, 200.0, BIGLIDE_MODES),
+    ("l1=20,l2=100,unequal", 20.0, 100.0, -50.0, 150.0, 0.0, 250.0, ("--", "+-")),
+]
+CASES += [
+    (
+        f"Biglide[{label},{mode}]",
+        functools.partial(Biglide, l1, l2, q1lo, q1hi, q2lo, q2hi, mode),
+        sample_away_from_singularities,
+    )
+    for label, l1, l2, q1lo, q1hi, q2lo, q2hi, modes in _BIGLIDE_DESIGNS
+    for mode in modes
+]

@@ -390,11 +390,6 @@ def test_type1_on_reachable_boundary_loose_tol(cid, factory, sampler):
     assert np.all(np.isin(out, ["type-I", "both"])), out
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="known bug (reported): classify_singularity's default tol=1e-9 on |B_ii| is "
-    "below sqrt(eps); points within rounding of the boundary come out 'none'",
-)
 @pytest.mark.parametrize("cid,factory,sampler", TYPE1_BOUNDARY_CASES, ids=TYPE1_IDS)
 def test_type1_on_reachable_boundary_default_tol(cid, factory, sampler):
     mech = factory()
@@ -515,11 +510,6 @@ def test_five_bar_type1_on_le19_circles_loose_tol(cid, factory, sampler, which):
     np.testing.assert_array_less(mech.lci(x, y), 1e-6)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="known bug (reported): classify_singularity's default tol=1e-9 on |B_ii| is "
-    "below sqrt(eps); points on Le eq. (19) circles (to rounding) come out 'none'",
-)
 @pytest.mark.parametrize("cid,factory,sampler", FIVE_BAR_CASES[:1], ids=[FIVE_BAR_CASES[0][0]])
 def test_five_bar_type1_on_le19_circles_default_tol(cid, factory, sampler):
     mech = factory()

@@ -139,11 +139,15 @@ class PlanarMechanism(ABC):
     def classify_singularity(self, x, y, tol: float = 1e-9):
         """Array of strings: ``"none"``, ``"type-I"``, ``"type-II"``, ``"both"`` or
         ``"unreachable"``. Measures are made dimensionless: ``|B_ii|`` relative to
-        ``|A_i| * length_scale`` and ``det A`` relative to ``|a1||a2|``."""
+        ``|A_i| * length_scale`` and ``det A`` relative to ``|a1||a2|``.
+
+        The type-I measure is compared squared: near a serial boundary it grows
+        like the square root of the distance (a leg folding), so a pose on the
+        boundary up to rounding has a measure of order sqrt(eps) ~ 1e-8."""
         A, b, ok = self.closure(x, y)
         n = np.hypot(A[..., :, 0], A[..., :, 1])
         with np.errstate(divide="ignore", invalid="ignore"):
-            t1 = np.any(np.abs(b) <= tol * n * self.length_scale, axis=-1)
+            t1 = np.any((b / (n * self.length_scale)) ** 2 <= tol, axis=-1)
         t2 = np.abs(self.type2_function(x, y)) <= tol
         out = np.full(np.shape(ok), "none", dtype=object)
         out[t1 & ~t2] = "type-I"

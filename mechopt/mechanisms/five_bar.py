@@ -153,9 +153,11 @@ class FiveBar(PlanarMechanism):
     def ik(self, x, y):
         """Actuated angles of the working mode (Le eq. 13-18), in rad.
 
-        ``theta1`` lies in (-pi, 2 pi) and ``theta2`` in (-pi, 2 pi) as the
-        formulas give them (no wrapping), so that joint ranges over a region
-        are continuous (Liu 2006 3.2.3 prints theta1 in [36.40, 274.97] deg).
+        The angles are returned as the formulas give them, without wrapping, so
+        that joint ranges over a region are continuous (Liu 2006 3.2.3 prints
+        theta1 in [36.40, 274.97] deg): ``beta1 + s1 alpha1`` lies in (-2 pi, 2 pi)
+        and ``pi - beta2 + s2 alpha2`` in (-pi, 3 pi); for mode "+-" theta1 is in
+        (-pi, 2 pi) and theta2 in (-pi, 2 pi).
         """
         x, y = as_points(x, y)
         r1, r2, r3 = self.r1, self.r2, self.r3
