@@ -111,3 +111,28 @@ CASES += [
     for label, l1, l2, q1lo, q1hi, q2lo, q2hi, modes in _BIGLIDE_DESIGNS
     for mode in modes
 ]
+
+
+# --- Wu 2008: gantry (two vertical sliders, three equal links) ---------------------
+# Reachable sets bounded by stroke-limit arcs (J regular there) and by the type-I
+# sides x = +-(l - d1). Table 1's machine in the paper's mode "--" and its mirror
+# "++", and a long-stroke one with l > 2 d1 in all four modes (the mixed ones contain
+# the type-II pose x = 0).
+from mechopt.mechanisms.gantry import MODES as GANTRY_MODES  # noqa: E402
+from mechopt.mechanisms.gantry import Gantry, wu2008_gantry  # noqa: E402
+
+
+def _wu2008_gantry_in_mode(mode):
+    return wu2008_gantry(10.0).with_mode(mode)
+
+
+CASES += [
+    (f"Gantry[wu2008-table1,{mode}]", functools.partial(_wu2008_gantry_in_mode, mode),
+     sample_away_from_singularities)
+    for mode in ("--", "++")
+] + [
+    (f"Gantry[d1=100,l=616,stroke=1500,{mode}]",
+     functools.partial(Gantry, 100.0, 616.0, 1500.0, -200.0, 150.0, 50.0, mode),
+     sample_away_from_singularities)
+    for mode in GANTRY_MODES
+]

@@ -1,0 +1,535 @@
+"""Rigid-body dynamics of the Wu 2008 gantry: inertia matrices, kappa_D, eta_D, driving forces.
+
+Model (Wu 2008 sec. 5, Table 2). Moving bodies of :class:`mechopt.Gantry`:
+
+=====================  ===========  =====================================================
+body                   parameters   motion
+=====================  ===========  =====================================================
+slider i (i = 1, 2)    m_i1         translates with ``(0, q_dot_i)``
+link A_iB_i            m_i2, I_i2,  rotates by ``theta_i`` about ``B_i``; mass centre at
+                       s_i2         ``B_i + s_i2 (sin theta_i, cos theta_i)``
+counterweight i        m_i3         translates with ``(0, -q_dot_i)`` (eq. 23)
+link A3B3              m4, I4, s4   parallelogram: moves with slider 1 and ``theta_1``
+                                    (eq. 24), ``B3 = B1 + (0, l2)``
+link A4B4 (optional)   m5, I5, s5   the extra link of the symmetric variant (sec. 6.3)
+platform               mN           translates with ``(x_dot, y_dot)``
+=====================  ===========  =====================================================
+
+``I`` are moments of inertia about the slider joint ``B`` (Wu sec. 5.2), ``s`` the
+distance from ``B`` to the mass centre. Table 2 prints no ``s_i2``: mechopt takes the
+mass centre at mid-link, ``s = l/2`` (an assumption, stated in every output).
+
+Inertia matrix. The printed matrix ``M`` of Wu eq. (41) is garbled in the available
+text (signs, a non-symmetric last term), so mechopt derives it afresh from Lagrange's
+equations with the platform coordinates ``p = (x, y)`` as generalized coordinates.
+With ``t_i = tan theta_i``, ``q_dot_i = t_i x_dot + y_dot`` (eq. 4) and
+``theta_dot_i = x_dot / (l cos theta_i)`` (eq. 3), a link about its slider joint has
+
+    T = 1/2 m q_dot^2 - m s sin(theta) q_dot theta_dot + 1/2 I theta_dot^2,
+
+so the kinetic energy is ``T = 1/2 p_dot^T M(p) p_dot`` with
+
+    M = mN 1 + sum_i [ (a_i - 2 b_i) t_i^2 + g_i (1 + t_i^2)    (a_i - b_i) t_i ]
+                     [ (a_i - b_i) t_i                           a_i             ]
+
+    a_i = m_i1 + m_i3 + sum_links m,   b_i = sum_links m s / l,   g_i = sum_links I / l^2,
+
+the sums running over the links carried by slider i (A1B1 and A3B3 on slider 1,
+A2B2 and A4B4 on slider 2). This agrees term by term with the printed eq. (41) read
+with consistent signs (``(1 - s/l) tan^2`` and ``(m s l sin^2 + I)/(l^2 cos^2)``
+combine into ``(a - 2 b) t^2 + g (1 + t^2)``). ``M`` depends on ``x`` only. The
+equations of motion are
+
+    J^T tau = M p_ddot + x_dot (dM/dx) p_dot - 1/2 (p_dot^T (dM/dx) p_dot) e_x + G(p),
+
+    G = g ( sum_i [ (w_i - b_i) t_i,  w_i ] + [0, mN] ),   w_i = m_i1 - m_i3 + sum_links m,
+
+(gravity ``g = 9.8 m/s^2`` downward, Wu sec. 5.2), i.e. Wu eq. (41)
+``tau = (J^T)^-1 M a + N``. With Table 2 the counterweights (half the moving mass
+each) cancel the vertical gravity load exactly: ``G_y = 0``.
+
+Dynamic manipulability (Wu sec. 6). The "inertia matrix" of eq. (42) is
+``Lambda = (J^T)^-1 M`` (driving forces per unit platform acceleration, [kg]);
+``kappa_D = sigma_2 / sigma_1`` (eq. 43) is its condition number and ``eta_D`` (eq. 44)
+the area mean of ``kappa_D`` over the task workspace ``W_t``. ``kappa_D`` depends on
+``x`` only.
+
+Units: SI. The gantry must be given in metres (:func:`mechopt.mechanisms.gantry.wu2008_gantry`
+with ``unit="m"``, or :meth:`Gantry.rescaled`), masses in kg, inertias in kg m^2.
+
+References
+----------
+Wu J, Wang J, Wang L, Shao H (2008), Proc. IMechE Part C 222,
+doi:10.1243/09544062JMES830, sec. 5-6, eq. (3)-(4), (41)-(45), Tables 2-3.
+Asada H (1983), J. Dyn. Syst. Meas. Control 105:131-135 (generalized inertia ellipsoid).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+from importlib import resources
+
+import numpy as np
+
+from . import indices as _ix
+from . import validation as _v
+from .mechanisms.base import as_points
+from .mechanisms.gantry import Gantry
+
+__all__ = [
+    "GantryInertia",
+    "GantryDynamics",
+    "ELLIPSE_KINDS",
+    "rectangle_rule",
+    "trapezoidal_profile",
+    "wu2008_published",
+    "wu2008_trajectory",
+    "wu2008_driving_forces",
+    "G_WU2008",
+]
+
+#: gravitational acceleration of Wu sec. 5.2 [m/s^2]
+G_WU2008 = 9.8
+ELLIPSE_KINDS = ("acceleration", "kinetic")
+
+
+def _mass(name, value, unit="kg"):
+    out = _v.finite_number(name, value)
+    if out < 0.0:
+        raise ValueError(f"{name} must be a non-negative finite value [{unit}], got {value!r}")
+    return out
+
+
+def wu2008_published() -> dict:
+    """Rows of ``mechopt/data/wu2008.csv`` as ``{(design, quantity): (value, unit, digits, source)}``."""
+    import csv
+
+    out = {}
+    with resources.files("mechopt.data").joinpath("wu2008.csv").open("r") as fh:
+        rows = (line for line in fh if not line.startswith("#"))
+        for r in csv.DictReader(rows):
+            out[(r["design"], r["quantity"])] = (
+                float(r["value"]), r["unit"], int(r["digits"]), r["source"])
+    return out
+
+
+@dataclass(frozen=True)
+class GantryInertia:
+    """Masses [kg], inertias about the slider joints [kg m^2] and mass-centre offsets [m].
+
+    Names follow Wu 2008 sec. 5.2 and Table 2: ``m_i1`` sliders, ``m_i2`` links
+    ``A_iB_i``, ``m_i3`` counterweights, ``m4`` link ``A3B3``, ``mN`` platform,
+    ``I_i2`` link inertias about ``B_i``, ``s_i2`` distance from ``B_i`` to the link's
+    mass centre. ``I4``/``s4`` (link ``A3B3``) default to ``I12``/``s12`` (Wu eq. 36-37:
+    it moves, and is taken to load the machine, like ``A1B1``). ``m5``, ``I5``, ``s5``
+    describe the extra link ``A4B4`` of the symmetric variant (sec. 6.3), absent by
+    default. ``None`` offsets mean mid-link, ``l/2``. ``g`` [m/s^2] is the gravity.
+    """
+
+    m11: float
+    m21: float
+    m12: float
+    m22: float
+    m13: float
+    m23: float
+    m4: float
+    mN: float
+    I12: float
+    I22: float
+    s12: float | None = None
+    s22: float | None = None
+    I4: float | None = None
+    s4: float | None = None
+    m5: float = 0.0
+    I5: float | None = None
+    s5: float | None = None
+    g: float = G_WU2008
+
+    def __post_init__(self):
+        units = {"I": "kg m^2", "s": "m", "g": "m/s^2"}
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if v is None:
+                continue
+            object.__setattr__(self, f.name, _mass(f.name, v, units.get(f.name[0], "kg")))
+
+    @classmethod
+    def wu2008(cls) -> "GantryInertia":
+        """Wu 2008 Table 2 (from ``mechopt/data/wu2008.csv``); offsets at mid-link."""
+        pub = wu2008_published()
+        names = ("m11", "m21", "m12", "m22", "m13", "m23", "m4", "mN", "I12", "I22")
+        kw = {k: pub[("table2", k)][0] for k in names}
+        return cls(**kw, g=pub[("table2", "g")][0])
+
+    @property
+    def moving_mass(self) -> float:
+        """Mass of all moving parts except the counterweights [kg]."""
+        return self.m11 + self.m21 + self.m12 + self.m22 + self.m4 + self.m5 + self.mN
+
+    def symmetric_variant(self) -> "GantryInertia":
+        """The symmetric machine of Wu sec. 6.3: a link ``A4B4`` makes the right chain a
+        parallelogram too.
+
+        Assumptions (the paper gives no numbers for it): the right slider, link and
+        extra link copy the left ones (``m21 = m11``, ``m22 = m12``, ``I22 = I12``,
+        ``s22 = s12``, ``m5 = m4``, ``I5 = I4``, ``s5 = s4``) and each counterweight is
+        again half of all moving parts (the rule of sec. 6.2).
+        """
+        sym = replace(self, m21=self.m11, m22=self.m12, I22=self.I12, s22=self.s12,
+                      m5=self.m4, I5=self.I4 if self.I4 is not None else self.I12,
+                      s5=self.s4 if self.s4 is not None else self.s12)
+        half = 0.5 * sym.moving_mass
+        return replace(sym, m13=half, m23=half)
+
+
+def rectangle_rule(box, n: int = 48):
+    """Tensor Gauss-Legendre nodes ``(x, y)`` and weights (sum 1) on ``box = (xmin, xmax, ymin, ymax)``.
+
+    ``sum(w * f(x, y))`` is the area mean of ``f`` over the rectangle; exact for
+    polynomials of degree ``2n - 1`` in each variable.
+    """
+    n = int(n)
+    if n < 1:
+        raise ValueError(f"n must be a positive integer, got {n!r}")
+    xmin, xmax, ymin, ymax = (float(v) for v in box)
+    g, gw = np.polynomial.legendre.leggauss(n)
+    xs = 0.5 * (xmax - xmin) * g + 0.5 * (xmax + xmin)
+    ys = 0.5 * (ymax - ymin) * g + 0.5 * (ymax + ymin)
+    X, Y = np.meshgrid(xs, ys, indexing="ij")
+    W = np.outer(gw, gw) / 4.0
+    return X.ravel(), Y.ravel(), W.ravel()
+
+
+class GantryDynamics:
+    """Dynamics of a :class:`~mechopt.Gantry` (in metres) with :class:`GantryInertia`.
+
+    See the module docstring for the model and the derivation of ``M``. All methods
+    broadcast over arrays of platform positions; results are NaN where unreachable.
+    """
+
+    def __init__(self, gantry: Gantry, inertia: GantryInertia):
+        if not isinstance(gantry, Gantry):
+            raise ValueError(f"gantry must be a mechopt.Gantry, got {type(gantry).__name__}")
+        if not isinstance(inertia, GantryInertia):
+            raise ValueError(
+                f"inertia must be a mechopt.dynamics.GantryInertia, got {type(inertia).__name__}")
+        self.gantry = gantry
+        self.inertia = p = inertia
+        l = gantry.l
+        half = l / 2.0
+        s12 = half if p.s12 is None else p.s12
+        s22 = half if p.s22 is None else p.s22
+        I4 = p.I12 if p.I4 is None else p.I4
+        s4 = s12 if p.s4 is None else p.s4
+        I5 = p.I22 if p.I5 is None else p.I5
+        s5 = s22 if p.s5 is None else p.s5
+        #: links per slider: (name, m, I about B, s)
+        self.links = (
+            (("A1B1", p.m12, p.I12, s12), ("A3B3", p.m4, I4, s4)),
+            (("A2B2", p.m22, p.I22, s22), ("A4B4", p.m5, I5, s5)),
+        )
+        for leg in self.links:
+            for name, m, I, s in leg:
+                if s > l:
+                    raise ValueError(f"mass-centre offset of link {name} must be <= l = {l!r}, got {s!r}")
+                if I < m * s * s * (1.0 - 1e-12):
+                    raise ValueError(
+                        f"inertia of link {name} about its slider joint must be >= m s^2 = "
+                        f"{m * s * s!r} kg m^2 (non-negative central inertia), got {I!r}")
+        self._coef = []
+        for i, leg in enumerate(self.links):
+            m_slider = (p.m11, p.m21)[i]
+            m_cw = (p.m13, p.m23)[i]
+            ml = sum(m for _, m, _, _ in leg)
+            a = m_slider + m_cw + ml
+            b = sum(m * s for _, m, _, s in leg) / l
+            g = sum(I for _, _, I, _ in leg) / (l * l)
+            w = m_slider - m_cw + ml
+            self._coef.append((a, b, g, w))
+
+    def __repr__(self):
+        return f"GantryDynamics({self.gantry!r}, {self.inertia!r})"
+
+    # --- kinematic helpers ---------------------------------------------------------
+    def _tan(self, x, y):
+        """``(t1, t2, c1, c2, ok)``: tan and ``l cos`` of the link angles, NaN where unreachable."""
+        x, y = as_points(x, y)
+        g = self.gantry
+        _, _, c1, c2, ok = g._legs(x, y)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            t1 = (x + g.d1) / c1
+            t2 = (x - g.d1) / c2
+        nan = np.nan
+        return (np.where(ok, t1, nan), np.where(ok, t2, nan), np.where(ok, c1, nan),
+                np.where(ok, c2, nan), ok)
+
+    # --- inertia matrices --------------------------------------------------------------
+    def mass_matrix(self, x, y):
+        """Task-space inertia matrix ``M(p)`` [kg], shape ``(..., 2, 2)``: ``T = 1/2 p_dot^T M p_dot``."""
+        t1, t2, _, _, _ = self._tan(x, y)
+        mN = self.inertia.mN
+        Mxx = np.full(t1.shape, mN)
+        Mxy = np.zeros(t1.shape)
+        Myy = np.full(t1.shape, mN)
+        for t, (a, b, g, _) in zip((t1, t2), self._coef):
+            tt = t * t
+            Mxx = Mxx + (a - 2.0 * b) * tt + g * (1.0 + tt)
+            Mxy = Mxy + (a - b) * t
+            Myy = Myy + a
+        Myy = np.where(np.isnan(t1), np.nan, Myy)
+        return np.stack([np.stack([Mxx, Mxy], -1), np.stack([Mxy, Myy], -1)], -2)
+
+    def mass_matrix_dx(self, x, y):
+        """``dM/dx`` [kg/m] (``M`` does not depend on ``y``), using ``d tan(theta)/dx = 1/(l cos^3 theta)``."""
+        t1, t2, c1, c2, _ = self._tan(x, y)
+        l = self.gantry.l
+        dxx = np.zeros(t1.shape)
+        dxy = np.zeros(t1.shape)
+        for t, c, (a, b, g, _) in zip((t1, t2), (c1, c2), self._coef):
+            tx = l * l / (c * c * c)  # 1/(l cos^3) with c = l cos
+            dxx = dxx + 2.0 * t * tx * (a - 2.0 * b + g)
+            dxy = dxy + (a - b) * tx
+        dyy = np.where(np.isnan(t1), np.nan, 0.0)
+        return np.stack([np.stack([dxx, dxy], -1), np.stack([dxy, dyy], -1)], -2)
+
+    def inertia_matrix(self, x, y):
+        """``Lambda = (J^T)^-1 M`` of Wu eq. (42) [kg]: ``tau ~ Lambda a``."""
+        J = self.gantry.jacobian(x, y)
+        M = self.mass_matrix(x, y)
+        return _inv_t(J) @ M
+
+    def kinetic_energy(self, x, y, xd, yd):
+        """``1/2 p_dot^T M p_dot`` [J]."""
+        M = self.mass_matrix(x, y)
+        xd, yd = np.asarray(xd, float), np.asarray(yd, float)
+        return 0.5 * (M[..., 0, 0] * xd * xd + 2 * M[..., 0, 1] * xd * yd + M[..., 1, 1] * yd * yd)
+
+    # --- indices ----------------------------------------------------------------------
+    def kappa_d(self, x, y):
+        """``kappa_D = sigma_2 / sigma_1`` of ``(J^T)^-1 M`` (Wu eq. 43), >= 1; NaN where unreachable."""
+        s_max, s_min = _ix.singular_values(self.inertia_matrix(x, y))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return s_max / s_min
+
+    def kappa_d_map(self, region=None, n: int = 101):
+        """``(X, Y, kappa_D)`` on an ``n x n`` grid of cell centres over ``region``
+        (default the task workspace), for atlases such as Wu Fig. 6-7."""
+        box = self._region(region)
+        n = int(n)
+        if n < 1:
+            raise ValueError(f"n must be a positive integer, got {n!r}")
+        xmin, xmax, ymin, ymax = box
+        xs = xmin + (np.arange(n) + 0.5) * (xmax - xmin) / n
+        ys = ymin + (np.arange(n) + 0.5) * (ymax - ymin) / n
+        X, Y = np.meshgrid(xs, ys)
+        return X, Y, self.kappa_d(X, Y)
+
+    def eta_d(self, region=None, n: int = 48) -> float:
+        """``eta_D`` of Wu eq. (44): area mean of ``kappa_D`` over ``region``
+        (default the task workspace ``W_t``), by an ``n x n`` Gauss-Legendre rule."""
+        x, y, w = rectangle_rule(self._region(region), n)
+        k = self.kappa_d(x, y)
+        if not np.all(np.isfinite(k)):
+            raise ValueError("region must lie inside the reachable, non-singular set for eta_D")
+        return float(np.sum(w * k))
+
+    def eta_d_std(self, region=None, n: int = 48) -> float:
+        """Area standard deviation of ``kappa_D`` over ``region``: mechopt's reading of
+        the second global index the abstract announces (its formula is not printed)."""
+        x, y, w = rectangle_rule(self._region(region), n)
+        k = self.kappa_d(x, y)
+        if not np.all(np.isfinite(k)):
+            raise ValueError("region must lie inside the reachable, non-singular set for eta_D")
+        mean = np.sum(w * k)
+        return float(np.sqrt(np.sum(w * (k - mean) ** 2)))
+
+    def _region(self, region):
+        if region is None:
+            if self.gantry.task_workspace is None:
+                raise ValueError("region must be given when the gantry has no task_workspace, got None")
+            return self.gantry.task_workspace
+        try:
+            box = tuple(float(v) for v in region)
+        except (TypeError, ValueError):
+            raise ValueError(f"region must be (xmin, xmax, ymin, ymax), got {region!r}") from None
+        if len(box) != 4 or not (box[0] < box[1] and box[2] < box[3]):
+            raise ValueError(
+                f"region must be (xmin, xmax, ymin, ymax) with xmin < xmax, ymin < ymax, got {region!r}")
+        return box
+
+    def inertia_ellipse(self, x, y, kind: str = "acceleration"):
+        """Generalized inertia ellipse at each pose: ``(major, minor, angle)``.
+
+        ``kind="acceleration"`` (Wu sec. 6.2, Fig. 5): the platform accelerations
+        reachable with unit driving force, ``{a : |(J^T)^-1 M a| <= 1}``; semi-axes
+        ``1/sigma_1`` (major, the direction easiest to accelerate) and ``1/sigma_2``
+        [m/s^2 per N], so ``major/minor = kappa_D``. ``kind="kinetic"``: Asada's GIE
+        ``{p_dot : p_dot^T M p_dot <= 1}``, semi-axes ``1/sqrt(eig M)`` [m/s per sqrt(J)].
+        ``angle`` [rad] is the direction of the major axis from the x axis, in (-pi/2, pi/2].
+        """
+        kind = _v.choice("kind", kind, ELLIPSE_KINDS)
+        if kind == "acceleration":
+            L = self.inertia_matrix(x, y)
+            S = np.swapaxes(L, -1, -2) @ L  # |L a|^2 = a^T S a
+        else:
+            S = self.mass_matrix(x, y)
+        a, b, c = S[..., 0, 0], S[..., 0, 1], S[..., 1, 1]
+        half_tr = 0.5 * (a + c)
+        r = np.hypot(0.5 * (a - c), b)
+        lam_max, lam_min = half_tr + r, half_tr - r
+        # eigenvector of lam_max at 0.5 atan2(2b, a - c); the major axis is the other one
+        phi = 0.5 * np.arctan2(2.0 * b, a - c) + 0.5 * np.pi
+        phi = np.where(phi > 0.5 * np.pi, phi - np.pi, phi)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return 1.0 / np.sqrt(lam_min), 1.0 / np.sqrt(lam_max), phi
+
+    # --- forces -----------------------------------------------------------------------
+    def gravity(self, x, y):
+        """Generalized gravity force ``G = dV/dp`` [N], shape ``(..., 2)``."""
+        t1, t2, _, _, _ = self._tan(x, y)
+        g = self.inertia.g
+        Gx = np.zeros(t1.shape)
+        Gy = np.full(t1.shape, self.inertia.mN)
+        for t, (a, b, gg, w) in zip((t1, t2), self._coef):
+            Gx = Gx + (w - b) * t
+            Gy = Gy + w
+        Gy = np.where(np.isnan(t1), np.nan, Gy)
+        return g * np.stack([Gx, Gy], -1)
+
+    def bias(self, x, y, xd, yd):
+        """Centrifugal and Coriolis terms ``x_dot M_x p_dot - 1/2 (p_dot^T M_x p_dot) e_x`` [N]."""
+        Mx = self.mass_matrix_dx(x, y)
+        xd, yd = np.asarray(xd, float), np.asarray(yd, float)
+        v = np.stack(np.broadcast_arrays(xd, yd), -1)
+        Mv = (Mx @ v[..., None])[..., 0]
+        quad = np.sum(v * Mv, axis=-1)
+        out = xd[..., None] * Mv
+        out[..., 0] -= 0.5 * quad
+        return out
+
+    def driving_forces(self, x, y, xd, yd, xdd, ydd, gravity: bool = True):
+        """Slider forces ``tau = (F1, F2)`` [N] along ``+q`` (Wu eq. 41): ``J^-T (M a + h + G)``.
+
+        ``gravity=False`` drops ``G`` (the paper includes it, eq. 30-38).
+        """
+        x, y = as_points(x, y)
+        M = self.mass_matrix(x, y)
+        a = np.stack(np.broadcast_arrays(np.asarray(xdd, float), np.asarray(ydd, float)), -1)
+        Q = (M @ a[..., None])[..., 0] + self.bias(x, y, xd, yd)
+        if gravity:
+            Q = Q + self.gravity(x, y)
+        J = self.gantry.jacobian(x, y)
+        tau = (_inv_t(J) @ Q[..., None])[..., 0]
+        return tau[..., 0], tau[..., 1]
+
+    # --- bodies (for checks and drawings) ------------------------------------------------
+    def bodies(self, x, y):
+        """Mass-centre positions and orientations of every body, from the geometry alone.
+
+        Returns ``{name: (m, I_c, cx, cy, phi)}`` with ``I_c`` the central moment of
+        inertia [kg m^2] and ``phi`` the rotation angle [rad] (``theta_i`` for links,
+        0 for translating bodies). Counterweights hang at ``-q_i`` (a rope over a pulley
+        at height 0). Used by the tests to check ``T`` and the power balance
+        independently of :meth:`mass_matrix`.
+        """
+        x, y = as_points(x, y)
+        g = self.gantry
+        p = self.inertia
+        q1, q2, ok = g.ik(x, y)
+        th1, th2 = g.link_angles(x, y)
+        ay = y - g.l2 / 2.0
+        out = {}
+        zero = np.zeros(x.shape)
+        for i, (xb, q, th) in enumerate(zip(g.column_x, (q1, q2), (th1, th2))):
+            ux, uy = (x - xb) / g.l, (ay - q) / g.l  # unit vector B_i -> A_i
+            out[f"slider{i + 1}"] = ((p.m11, p.m21)[i], 0.0, np.full(x.shape, xb), q, zero)
+            out[f"counterweight{i + 1}"] = ((p.m13, p.m23)[i], 0.0, np.full(x.shape, xb), -q, zero)
+            for k, (name, m, I, s) in enumerate(self.links[i]):
+                by = q + (g.l2 if k == 1 else 0.0)  # B3 (B4) is l2 above B1 (B2)
+                out[name] = (m, I - m * s * s, xb + s * ux, by + s * uy, th)
+        out["platform"] = (p.mN, 0.0, x, y, zero)
+        return out
+
+
+def _inv_t(J):
+    """``(J^T)^-1`` of 2x2 matrices, NaN/inf where singular."""
+    a, b, c, d = J[..., 0, 0], J[..., 0, 1], J[..., 1, 0], J[..., 1, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        det = a * d - b * c
+        return np.stack([np.stack([d, -c], -1), np.stack([-b, a], -1)], -2) / det[..., None, None]
+
+
+def trapezoidal_profile(p0, p1, v_max, a_max, t):
+    """Straight-line point-to-point motion: accelerate, cruise, decelerate (Wu sec. 6.2).
+
+    Acceleration and deceleration last ``T0 = v_max / a_max`` each, the total time is
+    ``Tf = T0 + |p1 - p0| / v_max`` (Wu eq. 45). If the path is too short to reach
+    ``v_max`` the profile is triangular (peak speed ``sqrt(a_max |p1 - p0|)``).
+
+    Parameters
+    ----------
+    p0, p1 : (float, float)
+        Start and end points [m].
+    v_max : float
+        Cruise speed [m/s], > 0.
+    a_max : float
+        Acceleration magnitude [m/s^2], > 0.
+    t : array_like
+        Times [s]; clipped to ``[0, Tf]``.
+
+    Returns
+    -------
+    dict with ``t``, ``x``, ``y``, ``xd``, ``yd``, ``xdd``, ``ydd`` (arrays) and ``T0``,
+    ``Tf`` (floats).
+    """
+    v = _v.positive_length("v_max", v_max)
+    a = _v.positive_length("a_max", a_max)
+    x0, y0 = (_v.finite_number("p0", c) for c in p0)
+    x1, y1 = (_v.finite_number("p1", c) for c in p1)
+    L = math.hypot(x1 - x0, y1 - y0)
+    if L == 0.0:
+        raise ValueError(f"p1 must differ from p0 = {(x0, y0)!r}, got {(x1, y1)!r}")
+    ex, ey = (x1 - x0) / L, (y1 - y0) / L
+    if L < v * v / a:  # triangular
+        v = math.sqrt(a * L)
+    T0 = v / a
+    Tf = T0 + L / v
+    t = np.clip(np.asarray(t, dtype=float), 0.0, Tf)
+    s = np.where(t < T0, 0.5 * a * t * t,
+                 np.where(t <= Tf - T0, 0.5 * a * T0 * T0 + v * (t - T0),
+                          L - 0.5 * a * (Tf - t) ** 2))
+    sd = np.where(t < T0, a * t, np.where(t <= Tf - T0, v, a * (Tf - t)))
+    sdd = np.where(t < T0, a, np.where(t <= Tf - T0, 0.0, -a))
+    return dict(t=t, x=x0 + ex * s, y=y0 + ey * s, xd=ex * sd, yd=ey * sd, xdd=ex * sdd,
+                ydd=ey * sdd, T0=T0, Tf=Tf)
+
+
+def wu2008_trajectory(n: int = 651):
+    """The motion of Wu Table 3 (``(-0.25, 0.5) -> (0.25, 0.5)`` m, 1 m/s, 6.67 m/s^2) at
+    ``n`` equally spaced times over ``[0, Tf]``; ``T0 = 0.150 s``, ``Tf = 0.650 s``."""
+    pub = wu2008_published()
+    val = {k: pub[("table3", k)][0] for k in ("x0", "y0", "x1", "y1", "v_max", "a_s")}
+    n = int(n)
+    if n < 2:
+        raise ValueError(f"n must be an integer >= 2, got {n!r}")
+    L = math.hypot(val["x1"] - val["x0"], val["y1"] - val["y0"])
+    Tf = val["v_max"] / val["a_s"] + L / val["v_max"]
+    return trapezoidal_profile((val["x0"], val["y0"]), (val["x1"], val["y1"]), val["v_max"],
+                               val["a_s"], np.linspace(0.0, Tf, n))
+
+
+def wu2008_driving_forces(n: int = 651, inertia: GantryInertia | None = None,
+                          gantry: Gantry | None = None) -> dict:
+    """Driving forces of Wu Fig. 4 along :func:`wu2008_trajectory` (gravity included).
+
+    Defaults: the Table 1 machine in metres and Table 2 inertias (links' mass centres
+    at mid-link). Returns the trajectory dict plus ``F1``, ``F2`` [N].
+    """
+    from .mechanisms.gantry import wu2008_gantry
+
+    gantry = wu2008_gantry(10.0, unit="m") if gantry is None else gantry
+    dyn = GantryDynamics(gantry, GantryInertia.wu2008() if inertia is None else inertia)
+    tr = wu2008_trajectory(n)
+    F1, F2 = dyn.driving_forces(tr["x"], tr["y"], tr["xd"], tr["yd"], tr["xdd"], tr["ydd"])
+    tr.update(F1=F1, F2=F2)
+    return tr
