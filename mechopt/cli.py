@@ -61,6 +61,41 @@ def _cmd_evaluate_five_bar(args):
     return 0
 
 
+def _print_result(res: dict, title: str, as_json: bool):
+    if as_json:
+        print(json.dumps(res))
+    else:
+        _print_table(res, title)
+
+
+def _cmd_evaluate_bipod(args):
+    from .mechanisms.bipod import Bipod, summary
+
+    mech = Bipod(args.b, args.q1_min, args.q1_max, args.q2_min, args.q2_max, branch=args.branch)
+    _print_result(summary(mech), repr(mech), args.json)
+    return 0
+
+
+def _cmd_evaluate_biglide(args):
+    from .mechanisms.biglide import Biglide, summary
+
+    mech = Biglide(args.l1, args.l2, args.q1_min, args.q1_max, args.q2_min, args.q2_max, mode=args.mode)
+    _print_result(summary(mech), repr(mech), args.json)
+    return 0
+
+
+def _cmd_evaluate_gantry(args):
+    import math
+
+    from . import validation as _v
+    from .mechanisms.gantry import summary
+
+    theta = math.radians(_v.finite_number("theta_1S_deg", args.theta_1s_deg))
+    res = summary(args.b, args.h, theta, d2=args.d2, l2=args.l2, length_unit=args.length_unit)
+    _print_result(res, f"Wu 2008 gantry, theta_1S = {args.theta_1s_deg:g} deg", args.json)
+    return 0
+
+
 def _cmd_run(args):
     import pandas as pd
 
@@ -162,6 +197,37 @@ def build_parser() -> argparse.ArgumentParser:
     fb.add_argument("--gamma", type=float, default=0.5, help="LCI level of the GCW, in (0, 1)")
     fb.add_argument("--json", action="store_true", help="print one JSON object")
     fb.set_defaults(func=_cmd_evaluate_five_bar)
+
+    bp = evs.add_parser("bipod", help="Bipod RPRPR (Stan 2008): exact workspace area and global TQI")
+    bp.add_argument("--b", type=float, required=True, help="base distance")
+    bp.add_argument("--q1-min", type=float, required=True)
+    bp.add_argument("--q1-max", type=float, required=True)
+    bp.add_argument("--q2-min", type=float, default=None, help="default: q1-min")
+    bp.add_argument("--q2-max", type=float, default=None, help="default: q1-max")
+    bp.add_argument("--branch", default="up", help="up (y > 0, default), down or full")
+    bp.add_argument("--json", action="store_true")
+    bp.set_defaults(func=_cmd_evaluate_bipod)
+
+    bg = evs.add_parser("biglide", help="Biglide PRRRP (Stan 2008): exact workspace area, global TQI, k_av")
+    bg.add_argument("--l1", type=float, required=True, help="half distance of the guides")
+    bg.add_argument("--l2", type=float, required=True, help="link length")
+    bg.add_argument("--q1-min", type=float, required=True)
+    bg.add_argument("--q1-max", type=float, required=True)
+    bg.add_argument("--q2-min", type=float, default=None, help="default: q1-min")
+    bg.add_argument("--q2-max", type=float, default=None, help="default: q1-max")
+    bg.add_argument("--mode", default="--", help="--, ++, +- or -+ (default --)")
+    bg.add_argument("--json", action="store_true")
+    bg.set_defaults(func=_cmd_evaluate_biglide)
+
+    gt = evs.add_parser("gantry", help="Wu 2008 gantry: synthesis (eq. 10-16), k_av, eta_D, GTQI")
+    gt.add_argument("--b", type=float, default=500.0, help="task width (default 500)")
+    gt.add_argument("--h", type=float, default=400.0, help="task height (default 400)")
+    gt.add_argument("--theta-1s-deg", type=float, default=10.0, help="smallest link angle, (0, 45) deg")
+    gt.add_argument("--d2", type=float, default=100.0)
+    gt.add_argument("--l2", type=float, default=200.0)
+    gt.add_argument("--length-unit", default="mm", help="mm (default) or m")
+    gt.add_argument("--json", action="store_true")
+    gt.set_defaults(func=_cmd_evaluate_gantry)
 
     run = sub.add_parser("run", help="the main job: evaluate Liu 2006's five example designs")
     run.add_argument("--quadrature", default="polar", choices=("area", "polar"),

@@ -118,7 +118,8 @@ def optimize(problem, algorithm: str | None = None, pop: int | None = None, gen:
     from pymoo.optimize import minimize
 
     algorithm = algorithm or problem.default_algorithm
-    pop, gen = _check_sizes(pop or problem.default_pop, gen or problem.default_gen)
+    pop, gen = _check_sizes(problem.default_pop if pop is None else pop,
+                            problem.default_gen if gen is None else gen)
     seed = int(_v.finite_number("seed", seed))
     algo = make_algorithm(algorithm, pop, problem.n_obj)
     out = _io.prepare_out_dir(out) if out is not None else None

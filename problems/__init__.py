@@ -18,6 +18,10 @@ _REGISTRY = {
     **{f"liu2006-{r}": ("liu2006", "LiuRegion", {"region": r})
        for r in ("w-gci", "w-gci-prime", "w-gci-gvi", "w-gci-gpi", "w-gci-gsi", "all")},
     "liu2006-many": ("liu2006", "LiuManyObjective", {}),
+    "stan2008-bipod": ("stan2008", "StanBipod", {}),
+    "stan2008-biglide": ("stan2008", "StanBiglide", {}),
+    "wu2008": ("wu2008", "WuGantry", {}),
+    "wu2008-dynamic": ("wu2008", "WuGantryDynamic", {}),
 }
 
 

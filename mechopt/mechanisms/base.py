@@ -146,8 +146,10 @@ class PlanarMechanism(ABC):
         boundary up to rounding has a measure of order sqrt(eps) ~ 1e-8."""
         A, b, ok = self.closure(x, y)
         n = np.hypot(A[..., :, 0], A[..., :, 1])
+        # B_ii / |a_i| has units of length for angular joints, none for sliders
+        scale = self.length_scale if self.angular_joints else 1.0
         with np.errstate(divide="ignore", invalid="ignore"):
-            t1 = np.any((b / (n * self.length_scale)) ** 2 <= tol, axis=-1)
+            t1 = np.any((b / (n * scale)) ** 2 <= tol, axis=-1)
         t2 = np.abs(self.type2_function(x, y)) <= tol
         out = np.full(np.shape(ok), "none", dtype=object)
         out[t1 & ~t2] = "type-I"
