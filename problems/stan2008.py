@@ -50,7 +50,8 @@ class _StanProblem(MechoptProblem):
         T = np.empty(len(values))
         for i, v in enumerate(values):
             m = self._mechanism(v)
-            W[i], T[i] = m.workspace_area(), m.gtqi()
+            W[i] = m.workspace_area()
+            T[i] = m.gtqi(method="gauss") if isinstance(m, Biglide) else m.gtqi()
         return W, T
 
     @property

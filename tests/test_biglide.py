@@ -335,3 +335,12 @@ def test_with_mode_and_attributes():
     assert m.guides == (40.0, -40.0) and m.x_range == (-60.0, 60.0)
     assert m.joint_limits == ((0.0, 100.0), (10.0, 120.0))
     assert m.length_scale == 100.0 and not m.angular_joints
+
+
+def test_gauss_gtqi_agrees_with_adaptive_quadrature():
+    from mechopt import Biglide
+
+    for l2 in (1.01, 1.1, 1.2):
+        for mode in ("--", "+-"):
+            g = Biglide(1.0, l2, 0.0, 1.0, mode=mode)
+            assert g.gtqi(method="gauss") == pytest.approx(g.gtqi(method="quad"), rel=1e-6)

@@ -74,6 +74,8 @@ eq. (1)-(7).
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 from scipy import integrate
 
@@ -87,7 +89,7 @@ __all__ = ["Biglide", "MODES", "ASSEMBLY_MODES", "GTQI_METHODS", "summary", "SUM
 MODES = ("--", "++", "+-", "-+")
 ASSEMBLY_MODES = ("up", "down")
 #: how :meth:`Biglide.gtqi` integrates: 1-D adaptive quadrature of exact chords, or raster
-GTQI_METHODS = ("quad", "raster")
+GTQI_METHODS = ("gauss", "quad", "raster")
 SUMMARY_KEYS = ("workspace_area", "gtqi", "tqi_integral", "k_av_1", "k_av_2")
 _SIGN = {"+": 1.0, "-": -1.0}
 #: default raster resolution: cells across the smaller side of the bounding box
@@ -96,6 +98,11 @@ RASTER_CELLS = 400
 #: that a pose computed from ``q = q_min`` or ``q_max`` (fk) is reachable
 LIMIT_RTOL = 1e-12
 _QUAD_EPSREL = 1e-10
+
+
+@lru_cache(maxsize=1)
+def _gauss_nodes(n: int = 128):
+    return np.polynomial.legendre.leggauss(n)
 
 
 def _stroke(name_min, q_min, name_max, q_max):
@@ -435,11 +442,26 @@ class Biglide(PlanarMechanism):
             out = 2.0 * np.abs(t1 - t2) / (t1 * t1 + t2 * t2 + 2.0)
         return np.where(np.isfinite(out), out, 0.0)
 
-    def tqi_integral(self, return_error: bool = False):
-        """``int_W TQI dA`` [L^2] by adaptive quadrature along x of ``TQI(x) * chord(x)``
-        on the intervals of :meth:`_breakpoints` (relative tolerance 1e-10).
-        With ``return_error=True`` returns ``(value, absolute error estimate)``."""
+    def tqi_integral(self, return_error: bool = False, method: str = "quad"):
+        """``int_W TQI dA`` [L^2] along x of ``TQI(x) * chord(x)`` on the intervals of
+        :meth:`_breakpoints`.
+
+        ``method="quad"``: adaptive quadrature (relative tolerance 1e-10); with
+        ``return_error=True`` returns ``(value, absolute error estimate)``.
+        ``method="gauss"``: a fixed 128-node Gauss-Legendre rule per interval,
+        vectorised (about 100x faster; the square-root behaviour of the chord at
+        the interval ends limits it to about 3e-8 relative, see
+        ``tests/test_biglide.py``), for optimisation loops.
+        """
         pts = self._breakpoints()
+        if method == "gauss":
+            t, w = _gauss_nodes()
+            total = 0.0
+            for x0, x1 in zip(pts[:-1], pts[1:]):
+                if x1 > x0:
+                    xs = 0.5 * (x1 - x0) * t + 0.5 * (x0 + x1)
+                    total += 0.5 * (x1 - x0) * float(np.sum(w * self.tqi_of_x(xs) * self.chord(xs)))
+            return (total, float("nan")) if return_error else total
         total, err = 0.0, 0.0
         f = lambda t: float(self.tqi_of_x(t) * self.chord(t))  # noqa: E731
         for x0, x1 in zip(pts[:-1], pts[1:]):
@@ -455,15 +477,16 @@ class Biglide(PlanarMechanism):
 
         ``method="quad"``: :meth:`tqi_integral` / :meth:`workspace_area` (TQI depends
         on x only, so the 2-D mean is a 1-D integral of exact chord lengths; relative
-        error ~1e-10). ``method="raster"``: mid-point mean over the reachable cells of
+        error ~1e-10); ``method="gauss"``: the same with the fixed Gauss rule of
+        :meth:`tqi_integral` (~3e-8, 100x faster). ``method="raster"``: mid-point mean over the reachable cells of
         :func:`mechopt.quadrature.grid_over` with side ``step`` [L] (default: the
         smaller side of the bounding box / 400); first-order error in ``step``.
         NaN for an empty workspace.
         """
         _v.choice("method", method, GTQI_METHODS)
-        if method == "quad":
+        if method in ("quad", "gauss"):
             w = self.workspace_area()
-            return float(self.tqi_integral() / w) if w > 0 else float("nan")
+            return float(self.tqi_integral(method=method) / w) if w > 0 else float("nan")
         box = self.bounding_box()
         if step is None:
             side = min(box[1] - box[0], box[3] - box[2])
