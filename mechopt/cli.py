@@ -16,7 +16,7 @@ EXIT_USAGE = 2
 
 #: modules that define ``register(subparsers)`` adding their own sub-command
 #: (each handler is set with ``set_defaults(func=...)`` and returns an exit status)
-_COMMAND_MODULES: tuple[str, ...] = ()
+_COMMAND_MODULES: tuple[str, ...] = ("mechopt.atlas",)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -93,6 +93,19 @@ def _cmd_evaluate_gantry(args):
     theta = math.radians(_v.finite_number("theta_1S_deg", args.theta_1s_deg))
     res = summary(args.b, args.h, theta, d2=args.d2, l2=args.l2, length_unit=args.length_unit)
     _print_result(res, f"Wu 2008 gantry, theta_1S = {args.theta_1s_deg:g} deg", args.json)
+    return 0
+
+
+def _cmd_reproduce(args):
+    from .reproduce import reproduce
+
+    def log(msg):
+        print(msg, file=sys.stderr, flush=True)
+
+    table = reproduce(args.paper, out=args.out, quick=args.quick, force=args.force, log=log)
+    counts = table["status"].value_counts()
+    print(f"{counts.get('match', 0)} match, {counts.get('differs', 0)} differ, "
+          f"{counts.get('not-reported', 0)} not reported; summary in {args.out}/README.md")
     return 0
 
 
@@ -233,6 +246,13 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--quadrature", default="polar", choices=("area", "polar"),
                      help="quadrature of the disk means (default polar, the one of the paper)")
     run.set_defaults(func=_cmd_run)
+
+    rp = sub.add_parser("reproduce", help="reproduce a paper's tables and figures beside the published values")
+    rp.add_argument("paper", help="le2013, stan2008, liu2006, wu2008 or all")
+    rp.add_argument("--out", default="results", help="output folder (default results)")
+    rp.add_argument("--quick", action="store_true", help="small runs (about 2 minutes for all)")
+    rp.add_argument("--force", action="store_true", help="redo papers already finished")
+    rp.set_defaults(func=_cmd_reproduce)
 
     pr = sub.add_parser("problems", help="list every registered problem, one line each")
     pr.set_defaults(func=_cmd_problems)
