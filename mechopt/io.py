@@ -19,6 +19,7 @@ __all__ = ["atomic_path", "write_text", "write_csv", "write_json", "save_figure"
 def atomic_path(path):
     """Yield a temporary path next to ``path``; rename it to ``path`` on success."""
     path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
