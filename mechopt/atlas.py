@@ -1,0 +1,498 @@
+"""Performance atlases of the symmetric five-bar over Liu's whole design space.
+
+Liu, Wang, Pritschow (2006), Mech. Mach. Theory 41:119-144,
+doi:10.1016/j.mechmachtheory.2005.05.003, Fig. 2-8: the global indices GCI,
+MCI, GVI, GPI, GSI (eq. 4, 11, 14, 19) and the MIC radius of every design of the
+non-dimensional space ``r1 + r2 + r3 = 3``, ``0 < r1, r2``, ``0 <= r3 <= 1.5``.
+
+Plane of the atlases
+--------------------
+Liu draws the space in coordinates ``(s, t)`` given by eq. (33) of his Ref. [19],
+which our copy does not contain. We use the isometric (distance- and
+angle-preserving) affine map of the plane ``r1 + r2 + r3 = 3`` onto the page::
+
+    s = (r1 - r2) / sqrt(2)        t = sqrt(3/2) r3
+
+(the orthonormal in-plane basis ``(1, -1, 0)/sqrt(2)``, ``(-1, -1, 2)/sqrt(6)``,
+shifted so that ``t = 0`` on ``r3 = 0``). The design space is the trapezoid
+between ``t = 0`` (``r3 = 0``) and ``t = sqrt(3/2) 1.5`` (``r3 = 1.5``), bounded left
+by ``r1 = 0`` and right by ``r2 = 0``; ``r1 = r2`` is the vertical axis, and
+``r1 + r3 = r2`` (i.e. ``r2 = 1.5``) and ``r2 + r3 = r1`` (``r1 = 1.5``) are straight
+lines through the origin. Because the map is isometric, the picture has the
+proportions of the design triangle itself.
+
+Computation
+-----------
+Designs on a lattice of step ``step`` are split into chunks mapped through
+:func:`mechopt.parallel.parallel_map` (joblib processes or a Dask cluster).
+Inside a chunk, :func:`mechopt.kernels.mic_batch` finds every MIC (closed-form
+serial clearance plus an explicitly generated type-II locus) and
+:func:`mechopt.kernels.disk_stats_batch` every disk mean and the MCI; both loop
+over designs and quadrature nodes in compiled code (numba) or in NumPy arrays,
+never in Python. A design whose MIC radius is 0 (no singularity-free disk on
+the y axis: every design with ``r3 = 1.5``, where ``r1 + r2 = r3``) gets NaN
+indices.
+"""
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+
+from . import kernels as _k
+from . import validation as _v
+
+__all__ = [
+    "INDEX_GROUPS",
+    "DEFAULT_INDICES",
+    "RESULT_COLUMNS",
+    "R3_MAX",
+    "check_step",
+    "parse_indices",
+    "plane_coordinates",
+    "design_grid",
+    "evaluate_designs",
+    "compute_atlas",
+    "draw_atlas",
+    "run_atlas",
+    "register",
+]
+
+#: index names of the command line -> columns of atlas.csv
+INDEX_GROUPS = {
+    "gci": ("gci",),
+    "mci": ("mci",),
+    "gvi": ("gvi_max", "gvi_min"),
+    "gpi": ("gpi_max", "gpi_min"),
+    "gsi": ("gsi_max", "gsi_min"),
+    "r_mic": ("r_mic",),
+}
+DEFAULT_INDICES = ("gci", "mci", "gvi", "gpi", "gsi", "r_mic")
+#: what :func:`evaluate_designs` returns, in order
+RESULT_COLUMNS = ("r_mic", "mic_center_y") + _k.DISK_STAT_NAMES
+#: Liu's design space: r1 + r2 + r3 = SUM, 0 <= r3 <= R3_MAX
+SUM = 3.0
+R3_MAX = 1.5
+STEP_MAX = 0.5
+#: a MIC radius below this (relative to the length scale 1) counts as none
+_MIN_RADIUS = 1e-9
+
+_TITLES = {
+    "r_mic": "MIC radius $r_{MIC}$",
+    "mic_center_y": "MIC centre $y_c$",
+    "gci": "GCI $\\eta_J$ (mean LCI over the MIC)",
+    "mci": "MCI (maximum LCI over the MIC)",
+    "gvi_max": "GVI $\\eta_{V\\max}$ (over $r_{MIC}/2$)",
+    "gvi_min": "GVI $\\eta_{V\\min}$ (over $r_{MIC}/2$)",
+    "gpi_max": "GPI $\\eta_{F\\max}$ (over $r_{MIC}/2$)",
+    "gpi_min": "GPI $\\eta_{F\\min}$ (over $r_{MIC}/2$)",
+    "gsi_max": "GSI $\\eta_{D\\max}$ (over $r_{MIC}/2$)",
+    "gsi_min": "GSI $\\eta_{D\\min}$ (over $r_{MIC}/2$)",
+}
+
+
+# --- inputs -----------------------------------------------------------------
+def check_step(step) -> float:
+    """The lattice step of the atlas: a finite number in (0, 0.5]."""
+    step = _v.finite_number("step", step)
+    if not 0.0 < step <= STEP_MAX:
+        raise ValueError(f"step must lie in (0, {STEP_MAX}], got {step!r}")
+    return step
+
+
+def parse_indices(indices) -> tuple:
+    """``"gci,mci"`` or a sequence of names -> tuple of :data:`INDEX_GROUPS` keys."""
+    if isinstance(indices, str):
+        items = [s.strip() for s in indices.split(",")]
+    else:
+        items = [str(s).strip() for s in indices]
+    if not items or any(s == "" for s in items):
+        raise ValueError(f"index must be a comma-separated list of {', '.join(INDEX_GROUPS)}, "
+                         f"got {indices!r}")
+    out = []
+    for s in items:
+        _v.choice("index", s, INDEX_GROUPS)
+        if s not in out:
+            out.append(s)
+    return tuple(out)
+
+
+def index_columns(indices) -> tuple:
+    """Columns of atlas.csv for the index groups (always ``r_mic`` and ``mic_center_y``)."""
+    cols = ["r_mic", "mic_center_y"]
+    for g in parse_indices(indices):
+        cols += [c for c in INDEX_GROUPS[g] if c not in cols]
+    return tuple(cols)
+
+
+# --- the design space -------------------------------------------------------
+def plane_coordinates(r1, r2, r3):
+    """``(s, t) = ((r1 - r2)/sqrt(2), sqrt(3/2) r3)``: the isometric map of the
+    plane ``r1 + r2 + r3 = 3`` used to draw the atlases (module docstring)."""
+    r1, r2, r3 = (np.asarray(v, dtype=float) for v in (r1, r2, r3))
+    return (r1 - r2) / math.sqrt(2.0), math.sqrt(1.5) * r3
+
+
+def design_grid(step):
+    """Every design of the space on the lattice of ``step``: DataFrame ``r1, r2, r3, s, t``.
+
+    ``r3 = k step`` (``0 <= r3 <= 1.5``) and ``r1 = j step`` with ``r1, r2 > 0``. When
+    ``3/step`` is an integer the lattice is exact (``r2`` is a multiple of
+    ``step`` too): 33 824 designs for ``step = 0.01``.
+    """
+    import pandas as pd
+
+    step = check_step(step)
+    n_sum = round(SUM / step)
+    exact = abs(n_sum * step - SUM) <= 1e-9 * SUM
+    k_max = int(math.floor(R3_MAX / step + 1e-9))
+    r1s, r3s = [], []
+    for k in range(k_max + 1):
+        if exact:
+            j = np.arange(1, n_sum - k)  # r2 = (n_sum - k - j) step >= step
+        else:
+            j = np.arange(1, int(math.ceil((SUM - k * step) / step - 1e-9)))
+        r1s.append(j * step)
+        r3s.append(np.full(j.size, k * step))
+    r1 = np.round(np.concatenate(r1s), 12)
+    r3 = np.round(np.concatenate(r3s), 12)
+    r2 = np.round(SUM - r1 - r3, 12)
+    keep = r2 > 0
+    r1, r2, r3 = r1[keep], r2[keep], r3[keep]
+    s, t = plane_coordinates(r1, r2, r3)
+    return pd.DataFrame({"r1": r1, "r2": r2, "r3": r3, "s": s, "t": t})
+
+
+# --- evaluation -------------------------------------------------------------
+def evaluate_designs(r1, r2, r3, quadrature: str = "area", mode: str = "+-", compiled=None):
+    """``(n, 10)`` array of :data:`RESULT_COLUMNS` for arrays of designs.
+
+    The fast path of :mod:`mechopt.kernels`; degenerate designs (MIC radius 0)
+    get ``r_mic = 0`` and NaN elsewhere. Lengths in any unit (results scale as in
+    :func:`mechopt.performance.global_indices`).
+    """
+    r1, r2, r3 = (np.asarray(v, dtype=float).ravel() for v in np.broadcast_arrays(r1, r2, r3))
+    R, yc = _k.mic_batch(r1, r2, r3, mode=mode, compiled=compiled)
+    scale = (r1 + r2 + r3) / 3.0
+    ok = R > _MIN_RADIUS * scale
+    R = np.where(ok, R, 0.0)
+    stats = _k.disk_stats_batch(r1, r2, r3, yc, R, mode=mode, quadrature=quadrature,
+                                compiled=compiled)
+    out = np.column_stack([R, np.where(ok, yc, np.nan), stats])
+    out[~ok, 1:] = np.nan
+    return out
+
+
+def _atlas_chunk(task):
+    """One work unit of :func:`compute_atlas` (module level, so it pickles)."""
+    r1, r2, r3, quadrature, mode = task
+    return evaluate_designs(r1, r2, r3, quadrature=quadrature, mode=mode)
+
+
+def _warm_up(quadrature, mode):
+    """Compile (or load from numba's cache) the kernels once in this process,
+    so that worker processes started afterwards load them from the cache."""
+    if _k.HAVE_NUMBA:
+        evaluate_designs([1.0], [1.5], [0.5], quadrature=quadrature, mode=mode)
+
+
+def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", mode: str = "+-",
+                  n_jobs: int = 2, client=None, chunk_size: int | None = None, progress=None):
+    """The atlas table: one row per design of :func:`design_grid`, columns
+    ``r1, r2, r3, s, t`` and :func:`index_columns`.
+
+    Parameters
+    ----------
+    step : float
+        Lattice step in (0, 0.5].
+    indices : str or sequence
+        Index groups of :data:`INDEX_GROUPS` (``gvi`` gives ``gvi_max, gvi_min``, ...).
+    quadrature : {"area", "polar"}
+        Rule of the disk means (:mod:`mechopt.quadrature`).
+    mode : {"+-", "-+", "++", "--"}
+        Working mode (Liu's atlases are ``"+-"``).
+    n_jobs : int
+        joblib worker processes (ignored with ``client``).
+    client : dask.distributed.Client, optional
+        Map the chunks on a Dask cluster instead.
+    chunk_size : int, optional
+        Designs per work unit (default: about 8 chunks per worker).
+    progress : callable, optional
+        ``progress(done, total)`` after each chunk.
+    """
+    import pandas as pd
+
+    from .parallel import chunks, parallel_map
+    from .quadrature import QUADRATURES
+
+    cols = index_columns(indices)
+    _v.choice("quadrature", quadrature, QUADRATURES)
+    _v.choice("mode", mode, ("+-", "-+", "++", "--"))
+    grid = design_grid(step)
+    n = len(grid)
+    if client is not None:
+        try:
+            workers = max(1, sum(client.nthreads().values()))
+        except Exception:  # pragma: no cover - very old clients
+            workers = 2
+    else:
+        workers = int(_v.finite_number("n_jobs", n_jobs))
+        if workers < 1 or workers != n_jobs:
+            raise ValueError(f"n_jobs must be a positive integer, got {n_jobs!r}")
+    if chunk_size is None:
+        n_chunks = max(1, min(workers * 8, math.ceil(n / 64)))
+    else:
+        if int(chunk_size) < 1:
+            raise ValueError(f"chunk_size must be a positive integer, got {chunk_size!r}")
+        n_chunks = math.ceil(n / int(chunk_size))
+    idx = np.arange(n)
+    parts = chunks(idx, n_chunks)
+    r1, r2, r3 = (grid[c].to_numpy() for c in ("r1", "r2", "r3"))
+    tasks = [(r1[p], r2[p], r3[p], quadrature, mode) for p in parts]
+    if client is None:
+        _warm_up(quadrature, mode)
+    res = parallel_map(_atlas_chunk, tasks, n_jobs=workers, client=client, on_result=progress)
+    values = np.vstack(res) if res else np.empty((0, len(RESULT_COLUMNS)))
+    table = pd.DataFrame(values, columns=list(RESULT_COLUMNS))
+    out = pd.concat([grid.reset_index(drop=True), table[list(cols)]], axis=1)
+    return out
+
+
+# --- drawing ----------------------------------------------------------------
+def _boundary_lines():
+    """``(label, style, (s, t))`` of the sub-region boundaries drawn on every atlas."""
+    r3 = np.linspace(0.0, R3_MAX, 61)
+    lines = [
+        ("$r_1 = r_2$", dict(color="k", ls="--", lw=0.9), ((SUM - r3) / 2, (SUM - r3) / 2, r3)),
+        ("$r_1 + r_3 = r_2$", dict(color="k", ls="-.", lw=0.9), (R3_MAX - r3, np.full_like(r3, 1.5), r3)),
+        ("$r_2 + r_3 = r_1$", dict(color="k", ls=":", lw=1.1), (np.full_like(r3, 1.5), R3_MAX - r3, r3)),
+    ]
+    rr = r3[r3 <= 1.0]  # r1 = r3 (the cranks can meet iff r1 >= r3); r2 = 3 - 2 r3 > 0
+    lines.append(("$r_1 = r_3$", dict(color="0.35", ls=(0, (1, 3)), lw=0.9), (rr, SUM - 2 * rr, rr)))
+    return [(lab, st, plane_coordinates(*r)) for lab, st, r in lines]
+
+
+def _outline():
+    """The trapezoid of the design space in (s, t)."""
+    r3 = np.array([0.0, 0.0, R3_MAX, R3_MAX, 0.0])
+    r1 = np.array([0.0, SUM, SUM - R3_MAX, 0.0, 0.0])
+    return plane_coordinates(r1, SUM - r1 - r3, r3)
+
+
+def _levels(v):
+    """Contour levels: round numbers over the range, or over the 0.5-99.5 %
+    quantiles (colour bar extended) when a few corner designs stretch it."""
+    from matplotlib.ticker import MaxNLocator
+
+    finite = v[np.isfinite(v)]
+    if finite.size == 0:
+        return None, "neither"
+    lo, hi = float(finite.min()), float(finite.max())
+    qlo, qhi = (float(q) for q in np.quantile(finite, [0.005, 0.995]))
+    extend = "neither"
+    if hi - lo > 0 and (qhi - qlo) < 0.5 * (hi - lo):  # heavy tail (near-degenerate corners)
+        lo, hi, extend = qlo, qhi, "both"
+    if not hi > lo:
+        hi = lo + max(abs(lo), 1.0) * 1e-9
+    levels = MaxNLocator(nbins=20).tick_values(lo, hi)
+    if extend == "neither":
+        levels = levels[(levels >= lo - 1e-12 * abs(hi)) | (np.arange(levels.size) == 0)]
+        if levels[-1] < hi:
+            levels = np.append(levels, hi)
+        if levels[0] > lo:
+            levels = np.insert(levels, 0, lo)
+    return levels, extend
+
+
+def draw_atlas(table, column: str, region=None, where: str | None = None, quadrature=None):
+    """Filled-contour atlas of ``table[column]`` in the (s, t) plane: a
+    :class:`matplotlib.figure.Figure` with the sub-region boundary lines, a
+    colour bar and, when ``region`` (boolean per row) is given, its outline."""
+    import matplotlib.tri as mtri
+    from matplotlib.figure import Figure
+
+    s = table["s"].to_numpy(float)
+    t = table["t"].to_numpy(float)
+    v = table[column].to_numpy(float)
+    fig = Figure(figsize=(8.0, 5.4))
+    ax = fig.add_subplot()
+    tri = mtri.Triangulation(s, t)
+    bad = ~np.isfinite(v)
+    if bad.any():
+        tri.set_mask(bad[tri.triangles].any(axis=1))
+    levels, extend = _levels(v)
+    if levels is not None:
+        vv = np.where(bad, np.nanmean(v) if (~bad).any() else 0.0, v)
+        cs = ax.tricontourf(tri, vv, levels=levels, cmap="viridis", extend=extend)
+        ax.tricontour(tri, vv, levels=levels[::2], colors="w", linewidths=0.35, alpha=0.6)
+        cb = fig.colorbar(cs, ax=ax, pad=0.1, shrink=0.85)
+        cb.set_label(column)
+    if bad.any():
+        ax.plot(s[bad], t[bad], ".", color="0.6", ms=1.5, label="no MIC (NaN)")
+    os_, ot = _outline()
+    ax.plot(os_, ot, color="k", lw=1.2)
+    for lab, st, (ls_, lt) in _boundary_lines():
+        ax.plot(ls_, lt, label=lab, **st)
+    if region is not None:
+        region = np.asarray(region, dtype=bool)
+        if region.any() and not region.all():
+            full = mtri.Triangulation(s, t)
+            ax.tricontour(full, region.astype(float), levels=[0.5], colors="r", linewidths=1.8)
+        ax.plot([], [], color="r", lw=1.8, label=f"where {where}" if where else "region")
+    ax.set_aspect("equal")
+    ax.set_xlabel("$s = (r_1 - r_2)/\\sqrt{2}$")
+    ax.set_ylabel("$t = \\sqrt{3/2}\\, r_3$")
+    sec = ax.secondary_yaxis("right", functions=(lambda tt: tt / math.sqrt(1.5),
+                                                 lambda r: r * math.sqrt(1.5)))
+    sec.set_ylabel("$r_3$")
+    ax.text(-SUM / math.sqrt(2), -0.12, "$r_1 \\to 0$", ha="left", va="top", fontsize=8)
+    ax.text(SUM / math.sqrt(2), -0.12, "$r_2 \\to 0$", ha="right", va="top", fontsize=8)
+    q = f", {quadrature} means" if quadrature else ""
+    ax.set_title(f"{_TITLES.get(column, column)}{q}", fontsize=10)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), fontsize=7, ncol=3, frameon=False)
+    ax.set_ylim(-0.3, math.sqrt(1.5) * R3_MAX + 0.15)
+    return fig
+
+
+# --- the command ------------------------------------------------------------
+def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", mode: str = "+-",
+              n_jobs: int = 2, dask: str | None = None, where: str | None = None,
+              figures: bool = True, chunk_size: int | None = None, dask_timeout: float = 10.0,
+              verbose: bool = True) -> dict:
+    """Compute, write and draw an atlas into the folder ``out``.
+
+    Writes ``atlas.csv``, ``atlas.json`` (settings, counts, timings),
+    ``atlas_<column>.png`` per index column and, with ``where``, ``region.csv``.
+    Every input is checked before any work starts. Returns the manifest.
+    """
+    from . import io as _io
+    from .conditions import parse_condition
+    from .parallel import connect
+    from .progress import Progress
+    from .quadrature import QUADRATURES
+
+    t0 = time.perf_counter()
+    step = check_step(step)
+    groups = parse_indices(indices)
+    cols = index_columns(groups)
+    _v.choice("quadrature", quadrature, QUADRATURES)
+    _v.choice("mode", mode, ("+-", "-+", "++", "--"))
+    if dask is None:
+        nj = _v.finite_number("n_jobs", n_jobs)
+        if nj < 1 or nj != int(nj):
+            raise ValueError(f"n_jobs must be a positive integer, got {n_jobs!r}")
+        n_jobs = int(nj)
+    cond = None
+    if where is not None:
+        cond = parse_condition(where, names=("r1", "r2", "r3", "s", "t") + cols)
+    out = _io.prepare_out_dir(out)
+    client = connect(dask, timeout=dask_timeout) if dask is not None else None
+    try:
+        grid_n = len(design_grid(step))
+        bar = Progress(1, "atlas") if verbose else None
+
+        def _tick(done, total):
+            if bar is not None:
+                bar.total = max(total, 1)
+                bar.update(done, f"{grid_n} designs")
+
+        t1 = time.perf_counter()
+        table = compute_atlas(step, groups, quadrature, mode, n_jobs=n_jobs, client=client,
+                              chunk_size=chunk_size, progress=_tick)
+        t_compute = time.perf_counter() - t1
+        if bar is not None:
+            bar.close()
+    finally:
+        if client is not None:
+            client.close()
+    _io.write_csv(table, out / "atlas.csv")
+    region = None
+    files = ["atlas.csv"]
+    if cond is not None:
+        region = cond.evaluate(table)
+        _io.write_csv(table[region], out / "region.csv")
+        files.append("region.csv")
+    t2 = time.perf_counter()
+    if figures:
+        for c in cols:
+            if c == "mic_center_y":
+                continue
+            if c == "r_mic" and "r_mic" not in groups:
+                continue
+            fig = draw_atlas(table, c, region=region, where=where, quadrature=quadrature)
+            _io.save_figure(fig, out / f"atlas_{c}.png")
+            files.append(f"atlas_{c}.png")
+    t_draw = time.perf_counter() - t2
+    n_bad = int((table["r_mic"] <= 0).sum())
+    manifest = {
+        "mechanism": "five-bar",
+        "step": step,
+        "indices": list(groups),
+        "columns": list(table.columns),
+        "quadrature": quadrature,
+        "mode": mode,
+        "n_designs": int(len(table)),
+        "n_degenerate": n_bad,
+        "plane": "s = (r1 - r2)/sqrt(2), t = sqrt(3/2) r3 (isometric map of r1 + r2 + r3 = 3)",
+        "backend": f"dask {dask}" if dask else f"joblib n_jobs={n_jobs}",
+        "compiled": bool(_k.HAVE_NUMBA),
+        "where": where,
+        "n_region": None if region is None else int(region.sum()),
+        "seconds": {"compute": round(t_compute, 3), "figures": round(t_draw, 3),
+                    "total": round(time.perf_counter() - t0, 3)},
+        "files": files + ["atlas.json"],
+    }
+    _io.write_json(manifest, out / "atlas.json")
+    if verbose:
+        msg = (f"atlas: {len(table)} designs ({n_bad} without MIC) in {t_compute:.1f} s "
+               f"[{manifest['backend']}, {'numba' if _k.HAVE_NUMBA else 'numpy'}], "
+               f"{quadrature} means, mode {mode}")
+        print(msg)
+        if region is not None:
+            print(f"region '{where}': {int(region.sum())} designs -> {out / 'region.csv'}")
+        print(f"wrote {', '.join(manifest['files'])} in {out}")
+    return manifest
+
+
+def _cmd_atlas_five_bar(args):
+    run_atlas(args.out, step=args.step, indices=args.index, quadrature=args.quadrature,
+              mode=args.mode, n_jobs=2 if args.n_jobs is None else args.n_jobs, dask=args.dask,
+              where=args.where,
+              figures=not args.no_figures, chunk_size=args.chunk_size,
+              dask_timeout=args.dask_timeout)
+    return 0
+
+
+def register(subparsers):
+    """Add ``mechopt atlas five-bar`` (hook of :mod:`mechopt.cli`)."""
+    from .cli import Parser
+
+    at = subparsers.add_parser("atlas", help="performance atlases over a whole design space")
+    ats = at.add_subparsers(dest="mechanism", required=True, parser_class=Parser)
+    fb = ats.add_parser(
+        "five-bar",
+        help="Liu 2006 atlases (GCI, MCI, GVI, GPI, GSI, r_MIC) over r1 + r2 + r3 = 3",
+        description="Evaluate every design of r1 + r2 + r3 = 3, 0 <= r3 <= 1.5, r1, r2 > 0 "
+                    "on a lattice; write atlas.csv, atlas.json and one PNG per index.")
+    fb.add_argument("--index", default=",".join(DEFAULT_INDICES),
+                    help="comma-separated index groups: gci, mci, gvi, gpi, gsi, r_mic (default: all)")
+    fb.add_argument("--step", type=float, default=0.01, help="lattice step in (0, 0.5] (default 0.01)")
+    fb.add_argument("--quadrature", default="area", help="area (default) or polar")
+    fb.add_argument("--mode", default="+-", help="working mode: +-, -+, ++ or -- (default +-)")
+    par = fb.add_mutually_exclusive_group()
+    # default None (meaning 2): argparse only sees a conflict with --dask when the value
+    # given is not the default object
+    par.add_argument("--n-jobs", type=int, default=None, help="joblib worker processes (default 2)")
+    par.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None,
+                     help="run the chunks on an existing Dask scheduler, e.g. tcp://10.0.0.5:8786")
+    fb.add_argument("--dask-timeout", type=float, default=10.0,
+                    help="seconds to wait for the Dask scheduler (default 10)")
+    fb.add_argument("--out", required=True, help="output folder")
+    fb.add_argument("--where", default=None,
+                    help="optimum region, e.g. \"r_mic > 0.8 and gci > 0.6\": outlined on the "
+                         "atlases, its designs written to region.csv")
+    fb.add_argument("--chunk-size", type=int, default=None, help="designs per work unit")
+    fb.add_argument("--no-figures", action="store_true", help="write the tables only")
+    fb.set_defaults(func=_cmd_atlas_five_bar)
