@@ -81,7 +81,7 @@ class _History:
 
     def __call__(self, algorithm):
         F = algorithm.opt.get("F")
-        feas = algorithm.opt.get("feasible")[:, 0]
+        feas = algorithm.opt.get("FEAS")[:, 0]
         row = {"generation": algorithm.n_gen, "evaluations": algorithm.evaluator.n_eval,
                "n_front": int(len(F))}
         sense = np.array([ob.sense for ob in self.problem.objectives])
@@ -133,7 +133,7 @@ def optimize(problem, algorithm: str | None = None, pop: int | None = None, gen:
         bar.close()
     problem.use_parallel(1, None)
     X = res.opt.get("X") if res.opt is not None else np.empty((0, problem.n_var))
-    feas = res.opt.get("feasible")[:, 0] if res.opt is not None else np.zeros(0, bool)
+    feas = res.opt.get("FEAS")[:, 0] if res.opt is not None else np.zeros(0, bool)
     front = _front_table(problem, X[feas]) if feas.any() else pd.DataFrame(columns=list(problem.var_names))
     history = pd.DataFrame(hist.rows)
     info = _run_info(problem, algorithm, pop, gen, seed, n_jobs, client, wall)

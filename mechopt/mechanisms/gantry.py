@@ -316,7 +316,10 @@ class Gantry(PlanarMechanism):
         y_a = y - self.l2 / 2.0
         q1 = y_a - c1
         q2 = y_a - c2
-        lo, hi = self.q_min, self.q_max
+        # the task rectangle of a synthesized design touches the stroke ends exactly
+        # (eq. 16), so accept rounding-level excursions past them
+        tol = 1e-12 * max(abs(self.q_min), abs(self.q_max), self.length_scale)
+        lo, hi = self.q_min - tol, self.q_max + tol
         with np.errstate(invalid="ignore"):
             ok = (q1 >= lo) & (q1 <= hi) & (q2 >= lo) & (q2 <= hi)
         return q1, q2, c1, c2, ok
