@@ -13,7 +13,7 @@ from mechopt.performance import global_indices, region_indices
 from mechopt.published import comparison_row, load
 from mechopt.workspace import gcw, joint_ranges, largest_square, mic, usable_region
 
-__all__ = ["reproduce_section3", "REL_TOL", "NOTES"]
+__all__ = ["reproduce_section3", "dimension_rows", "run", "REL_TOL", "NOTES"]
 
 #: acceptance tolerance per quantity class (issue "Foundation"): the paper does not
 #: state its quadrature or resolution, so its own numerical error is of this order
@@ -69,7 +69,7 @@ def _reproduce_design(key: str, quantities, quadrature: str) -> dict:
 
 
 def _rel_tol(quantity: str) -> float:
-    if quantity.startswith("theta"):
+    if "theta" in quantity:
         return REL_TOL["theta"]
     return REL_TOL.get(quantity, REL_TOL["default"])
 
@@ -82,6 +82,8 @@ def reproduce_section3(quadratures=("polar", "area")) -> pd.DataFrame:
     """
     pub = load("liu2006")
     rows = []
+    pub = pub[~pub["quantity"].str.startswith(("gcw_D", "gcw_R", "square_", "gcw_gsi_m") )
+              | pub["quantity"].isin(["gcw_gsi_max", "gcw_gsi_min"])]
     for key, grp in pub.groupby("design", sort=False):
         per_q = {q: _reproduce_design(key, list(grp["quantity"]), q) for q in quadratures}
         for rec in grp.itertuples():
@@ -97,6 +99,65 @@ def reproduce_section3(quadratures=("polar", "area")) -> pd.DataFrame:
                 row = {"design": key, "quadrature": q if disk_mean else "", **row}
                 rows.append(row)
     return pd.DataFrame(rows)
+
+
+def _dimension_values(fb: FiveBar) -> dict:
+    """Liu 2006 sec. 3.2.3 steps 2-4 and the square example, from our GCW."""
+    good = gcw(fb, 0.5)
+    d = np.sqrt(150.0 / good.area)  # eq. (20) with the 150 mm^2 objective workspace
+    big = fb.scaled(d)
+    reg = region_indices(big, gcw(big, 0.5))
+    side, cy = largest_square(good)
+    d_sq = 10.0 / side  # a 10 mm x 10 mm square (eq. 20 for a similar square)
+    s = np.linspace(-side / 2, side / 2, 201)
+    X, Y = np.meshgrid(s, cy + s)
+    t1, t2, _ = fb.ik(X, Y)
+    out = {"gcw_D": d, "gcw_gsi_max_scaled": reg["gsi_max"], "gcw_gsi_min_scaled": reg["gsi_min"],
+           "square_D": d_sq}
+    for i, r in enumerate((fb.r1, fb.r2, fb.r3), 1):
+        out[f"gcw_R{i}"] = d * r
+        out[f"square_R{i}"] = d_sq * r
+    out.update(square_theta1_lo_deg=np.degrees(np.nanmin(t1)), square_theta1_hi_deg=np.degrees(np.nanmax(t1)),
+               square_theta2_lo_deg=np.degrees(np.nanmin(t2)), square_theta2_hi_deg=np.degrees(np.nanmax(t2)))
+    return out
+
+
+DIMENSION_NOTES = {
+    "gcw_D": "D = sqrt(150 / GCW area) with our GCW area",
+    "gcw_R": "R_i = D r_i with our unrounded D (the paper multiplies its rounded D = 6.6)",
+    "gcw_gsi": ("GSI over the GCW of the scaled mechanism; it scales as D^2 (tests), so it inherits "
+                "the difference of the non-dimensional GCW GSI (measure of the GCW mean not stated)"),
+    "square_D": ("D = 10 mm / square side; the paper's own 1.11 gives 10/1.11 = 9.01, not its "
+                 "printed 9.1, with which it computes R_i"),
+    "square_R": "R_i = D r_i with our D (the paper prints all three as 'R_1')",
+    "square_theta": "input range over our largest square (side and centre from the GCW raster)",
+}
+
+
+def dimension_rows() -> pd.DataFrame:
+    """Rows for sec. 3.2.3's dimensional example (D, R_i, scaled GSI, the square)."""
+    pub = load("liu2006")
+    pub = pub[pub["quantity"].str.startswith(("gcw_D", "gcw_R", "gcw_gsi_max_s", "gcw_gsi_min_s", "square_"))]
+    vals = _dimension_values(_design("0.85/1.6/0.55"))
+    rows = []
+    for rec in pub.itertuples():
+        note = next(v for k, v in DIMENSION_NOTES.items() if rec.quantity.startswith(k))
+        row = comparison_row(rec.quantity, f"Liu 2006 {rec.source}", rec.value, vals[rec.quantity],
+                             rec.unit, rec.digits, _rel_tol(rec.quantity), note)
+        rows.append({"design": rec.design, "quadrature": "", **row})
+    return pd.DataFrame(rows)
+
+
+def run(out, quick: bool = False) -> pd.DataFrame:
+    """All of Liu 2006 section 3 (both quadratures) and its figures into ``out``."""
+    from pathlib import Path
+
+    from . import liu2006_figures as figs
+
+    out = Path(out)
+    table = pd.concat([reproduce_section3(), dimension_rows()], ignore_index=True)
+    figs.draw_all(out, quick=quick)
+    return table
 
 
 if __name__ == "__main__":  # pragma: no cover

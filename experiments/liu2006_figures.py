@@ -1,0 +1,140 @@
+"""Liu 2006 figures redrawn from mechopt's numbers (thin: evaluators + matplotlib).
+
+Figs. 8-16 (example designs with MIC and usable workspace), 17-28 (LCI and index
+maps, usable workspaces, GCW, the maximal square). The atlases (Figs. 2-6) and
+optimum regions (Figs. 7, 9, 11, 13, 15) come from :mod:`mechopt.atlas`.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.patches import Circle, Rectangle
+
+from mechopt import FiveBar
+from mechopt import io as _io
+from mechopt.workspace import gcw, largest_square, mic, usable_region
+
+__all__ = ["draw_all", "EXAMPLES"]
+
+#: sec. 3.1.1-3.1.5: the example design of each optimum region
+EXAMPLES = {
+    "W-GCI (Fig. 8)": (1.1, 1.65, 0.25),
+    "W-GCI-GVI (Fig. 10)": (1.5, 1.2, 0.3),
+    "W-GCI-GPI (Fig. 12)": (0.7, 1.7, 0.6),
+    "W-GCI-GSI (Fig. 14)": (0.85, 1.6, 0.55),
+    "All (Fig. 16)": (1.17, 1.45, 0.38),
+}
+
+
+def _mechanism_lines(ax, fb, m):
+    """The mechanism drawn at the MIC centre, base joints and links."""
+    x, y = 0.0, m.center_y
+    b1x, b1y, b2x, b2y, _ = fb.elbows(x, y)
+    ax.plot([-fb.r3, float(b1x), x, float(b2x), fb.r3], [0, float(b1y), y, float(b2y), 0], "k-o", ms=3, lw=1.2)
+
+
+def _map(ax, fb, region, values, title, levels=12):
+    X, Y = region.grid.points()
+    V = np.where(region.mask, values, np.nan)
+    cs = ax.contourf(X, Y, V, levels=levels)
+    ax.figure.colorbar(cs, ax=ax, shrink=0.8)
+    ax.set_aspect("equal")
+    ax.set_title(title, fontsize=9)
+    return cs
+
+
+def _disk_region(fb, m, radius, step):
+    from mechopt.quadrature import grid_over
+    from mechopt.workspace import Region
+
+    g = grid_over((-radius, radius, m.center_y - radius, m.center_y + radius), step)
+    X, Y = g.points()
+    return Region(g, np.hypot(X, Y - m.center_y) <= radius)
+
+
+def fig_examples(step):
+    fig = Figure(figsize=(16, 3.6))
+    for k, (name, r) in enumerate(EXAMPLES.items()):
+        fb = FiveBar(*r)
+        m = mic(fb)
+        u = usable_region(fb, step=step, center=(0.0, m.center_y))
+        ax = fig.add_subplot(1, 5, k + 1)
+        X, Y = u.grid.points()
+        ax.contourf(X, Y, u.mask.astype(float), levels=[0.5, 1.5], colors=["0.85"])
+        ax.add_patch(Circle((0, m.center_y), m.radius, fill=False, color="C3", lw=1.2))
+        _mechanism_lines(ax, fb, m)
+        ax.set_aspect("equal")
+        ax.set_title(f"{name}\nr = {r}, r_MIC = {m.radius:.4f}", fontsize=8)
+    return fig
+
+
+def fig_lci_usable(fb, step, title):
+    u = usable_region(fb, step=step)
+    X, Y = u.grid.points()
+    fig = Figure(figsize=(6, 4))
+    _map(fig.add_subplot(), fb, u, fb.lci(X, Y), title)
+    return fig
+
+
+def fig_usable_pair(step):
+    fig = Figure(figsize=(11, 4))
+    for k, r in enumerate([(0.4, 2.33, 0.27), (0.65, 1.62, 0.73)]):
+        fb = FiveBar(*r)
+        u = usable_region(fb, step=step)
+        X, Y = u.grid.points()
+        _map(fig.add_subplot(1, 2, k + 1), fb, u, fb.lci(X, Y),
+             f"Figs. 18-19: r = {r}, usable area {u.area:.4f}, LCI")
+    return fig
+
+
+def fig_extremes_on_miw(fb, names, step, title):
+    from mechopt import indices as ix
+
+    m = mic(fb)
+    reg = _disk_region(fb, m, m.radius, step)
+    X, Y = reg.grid.points()
+    loc = ix.local_indices(fb.jacobian(X, Y))
+    fig = Figure(figsize=(5 * len(names), 4))
+    for k, name in enumerate(names):
+        v = loc[name]
+        hi = np.nanpercentile(np.where(reg.mask, v, np.nan), 98)
+        _map(fig.add_subplot(1, len(names), k + 1), fb, reg, np.clip(v, None, hi),
+             f"{title}: {name} (clipped at 98th percentile)")
+    return fig
+
+
+def fig_gcw_and_square(fb, step):
+    from mechopt import indices as ix
+
+    u = usable_region(fb, step=step)
+    g = gcw(fb, 0.5, u)
+    side, cy = largest_square(g)
+    X, Y = g.grid.points()
+    loc = ix.local_indices(fb.jacobian(X, Y))
+    fig = Figure(figsize=(15, 4))
+    ax = fig.add_subplot(1, 3, 1)
+    _map(ax, fb, g, fb.lci(X, Y), f"Figs. 25/28: GCW (LCI >= 0.5), area {g.area:.4f}")
+    ax.add_patch(Rectangle((-side / 2, cy - side / 2), side, side, fill=False, color="k", lw=1.2))
+    _map(fig.add_subplot(1, 3, 2), fb, g, loc["d_max"], "Fig. 26(a): |D|max on the GCW")
+    _map(fig.add_subplot(1, 3, 3), fb, g, loc["d_min"], "Fig. 26(b): |D|min on the GCW")
+    return fig
+
+
+def draw_all(out, quick: bool = False):
+    """Write every figure of this module into ``out``."""
+    out = Path(out)
+    step = 0.02 if quick else 0.005
+    opt = FiveBar(0.85, 1.6, 0.55)
+    _io.save_figure(fig_examples(step), out / "figs08-16_examples.png")
+    _io.save_figure(fig_lci_usable(opt, step, "Figs. 17/23: LCI on the usable workspace, r = (0.85, 1.6, 0.55)"),
+                    out / "fig17_23_lci_usable.png")
+    _io.save_figure(fig_usable_pair(step), out / "figs18-19_usable.png")
+    _io.save_figure(fig_extremes_on_miw(FiveBar(1.1, 1.65, 0.25), ["lci"], step, "Fig. 20, r = (1.1, 1.65, 0.25)"),
+                    out / "fig20_lci_miw.png")
+    _io.save_figure(fig_extremes_on_miw(FiveBar(1.5, 1.2, 0.3), ["v_max", "tau_min", "d_max"], step,
+                                        "Figs. 21-22, r = (1.5, 1.2, 0.3)"), out / "figs21-22_extremes_miw.png")
+    _io.save_figure(fig_extremes_on_miw(opt, ["d_max", "d_min"], step, "Fig. 24, r = (0.85, 1.6, 0.55)"),
+                    out / "fig24_d_miw.png")
+    _io.save_figure(fig_gcw_and_square(opt, step), out / "figs25-28_gcw_square.png")
