@@ -1,0 +1,112 @@
+"""experiments/stan2008.py (installed as mechopt.experiments.stan2008): the quick run
+produces every published quantity, a valid table, every file, and the physics it
+rests on."""
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from mechopt.experiments import stan2008
+from mechopt.published import TABLE_COLUMNS
+
+WEIGHT_LABELS = ("W1=0.7,W2=0.3", "W1=0.3,W2=0.7", "W1=1,W2=0", "W1=0,W2=1")
+QUANTITIES = (
+    ["workspace_area"]
+    + [f"q1_over_b[{w}]" for w in WEIGHT_LABELS]
+    + [f"L2[{w}]" for w in WEIGHT_LABELS]
+    + ["ga_population", "ga_generations", "ga_crossover_rate", "ga_mutation_rate"]
+)
+RUN_FILES = ("front.csv", "history.csv", "run.json", "front.png", "sweep.csv", "sweep.png")
+TOP_FILES = ("fig29_tqi_bipod.png", "fig30_tqi_biglide.png", "tradeoff_bipod.png",
+             "tradeoff_biglide.png", "curves.csv")
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory):
+    out = tmp_path_factory.mktemp("stan2008")
+    return out, stan2008.run(out, quick=True)
+
+
+def test_table_columns_and_quantities(quick):
+    _, df = quick
+    assert list(df.columns) == list(TABLE_COLUMNS)
+    assert sorted(df["quantity"]) == sorted(QUANTITIES)  # each exactly once
+
+
+def test_statuses_valid_and_differs_explained(quick):
+    _, df = quick
+    assert set(df["status"]) <= {"match", "differs", "not-reported"}
+    for rec in df[df["status"] == "differs"].itertuples():
+        assert isinstance(rec.note, str) and rec.note.strip(), rec.quantity
+    # every row also names its tolerance (comparison_row) and has a finite value
+    assert df["note"].str.contains("tol ").all()
+    assert np.all(np.isfinite(df["reproduced"].to_numpy(float)))
+
+
+def test_files_exist(quick):
+    out, _ = quick
+    for mech in ("bipod", "biglide"):
+        for name in RUN_FILES:
+            f = out / mech / name
+            assert f.is_file() and f.stat().st_size > 0, f
+        run = json.loads((out / mech / "run.json").read_text())
+        assert run["problem"] == f"stan2008-{mech}" and run["algorithm"]["name"] == "nsga2"
+        sweep = pd.read_csv(out / mech / "sweep.csv")
+        np.testing.assert_allclose(sweep["weight"], np.round(np.arange(11) * 0.1, 12))
+    for name in TOP_FILES:
+        f = out / name
+        assert f.is_file() and f.stat().st_size > 0, f
+    curves = pd.read_csv(out / "curves.csv")
+    assert list(curves.columns) == ["mechanism", "variable", "value", "W", "W_n", "T"]
+    assert set(curves["mechanism"]) == {"bipod", "biglide"}
+    assert set(curves["variable"]) == {"q1_min_over_b", "L2"}
+
+
+def _row(df, q):
+    return df[df["quantity"] == q].iloc[0]
+
+
+def test_exact_bipod_area(quick):
+    _, df = quick
+    r = _row(df, "workspace_area")
+    assert r["reproduced"] == pytest.approx(4863.88, rel=1e-6)
+    assert r["paper"] == 4693.33 and r["status"] == "differs"
+
+
+def test_bipod_w_only_optimum_at_upper_bound(quick):
+    out, df = quick
+    assert _row(df, "q1_over_b[W1=0,W2=1]")["reproduced"] == pytest.approx(1.35, abs=1e-3)
+    # because W grows monotonically with q1/b over the whole range (curves.csv)
+    c = pd.read_csv(out / "curves.csv")
+    bip = c[c["mechanism"] == "bipod"]
+    assert np.all(np.diff(bip["W"]) > 0)
+    assert bip["value"].iloc[-1] == pytest.approx(1.35) and bip["W_n"].iloc[-1] == pytest.approx(1.0)
+
+
+def test_t_only_optimum_is_the_peak_of_the_t_curve(quick):
+    out, df = quick
+    c = pd.read_csv(out / "curves.csv")
+    bip = c[c["mechanism"] == "bipod"]
+    u_peak = bip["value"].iloc[int(np.argmax(bip["T"]))]
+    step = np.diff(bip["value"]).max()
+    assert _row(df, "q1_over_b[W1=1,W2=0]")["reproduced"] == pytest.approx(u_peak, abs=step)
+
+
+def test_ga_settings_rows(quick):
+    _, df = quick
+    s = stan2008.SETTINGS[True]
+    assert _row(df, "ga_population")["reproduced"] == s["pop"]
+    assert _row(df, "ga_generations")["reproduced"] == s["gen"]
+    assert _row(df, "ga_crossover_rate")["reproduced"] == pytest.approx(0.9)  # pymoo SBX
+    assert "SBX" in _row(df, "ga_crossover_rate")["note"]
+    assert "polynomial mutation" in _row(df, "ga_mutation_rate")["note"]
+    assert stan2008.SETTINGS[False]["pop"] == 50 and stan2008.SETTINGS[False]["gen"] == 100
+
+
+@pytest.mark.slow
+def test_full_run_uses_table1_sizes(tmp_path):
+    df = stan2008.run(tmp_path, quick=False)
+    assert _row(df, "ga_population")["status"] == "match"
+    assert _row(df, "ga_generations")["status"] == "match"
+    assert _row(df, "q1_over_b[W1=0,W2=1]")["reproduced"] == pytest.approx(1.35, abs=1e-6)
