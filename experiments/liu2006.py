@@ -92,6 +92,9 @@ def reproduce_section3(quadratures=("polar", "area")) -> pd.DataFrame:
             for q in (quadratures if disk_mean else quadratures[:1]):
                 note = NOTES.get((key, rec.quantity), "")
                 qnote = f"quadrature {q}" if disk_mean else "raster area mean" if rec.quantity.startswith("gcw_g") else ""
+                if disk_mean and q == "area":
+                    qnote += ("; the true area mean: the paper's values are polar means (its polar "
+                              "row matches), this row shows what that choice changes")
                 note = "; ".join(s for s in (qnote, note) if s)
                 row = comparison_row(rec.quantity, f"Liu 2006 {rec.source}", rec.value,
                                      per_q[q][rec.quantity], rec.unit, rec.digits,
