@@ -14,7 +14,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 run: $(STAMP)
-	$(BIN)/mechopt run
+	$(BIN)/mechopt reproduce all
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

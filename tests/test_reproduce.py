@@ -1,0 +1,86 @@
+"""``mechopt reproduce --quick``: every paper, the table schema, every required row."""
+import re
+
+import pandas as pd
+import pytest
+
+from mechopt.cli import main
+from mechopt.published import TABLE_COLUMNS
+
+REQUIRED = {
+    "le2013": ["rho_star", "a_max", "a_max_at_paper_rho", "lci_min_in_square", "lci_max_in_square"],
+    "stan2008": ["workspace_area", *(f"q1_over_b[W1={a},W2={b}]" for a, b in
+                                     (("0.7", "0.3"), ("0.3", "0.7"), ("1", "0"), ("0", "1"))),
+                 *(f"L2[W1={a},W2={b}]" for a, b in (("0.7", "0.3"), ("0.3", "0.7"), ("1", "0"), ("0", "1"))),
+                 "ga_population", "ga_generations", "ga_crossover_rate", "ga_mutation_rate"],
+    "liu2006": ["r_mic", "gci", "gvi_max", "gvi_min", "gpi_max", "gpi_min", "gsi_max", "gsi_min",
+                "usable_area", "gcw_area", "gcw_gci", "gcw_gsi_max", "gcw_gsi_min", "gcw_D",
+                "gcw_R1", "gcw_R2", "gcw_R3", "gcw_gsi_max_scaled", "gcw_gsi_min_scaled",
+                "theta1_lo_deg", "theta1_hi_deg", "theta2_lo_deg", "theta2_hi_deg",
+                "gcw_square_side", "square_D", "square_R1", "square_R2", "square_R3",
+                "square_theta1_lo_deg", "square_theta1_hi_deg", "square_theta2_lo_deg",
+                "square_theta2_hi_deg"],
+    "wu2008": ["d1[theta_1S=15deg]", "l[theta_1S=15deg]", "stroke[theta_1S=15deg]", "d1[table1]",
+               "l[table1]", "stroke[table1]", "k_av[table1]", "k_av_alternative[table1]",
+               "eta_d[built]", "eta_d[symmetric]", "kappa_d_min[built]", "kappa_d_max[built]"],
+}
+FILES = {
+    "le2013": ["curve.csv", "fig5_a_max.png", "fig6_lci_square.png", "front/front.csv", "sweep/sweep.csv"],
+    "stan2008": ["fig29_tqi_bipod.png", "fig30_tqi_biglide.png", "bipod/front.csv", "bipod/sweep.csv",
+                 "biglide/sweep.csv"],
+    "liu2006": ["figs08-16_examples.png", "figs25-28_gcw_square.png"],
+    "wu2008": ["fig2_workspace.png", "fig4_driving_forces.png", "front/front.csv", "sweep/sweep.csv"],
+}
+
+
+@pytest.fixture(scope="module")
+def results(tmp_path_factory):
+    out = tmp_path_factory.mktemp("results")
+    assert main(["reproduce", "all", "--quick", "--out", str(out)]) == 0
+    return out
+
+
+@pytest.mark.parametrize("paper", list(REQUIRED))
+def test_table_schema_and_required_rows(results, paper):
+    table = pd.read_csv(results / paper / "table.csv")
+    assert list(table.columns[: len(TABLE_COLUMNS)]) == list(TABLE_COLUMNS)
+    assert set(table["status"]) <= {"match", "differs", "not-reported"}
+    missing = set(REQUIRED[paper]) - set(table["quantity"])
+    assert not missing, missing
+    for f in FILES[paper]:
+        assert (results / paper / f).is_file(), f
+    assert (results / paper / "table.md").read_text().startswith("# ")
+
+
+@pytest.mark.parametrize("paper", list(REQUIRED))
+def test_match_rows_are_within_their_tolerance_and_differs_rows_explained(results, paper):
+    table = pd.read_csv(results / paper / "table.csv")
+    for rec in table.itertuples():
+        if rec.status == "match":
+            tol = float(re.search(r"tol ([0-9.eE+-]+)", rec.note).group(1))
+            assert abs(rec.reproduced - rec.paper) <= tol * (1 + 1e-9), rec
+        if rec.status == "differs":
+            # a reason beyond the tolerance statement itself
+            assert len(re.sub(r";? ?tol [^;]*$", "", rec.note)) > 10, rec
+
+
+def test_summary_readme(results):
+    text = (results / "README.md").read_text()
+    for title in ("Le, Kang, Doan", "Stan, Maties", "Liu, Wang", "Wu, Wang"):
+        assert title in text
+    assert "Where we differ, and why" in text
+
+
+def test_finished_papers_are_skipped_unless_forced(results, capsys):
+    before = (results / "wu2008" / "table.csv").stat().st_mtime_ns
+    assert main(["reproduce", "wu2008", "--quick", "--out", str(results)]) == 0
+    assert "skipped" in capsys.readouterr().err
+    assert (results / "wu2008" / "table.csv").stat().st_mtime_ns == before
+    assert main(["reproduce", "wu2008", "--quick", "--force", "--out", str(results)]) == 0
+    assert (results / "wu2008" / "table.csv").stat().st_mtime_ns != before
+
+
+def test_unknown_paper(capsys, tmp_path):
+    assert main(["reproduce", "smith1999", "--out", str(tmp_path / "r")]) == 2
+    assert "paper must be one of" in capsys.readouterr().err
+    assert not (tmp_path / "r").exists()
