@@ -101,6 +101,8 @@ _REACH_TOL = 1e-12
 MIC_SIZES = dict(n_crank=128, n_y=128, n_sub=16, n_seed_y=9, n_golden=42, n_cand=2)
 #: compass search of the MCI (as mechopt.performance.max_lci)
 _MCI_ITERS = 40
+#: starting nodes of the MCI search (mutually farther apart than R/3)
+_MCI_STARTS = 3
 _DIRS = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0],
                   [1.0, 1.0], [1.0, -1.0], [-1.0, 1.0], [-1.0, -1.0]])
 _GOLD = (math.sqrt(5.0) - 1.0) / 2.0
@@ -824,17 +826,8 @@ def _iso_residual_nb(r1sq, half_d, r3, s1, s2, x, y, which):
 
 
 @_njit
-def _mci_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, bx, by, best, step0, n_iter, dirs, n_rim):
-    """Maximum LCI over the disk of radius R about (0, cy), from the start (bx, by)
-    relative to the centre with value ``best``:
-
-    1. compass search (8 directions, step halved on failure, kept in the disk);
-    2. golden-section search along the rim around the best rim sample;
-    3. Newton iterations on the isotropy conditions (LCI = 1 exactly where J is
-       a scaled rotation or reflection), whose solution is a cone apex of the
-       LCI that direct search approaches only slowly.
-    """
-    step = R * step0
+def _compass_nb(r1sq, half_d, r3, s1, s2, cy, R, bx, by, best, step, n_iter, dirs):
+    """Compass search (8 directions, step halved on failure, kept in the disk)."""
     for _ in range(n_iter):
         jb = -1
         vb = -1.0
@@ -853,7 +846,65 @@ def _mci_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, bx, by, best, step0, n_iter,
             by = by + step * dirs[jb, 1]
         else:
             step *= 0.5
-    # rim: best sample, then golden section in the angle
+    return bx, by, best
+
+
+@_njit
+def _newton_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, which, n_iter):
+    """Damped Newton on an isotropy residual from ``(px, py)``: a step is halved
+    until it stays in the disk and lowers the residual (else the search stops).
+    Returns the best LCI visited (-1 if no step was taken)."""
+    h = 1e-7 * R
+    best = -1.0
+    f0, g0 = _iso_residual_nb(r1sq, half_d, r3, s1, s2, px, cy + py, which)
+    n0 = f0 * f0 + g0 * g0
+    for _ in range(n_iter):
+        if not math.isfinite(n0):
+            break
+        fx, gx = _iso_residual_nb(r1sq, half_d, r3, s1, s2, px + h, cy + py, which)
+        fy, gy = _iso_residual_nb(r1sq, half_d, r3, s1, s2, px, cy + py + h, which)
+        j11 = (fx - f0) / h
+        j12 = (fy - f0) / h
+        j21 = (gx - g0) / h
+        j22 = (gy - g0) / h
+        det = j11 * j22 - j12 * j21
+        if not (det != 0.0 and math.isfinite(det)):
+            break
+        dx = -(j22 * f0 - j12 * g0) / det
+        dy = -(-j21 * f0 + j11 * g0) / det
+        t = 1.0
+        ok = False
+        qx = px
+        qy = py
+        f1 = f0
+        g1 = g0
+        n1 = n0
+        for _ in range(8):
+            qx = px + t * dx
+            qy = py + t * dy
+            if math.hypot(qx, qy) <= R:
+                f1, g1 = _iso_residual_nb(r1sq, half_d, r3, s1, s2, qx, cy + qy, which)
+                n1 = f1 * f1 + g1 * g1
+                if n1 < n0:
+                    ok = True
+                    break
+            t *= 0.5
+        if not ok:
+            break
+        px = qx
+        py = qy
+        f0 = f1
+        g0 = g1
+        n0 = n1
+        v = _lci_point_nb(r1sq, half_d, r3, s1, s2, px, cy + py)
+        if v > best:
+            best = v
+    return best
+
+
+@_njit
+def _rim_nb(r1sq, half_d, r3, s1, s2, cy, R, n_rim):
+    """Best LCI on the rim: best of ``n_rim`` samples, then golden section in the angle."""
     kb = 0
     vk = -1.0
     for k in range(n_rim):
@@ -882,39 +933,53 @@ def _mci_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, bx, by, best, step0, n_iter,
             f1 = f2
             x2 = a + _GOLD * (c - a)
             f2 = _lci_point_nb(r1sq, half_d, r3, s1, s2, R * math.cos(x2), cy + R * math.sin(x2))
-    best = max(best, vk, f1, f2)
-    # Newton on the isotropy conditions from the compass result
-    h = 1e-7 * R
-    for which in range(2):
-        px = bx
-        py = by
-        for _ in range(16):
-            f0, g0 = _iso_residual_nb(r1sq, half_d, r3, s1, s2, px, cy + py, which)
-            fx, gx = _iso_residual_nb(r1sq, half_d, r3, s1, s2, px + h, cy + py, which)
-            fy, gy = _iso_residual_nb(r1sq, half_d, r3, s1, s2, px, cy + py + h, which)
-            j11 = (fx - f0) / h
-            j12 = (fy - f0) / h
-            j21 = (gx - g0) / h
-            j22 = (gy - g0) / h
-            det = j11 * j22 - j12 * j21
-            if not (det != 0.0 and math.isfinite(det)):
-                break
-            dx = -(j22 * f0 - j12 * g0) / det
-            dy = -(-j21 * f0 + j11 * g0) / det
-            px += dx
-            py += dy
-            if not (math.hypot(px, py) <= R):
-                break
-            v = _lci_point_nb(r1sq, half_d, r3, s1, s2, px, cy + py)
-            if v > best:
-                best = v
-    return best
+    return max(vk, f1, f2)
 
 
 @_njit
-def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs, n_rim, out):
+def _mci_nb(r1sq, half_d, r3, s1, s2, cy, R, ux, uy, lv, step0, n_iter, dirs, n_rim, n_start,
+            starts):
+    """Maximum LCI over the disk of radius R about (0, cy), given the LCI ``lv`` at
+    the unit nodes ``(ux, uy)``:
+
+    * from each of ``n_start`` nodes (the best one, then the best one farther
+      than R/3 from the nodes already used) a compass search
+      (:func:`mechopt.performance.max_lci`), then damped Newton iterations on
+      both isotropy conditions (LCI = 1 exactly where J is a scaled rotation or
+      reflection: a cone apex that direct search approaches only slowly);
+    * a golden-section search along the rim.
+    """
+    best = -1.0
+    m = 0
+    for _ in range(n_start):
+        kb = -1
+        vb = -np.inf
+        for k in range(ux.size):
+            far = True
+            for q in range(m):
+                ex = ux[k] - ux[starts[q]]
+                ey = uy[k] - uy[starts[q]]
+                far = far and (ex * ex + ey * ey > 1.0 / 9.0)
+            if far and lv[k] > vb:
+                kb = k
+                vb = lv[k]
+        if kb < 0:
+            break
+        starts[m] = kb
+        m += 1
+        bx, by, b = _compass_nb(r1sq, half_d, r3, s1, s2, cy, R, R * ux[kb], R * uy[kb], lv[kb],
+                                R * step0, n_iter, dirs)
+        best = max(best, b)
+        for which in range(2):
+            best = max(best, _newton_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, bx, by, which, 12))
+    return max(best, _rim_nb(r1sq, half_d, r3, s1, s2, cy, R, n_rim))
+
+
+@_njit
+def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs, n_rim, lv,
+                       starts, out):
     """Mean LCI over the MIC disk, its maximum (best node, then
-    :func:`_mci_polish_nb`), and the means of the velocity, payload and
+    :func:`_mci_nb`), and the means of the velocity, payload and
     stiffness extremes over the concentric half-radius disk."""
     r1sq = r1 * r1
     half_d = 0.5 * (r1sq - r2 * r2)
@@ -924,17 +989,13 @@ def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs
             out[q] = nan
         return
     acc = 0.0
-    best = -1.0
-    kb = 0
     for k in range(ux.size):
         v = _lci_point_nb(r1sq, half_d, r3, s1, s2, R * ux[k], cy + R * uy[k])
+        lv[k] = v
         acc += w[k] * v
-        if v > best:
-            best = v
-            kb = k
     out[0] = acc
-    out[1] = _mci_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, R * ux[kb], R * uy[kb], best,
-                            step0, n_iter, dirs, n_rim)
+    out[1] = _mci_nb(r1sq, half_d, r3, s1, s2, cy, R, ux, uy, lv, step0, n_iter, dirs, n_rim,
+                     starts.size, starts)
     h = 0.5 * R
     a_vmax = 0.0
     a_vmin = 0.0
@@ -971,10 +1032,13 @@ def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs
 
 
 @_njit
-def _disk_stats_batch_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs, n_rim, out):
+def _disk_stats_batch_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs, n_rim,
+                         n_start, out):
+    lv = np.empty(ux.size)
+    starts = np.empty(n_start, np.int64)
     for i in range(r1.size):
         _disk_stats_one_nb(r1[i], r2[i], r3[i], s1, s2, cy[i], R[i], ux, uy, w, step0, n_iter,
-                           dirs, n_rim, out[i])
+                           dirs, n_rim, lv, starts, out[i])
 
 
 def _lci_at_np(rr, s1, s2, x, y):
@@ -1007,11 +1071,9 @@ def _golden_rim_np(rr, s1, s2, cy, R, a, c, n):
     return np.maximum(f1, f2)
 
 
-def _mci_polish_np(rr, s1, s2, cy, R, bx, by, best, step0, n_iter, n_rim):
-    """Vectorised :func:`_mci_polish_nb` (rr: (B, 1) columns; the rest (B,))."""
+def _compass_np(rr, s1, s2, cy, R, bx, by, best, step, n_iter):
     c1 = lambda v: v[:, None]  # noqa: E731
     rows = np.arange(R.size)
-    step = R * step0
     for _ in range(n_iter):
         px = c1(bx) + c1(step) * _DIRS[None, :, 0]
         py = c1(by) + c1(step) * _DIRS[None, :, 1]
@@ -1024,61 +1086,127 @@ def _mci_polish_np(rr, s1, s2, cy, R, bx, by, best, step0, n_iter, n_rim):
         bx = np.where(up, bx + step * _DIRS[jb, 0], bx)
         by = np.where(up, by + step * _DIRS[jb, 1], by)
         step = np.where(up, step, 0.5 * step)
-    ph = 2.0 * np.pi * np.arange(n_rim) / n_rim
-    v = _lci_at_np(rr, s1, s2, c1(R) * np.cos(ph), c1(cy) + c1(R) * np.sin(ph))
-    kb = np.argmax(v, axis=1)
-    vk = v[rows, kb]
-    dph = 2.0 * np.pi / n_rim
-    fr = _golden_rim_np(rr, s1, s2, cy, R, dph * (kb - 1), dph * (kb + 1), 40)
-    best = np.maximum(np.maximum(best, vk), fr)
+    return bx, by, best
+
+
+def _newton_iso_np(rr, s1, s2, cy, R, px, py, which, n_iter):
+    c1 = lambda v: v[:, None]  # noqa: E731
+    res = lambda x, y: tuple(v[:, 0] for v in _iso_residual_np(rr, s1, s2, c1(x), c1(cy + y), which))  # noqa: E731
     h = 1e-7 * R
-    for which in (0, 1):
-        px, py = bx.copy(), by.copy()
-        live = np.ones(R.size, bool)
-        for _ in range(16):
-            f0, g0 = _iso_residual_np(rr, s1, s2, c1(px), c1(cy + py), which)
-            fx, gx = _iso_residual_np(rr, s1, s2, c1(px + h), c1(cy + py), which)
-            fy, gy = _iso_residual_np(rr, s1, s2, c1(px), c1(cy + py + h), which)
-            f0, g0, fx, gx, fy, gy = (v[:, 0] for v in (f0, g0, fx, gx, fy, gy))
+    best = np.full(R.size, -1.0)
+    f0, g0 = res(px, py)
+    n0 = f0 * f0 + g0 * g0
+    live = np.ones(R.size, bool)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for _ in range(n_iter):
+            live &= np.isfinite(n0)
+            if not live.any():
+                break
+            fx, gx = res(px + h, py)
+            fy, gy = res(px, py + h)
             j11, j12 = (fx - f0) / h, (fy - f0) / h
             j21, j22 = (gx - g0) / h, (gy - g0) / h
             det = j11 * j22 - j12 * j21
             live &= (det != 0.0) & np.isfinite(det)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                dx = -(j22 * f0 - j12 * g0) / det
-                dy = -(-j21 * f0 + j11 * g0) / det
-            px = np.where(live, px + dx, px)
-            py = np.where(live, py + dy, py)
-            live &= np.hypot(px, py) <= R
+            dx = -(j22 * f0 - j12 * g0) / det
+            dy = -(-j21 * f0 + j11 * g0) / det
+            t = np.ones(R.size)
+            ok = np.zeros(R.size, bool)
+            qx, qy, f1, g1, n1 = px.copy(), py.copy(), f0.copy(), g0.copy(), n0.copy()
+            for _ in range(8):
+                if not (live & ~ok).any():
+                    break
+                tx = px + t * dx
+                ty = py + t * dy
+                inside = np.hypot(tx, ty) <= R
+                ff, gg = res(tx, ty)
+                nn = ff * ff + gg * gg
+                acc = live & ~ok & inside & (nn < n0)
+                qx, qy = np.where(acc, tx, qx), np.where(acc, ty, qy)
+                f1, g1, n1 = np.where(acc, ff, f1), np.where(acc, gg, g1), np.where(acc, nn, n1)
+                ok |= acc
+                t = np.where(ok, t, 0.5 * t)
+            live &= ok
+            px, py = np.where(live, qx, px), np.where(live, qy, py)
+            f0, g0, n0 = np.where(live, f1, f0), np.where(live, g1, g0), np.where(live, n1, n0)
             v = _lci_at_np(rr, s1, s2, c1(px), c1(cy + py))[:, 0]
             best = np.where(live & (v > best), v, best)
     return best
 
 
-def _disk_stats_block_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, n_rim):
-    B = r1.size
-    out = np.full((B, 8), np.nan)
-    live = (R > 0.0) & np.isfinite(R)
-    if not live.any():
-        return out
-    r1, r2, r3, cy, R = (v[live] for v in (r1, r2, r3, cy, R))
+def _mci_starts_np(ux, uy, lv, n_start):
+    """Starting nodes of :func:`_mci_nb`: ``(k, have)`` arrays of shape (B, n_start)."""
+    c1 = lambda v: v[:, None]  # noqa: E731
+    far = np.ones(lv.shape, bool)
+    ks, haves = [], []
+    for _ in range(n_start):
+        haves.append(far.any(axis=1))
+        kb = np.argmax(np.where(far, lv, -np.inf), axis=1)
+        ks.append(kb)
+        far &= (ux[None, :] - c1(ux[kb])) ** 2 + (uy[None, :] - c1(uy[kb])) ** 2 > 1.0 / 9.0
+    return np.stack(ks, 1), np.stack(haves, 1)
+
+
+def _mci_search_np(rr, s1, s2, cy, R, ux, uy, ks, haves, lvs, step0, n_iter, n_rim):
+    """Vectorised :func:`_mci_nb` from the starts of :func:`_mci_starts_np` (``lvs``:
+    LCI at those nodes); rr: (B, 1) columns, the rest (B,) or (B, n_start)."""
+    c1 = lambda v: v[:, None]  # noqa: E731
+    B = R.size
+    rows = np.arange(B)
+    best = np.full(B, -1.0)
+    for j in range(ks.shape[1]):
+        kb, have = ks[:, j], haves[:, j]
+        bx, by, b = _compass_np(rr, s1, s2, cy, R, R * ux[kb], R * uy[kb], lvs[:, j],
+                                R * step0, n_iter)
+        cand = b
+        for which in (0, 1):
+            cand = np.maximum(cand, _newton_iso_np(rr, s1, s2, cy, R, bx, by, which, 12))
+        best = np.where(have, np.maximum(best, cand), best)
+    ph = 2.0 * np.pi * np.arange(n_rim) / n_rim
+    v = _lci_at_np(rr, s1, s2, c1(R) * np.cos(ph), c1(cy) + c1(R) * np.sin(ph))
+    kr = np.argmax(v, axis=1)
+    dph = 2.0 * np.pi / n_rim
+    fr = _golden_rim_np(rr, s1, s2, cy, R, dph * (kr - 1), dph * (kr + 1), 40)
+    return np.maximum(best, np.maximum(v[rows, kr], fr))
+
+
+def _disk_stats_block_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, n_start):
+    """Quadrature part for a block of designs with R > 0: ``(stats (B, 8) with the
+    MCI column left NaN, starting nodes, their flags and LCI)``."""
     c1 = lambda v: v[:, None]  # noqa: E731
     rr = (c1(r1), c1(r2), c1(r3))
-    dx = c1(R) * ux[None, :]
-    dy = c1(R) * uy[None, :]
-    lci = _lci_at_np(rr, s1, s2, dx, c1(cy) + dy)
+    lci = _lci_at_np(rr, s1, s2, c1(R) * ux[None, :], c1(cy) + c1(R) * uy[None, :])
     gci = np.sum(w * lci, axis=1)
-    k = np.argmax(lci, axis=1)
-    rows = np.arange(r1.size)
-    best = lci[rows, k]
-    bx, by = dx[rows, k], dy[rows, k]
-    best = _mci_polish_np(rr, s1, s2, cy, R, bx, by, best, step0, n_iter, n_rim)
+    ks, haves = _mci_starts_np(ux, uy, lci, n_start)
+    lvs = np.take_along_axis(lci, ks, axis=1)
     h = 0.5 * c1(R)
     a, b, c, d, kk, ok = _mrows_np(*rr, s1, s2, h * ux[None, :], c1(cy) + h * uy[None, :])
     ext = _extremes_m_np(a, b, c, d, kk, ok)
     means = [np.sum(w * v, axis=1) for v in ext]
-    res = np.stack([gci, best] + means, -1)
+    res = np.stack([gci, np.full(r1.size, np.nan)] + means, -1)
     res[~ok.all(axis=1), 2:] = np.nan
+    return res, ks, haves, lvs
+
+
+def _disk_stats_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, n_rim, n_start):
+    out = np.full((r1.size, 8), np.nan)
+    live = (R > 0.0) & np.isfinite(R)
+    if not live.any():
+        return out
+    r1, r2, r3, cy, R = (v[live] for v in (r1, r2, r3, cy, R))
+    n = r1.size
+    res = np.empty((n, 8))
+    ks = np.empty((n, n_start), np.int64)
+    haves = np.empty((n, n_start), bool)
+    lvs = np.empty((n, n_start))
+    block = max(1, 400_000 // ux.size)
+    for i in range(0, n, block):
+        sl = slice(i, i + block)
+        res[sl], ks[sl], haves[sl], lvs[sl] = _disk_stats_block_np(
+            r1[sl], r2[sl], r3[sl], s1, s2, cy[sl], R[sl], ux, uy, w, n_start)
+    # the searches of the MCI touch a few points per design: vectorise over all
+    rr = (r1[:, None], r2[:, None], r3[:, None])
+    res[:, 1] = _mci_search_np(rr, s1, s2, cy, R, ux, uy, ks, haves, lvs, step0, n_iter, n_rim)
     out[live] = res
     return out
 
@@ -1109,13 +1237,10 @@ def disk_stats_batch(r1, r2, r3, center_y, radius, mode="+-", quadrature="area",
     out = np.empty((r1.size, 8))
     if use_numba(compiled):
         _disk_stats_batch_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, _MCI_ITERS, _DIRS,
-                             n_theta, out)
+                             n_theta, _MCI_STARTS, out)
     else:
-        block = max(1, 400_000 // ux.size)
-        for i in range(0, r1.size, block):
-            sl = slice(i, i + block)
-            out[sl] = _disk_stats_block_np(r1[sl], r2[sl], r3[sl], s1, s2, cy[sl], R[sl], ux, uy,
-                                           w, step0, _MCI_ITERS, n_theta)
+        out[:] = _disk_stats_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, _MCI_ITERS, n_theta,
+                                _MCI_STARTS)
     out[:, 2:4] *= L[:, None]
     out[:, 4:6] /= L[:, None]
     out[:, 6:8] *= (L * L)[:, None]

@@ -145,7 +145,13 @@ def test_mic_and_disk_stats_numba_equal_numpy(mode):
         Sb = K.disk_stats_batch(r1, r2, r3, Ya, Ra, mode=mode, quadrature=q, compiled=False)
         assert np.array_equal(np.isnan(Sa), np.isnan(Sb))
         ok = np.isfinite(Sa)
+        ok[:, 1] = False
         assert np.allclose(Sa[ok], Sb[ok], rtol=1e-11, atol=1e-13)
+        # the MCI ends an iterative search (finite-difference Newton steps): near
+        # r3 = 0, where the isotropic points nearly form a curve, rounding moves
+        # its last digits
+        mci = np.isfinite(Sa[:, 1])
+        assert np.allclose(Sa[mci, 1], Sb[mci, 1], rtol=1e-7, atol=0)
 
 
 @pytest.mark.parametrize("r", [(1.5, 1.2, 0.3), (1.17, 1.45, 0.38), (0.85, 1.6, 0.55),
