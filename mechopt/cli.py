@@ -142,16 +142,27 @@ def _client(args):
 
 def _cmd_optimize(args):
     from .problems import get
-    from .runner import optimize
+    from .runner import optimize, resume
 
-    problem = get(args.problem)
-    client = _client(args)
-    try:
-        res = optimize(problem, args.algorithm, args.pop, args.gen, args.seed, args.n_jobs, client,
-                       args.out, progress=True)
-    finally:
-        if client is not None:
-            client.close()
+    if args.resume is not None:
+        args.out = args.resume
+        client = _client(args)
+        try:
+            res = resume(args.resume, args.n_jobs, client)
+        finally:
+            if client is not None:
+                client.close()
+    else:
+        if args.problem is None or args.out is None:
+            raise ValueError("optimize needs PROBLEM and --out (or --resume DIR)")
+        problem = get(args.problem)
+        client = _client(args)
+        try:
+            res = optimize(problem, args.algorithm, args.pop, args.gen, args.seed, args.n_jobs, client,
+                           args.out, progress=True, checkpoint_every=args.checkpoint_every)
+        finally:
+            if client is not None:
+                client.close()
     print(f"{len(res.front)} designs on the front; wrote {args.out}/front.csv, history.csv, "
           f"run.json, front.png ({res.info['wall_time_s']:.1f} s)")
     return 0
@@ -173,15 +184,16 @@ def _cmd_sweep(args):
     return 0
 
 
-def _add_run_options(p):
-    p.add_argument("problem", help="a registered problem (see: mechopt problems)")
+def _add_run_options(p, resumable=False):
+    p.add_argument("problem", nargs="?" if resumable else None,
+                   help="a registered problem (see: mechopt problems)")
     p.add_argument("--pop", type=int, default=None, help="population size (default: the problem's)")
     p.add_argument("--gen", type=int, default=None, help="generations (default: the problem's)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
     p.add_argument("--n-jobs", type=int, default=2, help="joblib worker processes (default 2)")
     p.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None,
                    help="evaluate on a Dask cluster instead of joblib")
-    p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--out", required=not resumable, default=None, help="output folder")
 
 
 def _remove_if_we_made_it_empty(out_before):
@@ -258,7 +270,11 @@ def build_parser() -> argparse.ArgumentParser:
     pr.set_defaults(func=_cmd_problems)
 
     op = sub.add_parser("optimize", help="run a problem with a seeded pymoo algorithm")
-    _add_run_options(op)
+    _add_run_options(op, resumable=True)
+    op.add_argument("--checkpoint-every", type=int, default=None, metavar="K",
+                    help="save the algorithm state every K generations (resume with --resume)")
+    op.add_argument("--resume", metavar="DIR", default=None,
+                    help="continue the checkpointed run in DIR (other run options are ignored)")
     op.add_argument("--algorithm", default=None, help="ga, nsga2 or nsga3 (default: the problem's)")
     op.set_defaults(func=_cmd_optimize)
 

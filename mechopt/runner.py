@@ -25,7 +25,7 @@ from . import io as _io
 from . import validation as _v
 from .progress import Progress
 
-__all__ = ["ALGORITHMS", "make_algorithm", "optimize", "sweep", "parse_weights", "RunResult"]
+__all__ = ["ALGORITHMS", "make_algorithm", "optimize", "resume", "sweep", "parse_weights", "RunResult"]
 
 ALGORITHMS = ("ga", "nsga2", "nsga3")
 
@@ -111,32 +111,99 @@ def _front_table(problem, X) -> pd.DataFrame:
     return df.sort_values(keys, kind="mergesort").reset_index(drop=True)
 
 
+CHECKPOINT = "checkpoint.pkl"
+
+
 def optimize(problem, algorithm: str | None = None, pop: int | None = None, gen: int | None = None,
              seed: int = 1, n_jobs: int = 2, client=None, out=None, progress: bool = True,
-             plot: bool = True) -> RunResult:
-    """Run ``problem`` with a seeded pymoo algorithm; write the run folder if ``out``."""
-    from pymoo.optimize import minimize
+             plot: bool = True, checkpoint_every: int | None = None) -> RunResult:
+    """Run ``problem`` with a seeded pymoo algorithm; write the run folder if ``out``.
 
+    With ``checkpoint_every=K`` (needs ``out``) the whole algorithm state (population,
+    random generator, history) is pickled atomically to ``out/checkpoint.pkl`` every
+    K generations; :func:`resume` continues from it and ends with the same
+    ``front.csv``, byte for byte, as an uninterrupted run.
+    """
     algorithm = algorithm or problem.default_algorithm
     pop, gen = _check_sizes(problem.default_pop if pop is None else pop,
                             problem.default_gen if gen is None else gen)
     seed = int(_v.finite_number("seed", seed))
+    if checkpoint_every is not None:
+        checkpoint_every = int(_v.finite_number("checkpoint_every", checkpoint_every))
+        if checkpoint_every < 1:
+            raise ValueError(f"checkpoint_every must be a positive integer, got {checkpoint_every}")
+        if out is None:
+            raise ValueError("checkpoint_every needs an output folder (--out)")
     algo = make_algorithm(algorithm, pop, problem.n_obj)
     out = _io.prepare_out_dir(out) if out is not None else None
+    algo.setup(problem, termination=("n_gen", gen), seed=seed, verbose=False)
+    state = {"algorithm": algorithm, "pop": pop, "gen": gen, "seed": seed, "rows": [], "ref": None,
+             "elapsed": 0.0, "checkpoint_every": checkpoint_every}
+    return _drive(algo, state, n_jobs, client, out, progress, plot)
+
+
+def resume(out, n_jobs: int = 2, client=None, progress: bool = True, plot: bool = True) -> RunResult:
+    """Continue the run whose checkpoint is ``out/checkpoint.pkl`` (see :func:`optimize`)."""
+    import pickle
+
+    path = Path(out) / CHECKPOINT
+    try:
+        with open(path, "rb") as fh:
+            ck = pickle.load(fh)
+        algo, state = ck["algorithm_state"], ck["state"]
+    except FileNotFoundError:
+        raise ValueError(f"--resume {str(out)!r} holds no {CHECKPOINT}") from None
+    except (OSError, pickle.UnpicklingError, EOFError, KeyError, AttributeError, TypeError) as exc:
+        raise ValueError(f"--resume {str(out)!r}: unreadable {CHECKPOINT} ({type(exc).__name__})") from None
+    return _drive(algo, state, n_jobs, client, Path(out), progress, plot)
+
+
+def _save_checkpoint(algo, state, out: Path):
+    import pickle
+
+    callback, display = algo.callback, algo.display
+    algo.callback, algo.display = None, None  # hold streams and a progress bar
+    try:
+        with _io.atomic_path(out / CHECKPOINT) as tmp, open(tmp, "wb") as fh:
+            pickle.dump({"algorithm_state": algo, "state": state}, fh, protocol=pickle.HIGHEST_PROTOCOL)
+    finally:
+        algo.callback, algo.display = callback, display
+
+
+def _drive(algo, state, n_jobs, client, out, progress, plot) -> RunResult:
+    """Advance ``algo`` to its termination, checkpointing on the way; write the outputs."""
+    from pymoo.core.callback import Callback
+    from pymoo.util.display.display import Display
+
+    problem = algo.problem
     problem.use_parallel(n_jobs, client)
-    bar = Progress(gen, f"{problem.name} {algorithm}") if progress else None
+    bar = Progress(state["gen"], f"{problem.name} {state['algorithm']}") if progress else None
     hist = _History(problem, bar)
-    t0 = time.perf_counter()
-    res = minimize(problem, algo, ("n_gen", gen), seed=seed, callback=hist, verbose=False)
+    hist.rows, hist.ref = state["rows"], state["ref"]
+    algo.callback = hist
+    if algo.display is None:
+        algo.display = Display(algo.output, verbose=False, progress=False)
+    every = state["checkpoint_every"]
+    t0 = time.perf_counter() - state["elapsed"]
+    try:
+        while algo.has_next():
+            algo.next()
+            state["ref"], state["elapsed"] = hist.ref, time.perf_counter() - t0
+            if every and algo.n_gen % every == 0 and algo.has_next():
+                _save_checkpoint(algo, state, out)
+        res = algo.result()
+    finally:
+        problem.use_parallel(1, None)
+        algo.callback = Callback()
+        if bar is not None:
+            bar.close()
     wall = time.perf_counter() - t0
-    if bar is not None:
-        bar.close()
-    problem.use_parallel(1, None)
     X = res.opt.get("X") if res.opt is not None else np.empty((0, problem.n_var))
     feas = res.opt.get("FEAS")[:, 0] if res.opt is not None else np.zeros(0, bool)
     front = _front_table(problem, X[feas]) if feas.any() else pd.DataFrame(columns=list(problem.var_names))
     history = pd.DataFrame(hist.rows)
-    info = _run_info(problem, algorithm, pop, gen, seed, n_jobs, client, wall)
+    info = _run_info(problem, state["algorithm"], state["pop"], state["gen"], state["seed"], n_jobs,
+                     client, wall)
     if out is not None:
         _io.write_csv(front, out / "front.csv")
         _io.write_csv(history, out / "history.csv")
@@ -145,6 +212,8 @@ def optimize(problem, algorithm: str | None = None, pop: int | None = None, gen:
             from .plotting import plot_front
 
             _io.save_figure(plot_front(problem, front, history), out / "front.png")
+        if (out / CHECKPOINT).exists():
+            (out / CHECKPOINT).unlink()  # the run is complete: nothing to resume
     return RunResult(front, history, info)
 
 

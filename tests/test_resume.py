@@ -1,0 +1,58 @@
+"""Runs that survive SIGKILL: checkpoint, kill, resume, same bytes as an uninterrupted run."""
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from mechopt.cli import main
+
+ARGS = ["liu2006-w-gci", "--pop", "8", "--gen", "5", "--seed", "3", "--n-jobs", "1"]
+
+
+def _cli(*argv):
+    return [sys.executable, "-m", "mechopt.cli", *argv]
+
+
+@pytest.mark.skipif(os.name != "posix", reason="SIGKILL")
+def test_killed_run_resumes_to_the_same_front(tmp_path):
+    ref, run = tmp_path / "ref", tmp_path / "run"
+    assert main(["optimize", *ARGS, "--out", str(ref)]) == 0
+
+    proc = subprocess.Popen(_cli("optimize", *ARGS, "--checkpoint-every", "1", "--out", str(run)),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 120
+    while not (run / "checkpoint.pkl").exists():
+        assert proc.poll() is None, "the run ended before its first checkpoint"
+        assert time.time() < deadline
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    # a killed run leaves no output under a final name but the checkpoint
+    finals = {p.name for p in run.iterdir() if not p.name.startswith(".")}
+    assert finals == {"checkpoint.pkl"}
+
+    done = subprocess.run(_cli("optimize", "--resume", str(run)), capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert (run / "front.csv").read_bytes() == (ref / "front.csv").read_bytes()
+    assert (run / "history.csv").read_text().splitlines()[1:] == (ref / "history.csv").read_text().splitlines()[1:]
+    assert not (run / "checkpoint.pkl").exists()
+
+
+def test_resume_without_checkpoint(tmp_path, capsys):
+    assert main(["optimize", "--resume", str(tmp_path)]) == 2
+    assert "holds no checkpoint.pkl" in capsys.readouterr().err
+
+
+def test_resume_with_garbage_checkpoint(tmp_path, capsys):
+    (tmp_path / "checkpoint.pkl").write_bytes(b"not a pickle")
+    assert main(["optimize", "--resume", str(tmp_path)]) == 2
+    assert "unreadable checkpoint.pkl" in capsys.readouterr().err
+
+
+def test_checkpoint_every_must_be_positive(tmp_path, capsys):
+    assert main(["optimize", "le2013", "--checkpoint-every", "0", "--out", str(tmp_path / "o")]) == 2
+    assert "checkpoint_every must be a positive integer" in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()
