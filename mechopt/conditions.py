@@ -14,7 +14,8 @@ A small grammar, parsed by recursive descent (never ``eval``)::
 ``and`` binds tighter than ``or``; ``a < b < c`` means ``a < b and b < c``.
 NAME is a column name (letters, digits, ``_``); NUMBER a decimal number with an
 optional exponent. A comparison involving NaN is False (including ``!=``), so a
-design without a value never satisfies a condition on it.
+design without a value never satisfies a comparison on it (``not`` negates that
+False: ``not (gci > 0.6)`` holds for a design whose GCI is NaN).
 
 Usage::
 
@@ -160,7 +161,7 @@ class _Not:
         return ~np.asarray(self.arg.eval(cols), dtype=bool)
 
     def __str__(self):
-        return f"not {self.arg}"
+        return f"not ({self.arg})"
 
 
 class _Parser:
