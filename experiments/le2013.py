@@ -78,9 +78,9 @@ def run(out: Path, quick: bool = False) -> pd.DataFrame:
     ga = dict(pop=6, gen=3) if quick else {}
     best = optimize(get("le2013"), seed=1, out=out / "front", progress=False, **ga).front.iloc[0]
     relaxed = optimize(get("le2013-relaxed"), seed=1, out=out / "relaxed", progress=False,
-                       **(ga if quick else dict(pop=30, gen=20))).front.iloc[0]
-    sweep(get("le2013-gamma"), parse_weights("0,0.5,1" if quick else "0:1:0.25"), seed=1,
-          out=out / "sweep", progress=False, **(dict(pop=6, gen=2) if quick else dict(pop=12, gen=8)))
+                       **ga).front.iloc[0]
+    sweep(get("le2013-gamma"), parse_weights("0,0.5,1" if quick else "0:1:0.1"), seed=1,
+          out=out / "sweep", progress=False, **(dict(pop=6, gen=2) if quick else {}))
     at_paper = square_side(1.0, paper_rho, tied_half_base(paper_rho))
     _io.save_figure(_fig5(curve, paper_rho, paper_a, best), out / "fig5_a_max.png")
     _io.save_figure(_fig6(paper_rho), out / "fig6_lci_square.png")

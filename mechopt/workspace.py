@@ -107,14 +107,39 @@ def _mic_radius_at(mech, cy):
     return np.minimum(serial, type2_clearance(mech, np.zeros_like(cy), cy, serial))
 
 
-def mic(mech, n_y: int = 48, tol: float = 1e-6) -> MIC:
+def mic(mech, method: str = "auto", n_y: int = 48, tol: float = 1e-6) -> MIC:
     """Maximal inscribed circle of ``mech`` (centre on the y axis, ``y > 0``).
 
-    A grid of ``n_y`` centres over ``(0, ymax]`` locates the best centre; a
-    golden-section search between its neighbours refines it to ``tol`` relative
-    to the mechanism's length scale. Raises ValueError when no centre on the
-    positive y axis is a regular reachable point (``radius`` would be 0).
+    ``method="explicit"`` (the default for a :class:`~mechopt.FiveBar`, ``"auto"``)
+    uses :func:`mechopt.kernels.mic_batch`: the five-bar's type-II locus is
+    generated explicitly (B1, P, B2 collinear) and filtered by working mode, then
+    a dense search over centres with golden-section refinement (about 2.5e-6
+    relative against a converged reference, ``tests/test_atlas.py``).
+
+    ``method="rays"`` works for any mechanism of the protocol: a grid of ``n_y``
+    centres over ``(0, ymax]`` locates the best centre (type-II clearance by
+    root finding along rays, :func:`type2_clearance`), and a golden-section
+    search between its neighbours refines it to ``tol`` relative to the
+    mechanism's length scale. Its coarse centre grid can pick the lower of two
+    nearly equal peaks; the explicit method does not.
+
+    Raises ValueError when no centre on the positive y axis is a regular
+    reachable point (``radius`` would be 0).
     """
+    from .mechanisms.five_bar import FiveBar
+
+    _v.choice("method", method, ("auto", "explicit", "rays"))
+    if method == "auto":
+        method = "explicit" if isinstance(mech, FiveBar) else "rays"
+    if method == "explicit":
+        if not isinstance(mech, FiveBar):
+            raise ValueError(f"method 'explicit' needs a FiveBar, got {type(mech).__name__}")
+        from .kernels import mic_batch
+
+        r, y = mic_batch(mech.r1, mech.r2, mech.r3, mode=mech.mode)
+        if not r[0] > 1e-9 * mech.length_scale:
+            raise ValueError(f"{mech!r} has no singularity-free disk centred on the y axis (MIC radius 0)")
+        return MIC(radius=float(r[0]), center_y=float(y[0]))
     ymax = mech.bounding_box()[3]
     ys = ymax * np.arange(1, n_y + 1) / (n_y + 1)
     rs = _mic_radius_at(mech, ys)

@@ -79,8 +79,8 @@ class LeSquare(MechoptProblem):
     var_names = ("rho",)
     objectives = (Objective("a_max", -1, "l1"),)
     default_algorithm = "ga"
-    default_pop = 12
-    default_gen = 15
+    default_pop = 16
+    default_gen = 20
 
     def __init__(self):
         super().__init__([RHO_BOUNDS[0]], [RHO_BOUNDS[1]])
@@ -98,8 +98,8 @@ class LeSquareRelaxed(MechoptProblem):
     var_names = ("rho", "l0")
     objectives = (Objective("a_max", -1, "l1"),)
     default_algorithm = "ga"
-    default_pop = 20
-    default_gen = 15
+    default_pop = 40
+    default_gen = 40
 
     def __init__(self):
         super().__init__([RHO_BOUNDS[0], 0.0], [RHO_BOUNDS[1], 2.0])
@@ -120,8 +120,8 @@ class LeSquareGamma(MechoptProblem):
     summary = "Le 2013 two-objective: max square side and max gamma over (rho, gamma), l0 tied by eq. (24)"
     objectives = (Objective("a_max", -1, "l1"), Objective("gamma", -1))
     default_algorithm = "nsga2"
-    default_pop = 20
-    default_gen = 12
+    default_pop = 40
+    default_gen = 30
 
     def __init__(self, tied: bool = True):
         self.tied = bool(tied)

@@ -15,9 +15,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechopt import FiveBar
-from mechopt.performance import global_indices
-
 from .base import MechoptProblem, Objective
 
 __all__ = ["REGIONS", "LiuRegion", "LiuManyObjective", "liu_indices"]
@@ -42,19 +39,26 @@ _MIN_R2 = 1e-3
 
 
 def liu_indices(X, quadrature: str = "polar") -> dict:
-    """Global indices for rows ``(r1, r3)`` of ``X``; NaN where the design has no MIC."""
+    """Global indices for rows ``(r1, r3)`` of ``X``; NaN where the design has no MIC.
+
+    Vectorised over the designs through :func:`mechopt.atlas.evaluate_designs`
+    (the explicit-locus MIC and the compiled disk means; agreement with
+    :func:`mechopt.performance.global_indices` is tested in ``tests/test_atlas.py``).
+    """
+    from mechopt.atlas import RESULT_COLUMNS, evaluate_designs
+
+    X = np.atleast_2d(np.asarray(X, float))
+    r1, r3 = X[:, 0], X[:, 1]
+    r2 = 3.0 - r1 - r3
     out = {k: np.full(len(X), np.nan) for k in _INDEX_KEYS}
-    out["r2"] = 3.0 - X[:, 0] - X[:, 1]
-    for i, (r1, r3) in enumerate(X):
-        r2 = 3.0 - r1 - r3
-        if r2 < _MIN_R2:
-            continue
-        try:
-            g = global_indices(FiveBar(r1, r2, r3), quadrature)
-        except ValueError:
-            continue
-        for k in _INDEX_KEYS:
-            out[k][i] = g[k]
+    out["r2"] = r2
+    ok = r2 >= _MIN_R2
+    if ok.any():
+        res = evaluate_designs(r1[ok], r2[ok], r3[ok], quadrature=quadrature)
+        for j, name in enumerate(RESULT_COLUMNS):
+            if name in out:
+                out[name][ok] = res[:, j]
+    out["r_mic"] = np.where(out["r_mic"] > 0, out["r_mic"], np.nan)
     return out
 
 
