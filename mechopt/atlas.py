@@ -198,8 +198,54 @@ def _warm_up(quadrature, mode):
         evaluate_designs([1.0], [1.5], [0.5], quadrature=quadrature, mode=mode)
 
 
+#: designs per work unit: fixed (not tied to the worker count) so that the chunks
+#: of a killed run are the chunks of its resumption
+DEFAULT_CHUNK_SIZE = 512
+
+
+class _ChunkStore:
+    """Finished chunks of an atlas saved as ``.npy`` files in a folder, so that a
+    killed run resumes by skipping them. The folder's ``settings.json`` must
+    match the run's settings, or the run refuses to mix them."""
+
+    def __init__(self, folder, settings: dict):
+        import json
+
+        from . import io as _io
+
+        self.folder = folder
+        folder.mkdir(parents=True, exist_ok=True)
+        meta = folder / "settings.json"
+        if meta.exists():
+            try:
+                old = json.loads(meta.read_text())
+            except (OSError, ValueError):
+                old = None
+            if old != settings:
+                raise ValueError(f"{str(folder)!r} holds chunks of an atlas with other settings; "
+                                 "use another --out or delete that folder")
+        else:
+            _io.write_json(settings, meta)
+
+    def path(self, i):
+        return self.folder / f"chunk_{i:06d}.npy"
+
+    def load(self, i):
+        try:
+            return np.load(self.path(i))
+        except (OSError, ValueError):
+            return None
+
+    def save(self, i, values):
+        from . import io as _io
+
+        with _io.atomic_path(self.path(i)) as tmp, open(tmp, "wb") as fh:
+            np.save(fh, values)
+
+
 def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", mode: str = "+-",
-                  n_jobs: int = 2, client=None, chunk_size: int | None = None, progress=None):
+                  n_jobs: int = 2, client=None, chunk_size: int | None = None, progress=None,
+                  chunk_dir=None):
     """The atlas table: one row per design of :func:`design_grid`, columns
     ``r1, r2, r3, s, t`` and :func:`index_columns`.
 
@@ -218,9 +264,11 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
     client : dask.distributed.Client, optional
         Map the chunks on a Dask cluster instead.
     chunk_size : int, optional
-        Designs per work unit (default: about 8 chunks per worker).
+        Designs per work unit (default :data:`DEFAULT_CHUNK_SIZE`).
     progress : callable, optional
         ``progress(done, total)`` after each chunk.
+    chunk_dir : path, optional
+        Save each finished chunk there and skip the chunks already saved (resume).
     """
     import pandas as pd
 
@@ -241,20 +289,40 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
         workers = int(_v.finite_number("n_jobs", n_jobs))
         if workers < 1 or workers != n_jobs:
             raise ValueError(f"n_jobs must be a positive integer, got {n_jobs!r}")
-    if chunk_size is None:
-        n_chunks = max(1, min(workers * 8, math.ceil(n / 64)))
-    else:
-        if int(chunk_size) < 1:
-            raise ValueError(f"chunk_size must be a positive integer, got {chunk_size!r}")
-        n_chunks = math.ceil(n / int(chunk_size))
+    chunk_size = DEFAULT_CHUNK_SIZE if chunk_size is None else chunk_size
+    if int(chunk_size) < 1:
+        raise ValueError(f"chunk_size must be a positive integer, got {chunk_size!r}")
+    n_chunks = max(1, math.ceil(n / int(chunk_size)))
     idx = np.arange(n)
     parts = chunks(idx, n_chunks)
     r1, r2, r3 = (grid[c].to_numpy() for c in ("r1", "r2", "r3"))
     tasks = [(r1[p], r2[p], r3[p], quadrature, mode) for p in parts]
-    if client is None:
+    done = [None] * len(tasks)
+    store = None
+    if chunk_dir is not None:
+        from pathlib import Path
+
+        store = _ChunkStore(Path(chunk_dir), {"step": float(step), "quadrature": quadrature,
+                                              "mode": mode, "chunk_size": int(chunk_size),
+                                              "n_designs": int(n)})
+        done = [store.load(i) for i in range(len(tasks))]
+    todo = [i for i, d in enumerate(done) if d is None]
+    if client is None and todo:
         _warm_up(quadrature, mode)
-    res = parallel_map(_atlas_chunk, tasks, n_jobs=workers, client=client, on_result=progress)
-    values = np.vstack(res) if res else np.empty((0, len(RESULT_COLUMNS)))
+
+    def _save(k, values):
+        if store is not None:
+            store.save(todo[k], values)
+
+    def _progress(k, total):
+        if progress is not None:
+            progress(len(tasks) - len(todo) + k, len(tasks))
+
+    res = parallel_map(_atlas_chunk, [tasks[i] for i in todo], n_jobs=workers, client=client,
+                       on_result=_progress, on_item=_save)
+    for i, values in zip(todo, res):
+        done[i] = values
+    values = np.vstack(done) if done else np.empty((0, len(RESULT_COLUMNS)))
     table = pd.DataFrame(values, columns=list(RESULT_COLUMNS))
     out = pd.concat([grid.reset_index(drop=True), table[list(cols)]], axis=1)
     return out
@@ -357,6 +425,10 @@ def draw_atlas(table, column: str, region=None, where: str | None = None, quadra
 
 
 # --- the command ------------------------------------------------------------
+#: sub-folder of --out holding the finished chunks of a running atlas
+CHUNK_DIR = ".atlas_chunks"
+
+
 def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", mode: str = "+-",
               n_jobs: int = 2, dask: str | None = None, where: str | None = None,
               figures: bool = True, chunk_size: int | None = None, dask_timeout: float = 10.0,
@@ -400,7 +472,7 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
 
         t1 = time.perf_counter()
         table = compute_atlas(step, groups, quadrature, mode, n_jobs=n_jobs, client=client,
-                              chunk_size=chunk_size, progress=_tick)
+                              chunk_size=chunk_size, progress=_tick, chunk_dir=out / CHUNK_DIR)
         t_compute = time.perf_counter() - t1
         if bar is not None:
             bar.close()
@@ -408,6 +480,9 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
         if client is not None:
             client.close()
     _io.write_csv(table, out / "atlas.csv")
+    import shutil
+
+    shutil.rmtree(out / CHUNK_DIR, ignore_errors=True)  # atlas.csv is complete
     region = None
     files = ["atlas.csv"]
     if cond is not None:

@@ -40,7 +40,8 @@ def connect(address: str, timeout: float = 10.0):
 
 
 def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
-                 on_result: Callable[[int, int], None] | None = None) -> list:
+                 on_result: Callable[[int, int], None] | None = None,
+                 on_item: Callable[[int, object], None] | None = None) -> list:
     """``[func(item) for item in items]``, evaluated in parallel, in input order.
 
     Parameters
@@ -55,12 +56,17 @@ def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
         When given, the items are mapped on the Dask cluster instead.
     on_result : callable, optional
         Called as ``on_result(done, total)`` after each result arrives (progress).
+    on_item : callable, optional
+        Called as ``on_item(index, result)`` in this process as each result
+        arrives (e.g. to save it, so that a killed run can resume).
     """
     items = list(items)
     total = len(items)
     out = []
 
-    def _tick():
+    def _tick(i, res):
+        if on_item is not None:
+            on_item(i, res)
         if on_result is not None:
             on_result(len(out), total)
 
@@ -71,24 +77,25 @@ def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
         index = {f.key: i for i, f in enumerate(futures)}
         results = [None] * total
         for fut in as_completed(futures):
-            results[index[fut.key]] = fut.result()
+            i = index[fut.key]
+            results[i] = fut.result()
             out.append(None)
-            _tick()
+            _tick(i, results[i])
         return results
     n_jobs = int(_v.finite_number("n_jobs", n_jobs))
     if n_jobs < 1:
         raise ValueError(f"n_jobs must be a positive integer, got {n_jobs!r}")
     if n_jobs == 1 or total <= 1:
-        for item in items:
+        for i, item in enumerate(items):
             out.append(func(item))
-            _tick()
+            _tick(i, out[-1])
         return out
     from joblib import Parallel, delayed
 
     gen = Parallel(n_jobs=n_jobs, backend="loky", return_as="generator")(
         delayed(func)(item) for item in items
     )
-    for res in gen:
+    for i, res in enumerate(gen):
         out.append(res)
-        _tick()
+        _tick(i, res)
     return out
