@@ -122,9 +122,56 @@ def fig_gcw_and_square(fb, step):
     return fig
 
 
+#: Figs. 2-6: the atlas columns and their figure numbers
+ATLAS_FIGURES = {"gci": "fig02", "mci": "fig03", "gvi_max": "fig04a", "gvi_min": "fig04b",
+                 "gpi_max": "fig05a", "gpi_min": "fig05b", "gsi_max": "fig06a", "gsi_min": "fig06b",
+                 "r_mic": "ref19_fig19"}
+#: Figs. 7, 9, 11, 13, 15: each optimum region with the example design of its section
+REGION_FIGURES = {"w-gci": ("fig07a", None), "w-gci-prime": ("fig07b", (1.1, 1.65, 0.25)),
+                  "w-gci-gvi": ("fig09", (1.5, 1.2, 0.3)), "w-gci-gpi": ("fig11", (0.7, 1.7, 0.6)),
+                  "w-gci-gsi": ("fig13", (0.85, 1.6, 0.55)), "all": ("fig15", (1.17, 1.45, 0.38))}
+
+
+def atlas_figures(out, quick: bool = False):
+    """Figs. 2-6 (atlases, polar means as in the paper) and the optimum regions of
+    Figs. 7-15 with their example designs; writes ``atlas.csv`` and ``regions.csv``."""
+    import pandas as pd
+
+    from mechopt.atlas import compute_atlas, draw_atlas, plane_coordinates
+    from mechopt.conditions import parse_condition
+    from mechopt.problems.liu2006 import REGIONS, liu_indices
+
+    table = compute_atlas(step=0.1 if quick else 0.01, quadrature="polar")
+    _io.write_csv(table, out / "atlas.csv")
+    for col, fig_id in ATLAS_FIGURES.items():
+        _io.save_figure(draw_atlas(table, col, quadrature="polar"), out / f"{fig_id}_atlas_{col}.png")
+    rows = []
+    for name, (fig_id, example) in REGION_FIGURES.items():
+        where = " and ".join(f"{q} {op} {t}" for q, op, t in REGIONS[name])
+        mask = parse_condition(where, names=tuple(table.columns)).evaluate(table)
+        fig = draw_atlas(table, "gci", region=mask, where=where, quadrature="polar")
+        if example is not None:
+            s, t = plane_coordinates(*example)
+            fig.axes[0].plot([s], [t], "r*", ms=12, label=f"example r = {example}")
+            fig.axes[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=2)
+        _io.save_figure(fig, out / f"{fig_id}_region_{name}.png")
+        inside = ""
+        if example is not None:
+            # the paper's claim: its example design lies in the region (our indices, polar)
+            ex = liu_indices(np.array([[example[0], example[2]]]))
+            ex = pd.DataFrame({**{k: v for k, v in ex.items()}, "r1": [example[0]], "r3": [example[2]],
+                               **dict(zip(("s", "t"), plane_coordinates(*example)))})
+            inside = bool(parse_condition(where, names=tuple(ex.columns)).evaluate(ex)[0])
+        rows.append({"region": name, "condition": where, "n_designs": int(mask.sum()),
+                     "example": "" if example is None else "/".join(map(str, example)),
+                     "example_inside": inside})
+    _io.write_csv(pd.DataFrame(rows), out / "regions.csv")
+
+
 def draw_all(out, quick: bool = False):
     """Write every figure of this module into ``out``."""
     out = Path(out)
+    atlas_figures(out, quick)
     step = 0.02 if quick else 0.005
     opt = FiveBar(0.85, 1.6, 0.55)
     _io.save_figure(fig_examples(step), out / "figs08-16_examples.png")

@@ -107,3 +107,16 @@ def test_gcw_area_and_theta1_range(table):
     # theta2 is the mirror image of theta1 (mode "+-" is symmetric): 180 - theta1
     assert d.loc["theta2_lo_deg", "reproduced"] == pytest.approx(180 - d.loc["theta1_hi_deg", "reproduced"])
     assert d.loc["theta2_hi_deg", "reproduced"] == pytest.approx(180 - d.loc["theta1_lo_deg", "reproduced"])
+
+
+def test_each_example_design_lies_in_its_optimum_region(tmp_path):
+    # Liu sec. 3.1 picks each example inside its region Omega; with our indices
+    # (polar means) every example satisfies its region's inequalities
+    from mechopt.experiments.liu2006_figures import atlas_figures
+
+    atlas_figures(tmp_path, quick=True)
+    regions = pd.read_csv(tmp_path / "regions.csv")
+    examples = regions[regions["example"].notna()]
+    assert len(examples) == 5
+    assert examples["example_inside"].astype(bool).all()
+    assert (regions["n_designs"] > 0).all()
