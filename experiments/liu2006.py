@@ -157,9 +157,18 @@ def run(out, quick: bool = False) -> pd.DataFrame:
 
     from . import liu2006_figures as figs
 
+    from mechopt.problems import get
+    from mechopt.runner import optimize, parse_weights, sweep
+
     out = Path(out)
     table = pd.concat([reproduce_section3(), dimension_rows()], ignore_index=True)
     figs.draw_all(out, quick=quick)
+    # the (r_MIC, GCI) trade-off inside Omega_W-GCI: front and weighting sweep
+    sizes = dict(pop=8, gen=3) if quick else {}
+    optimize(get("liu2006-w-gci"), seed=1, out=out / "front", progress=False, **sizes)
+    optimize(get("liu2006-many"), seed=1, out=out / "front_many", progress=False, **sizes)
+    sweep(get("liu2006-w-gci"), parse_weights("0,0.5,1" if quick else "0:1:0.1"), seed=1,
+          out=out / "sweep", progress=False, **sizes)
     return table
 
 

@@ -29,7 +29,8 @@ FILES = {
     "stan2008": ["fig29_tqi_bipod.png", "fig30_tqi_biglide.png", "bipod/front.csv", "bipod/sweep.csv",
                  "biglide/sweep.csv"],
     "liu2006": ["figs08-16_examples.png", "figs25-28_gcw_square.png", "fig02_atlas_gci.png",
-                "fig13_region_w-gci-gsi.png", "atlas.csv", "regions.csv"],
+                "fig13_region_w-gci-gsi.png", "atlas.csv", "regions.csv", "front/front.csv",
+                "sweep/sweep.csv"],
     "wu2008": ["fig2_workspace.png", "fig4_driving_forces.png", "front/front.csv", "sweep/sweep.csv"],
 }
 
