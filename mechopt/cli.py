@@ -196,6 +196,14 @@ def _add_run_options(p, resumable=False):
     p.add_argument("--out", required=not resumable, default=None, help="output folder")
 
 
+def _add_strokes(p):
+    """The actuator strokes of the slider/strut mechanisms (Bipod, Biglide)."""
+    p.add_argument("--q1-min", type=float, required=True)
+    p.add_argument("--q1-max", type=float, required=True)
+    p.add_argument("--q2-min", type=float, default=None, help="default: q1-min")
+    p.add_argument("--q2-max", type=float, default=None, help="default: q1-max")
+
+
 def _remove_if_we_made_it_empty(out_before):
     """Nothing is left behind on failure: drop an output folder this run created
     if it is still empty."""
@@ -225,10 +233,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     bp = evs.add_parser("bipod", help="Bipod RPRPR (Stan 2008): exact workspace area and global TQI")
     bp.add_argument("--b", type=float, required=True, help="base distance")
-    bp.add_argument("--q1-min", type=float, required=True)
-    bp.add_argument("--q1-max", type=float, required=True)
-    bp.add_argument("--q2-min", type=float, default=None, help="default: q1-min")
-    bp.add_argument("--q2-max", type=float, default=None, help="default: q1-max")
+    _add_strokes(bp)
     bp.add_argument("--branch", default="up", help="up (y > 0, default), down or full")
     bp.add_argument("--json", action="store_true")
     bp.set_defaults(func=_cmd_evaluate_bipod)
@@ -236,10 +241,7 @@ def build_parser() -> argparse.ArgumentParser:
     bg = evs.add_parser("biglide", help="Biglide PRRRP (Stan 2008): exact workspace area, global TQI, k_av")
     bg.add_argument("--l1", type=float, required=True, help="half distance of the guides")
     bg.add_argument("--l2", type=float, required=True, help="link length")
-    bg.add_argument("--q1-min", type=float, required=True)
-    bg.add_argument("--q1-max", type=float, required=True)
-    bg.add_argument("--q2-min", type=float, default=None, help="default: q1-min")
-    bg.add_argument("--q2-max", type=float, default=None, help="default: q1-max")
+    _add_strokes(bg)
     bg.add_argument("--mode", default="--", help="--, ++, +- or -+ (default --)")
     bg.add_argument("--json", action="store_true")
     bg.set_defaults(func=_cmd_evaluate_biglide)

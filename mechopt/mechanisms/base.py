@@ -136,6 +136,27 @@ class PlanarMechanism(ABC):
         """Every local index of :data:`mechopt.indices.LOCAL_INDEX_NAMES`."""
         return _ix.local_indices(self.jacobian(x, y))
 
+    def raster_mean(self, local, step=None, cells: int = 400) -> float:
+        """Area mean of ``local(x, y)`` (e.g. ``self.tqi``) over the reachable set, by the
+        mid-point rule on square cells of side ``step`` [L] (default: the smaller side
+        of :meth:`bounding_box` / ``cells``); first-order error in ``step``. NaN when
+        nothing is reachable."""
+        from .. import validation as _v
+        from ..quadrature import grid_over
+
+        box = self.bounding_box()
+        if step is None:
+            side = min(box[1] - box[0], box[3] - box[2])
+            if not side > 0:
+                return float("nan")
+            step = side / cells
+        grid = grid_over(box, _v.positive_length("step", step))
+        X, Y = grid.points()
+        mask = self.reachable(X, Y)
+        if not np.any(mask):
+            return float("nan")
+        return grid.mean(local(X, Y), mask)
+
     def classify_singularity(self, x, y, tol: float = 1e-9):
         """Array of strings: ``"none"``, ``"type-I"``, ``"type-II"``, ``"both"`` or
         ``"unreachable"``. Measures are made dimensionless: ``|B_ii|`` relative to

@@ -81,7 +81,6 @@ from scipy import integrate
 
 from .. import geometry as _g
 from .. import validation as _v
-from ..quadrature import grid_over
 from .base import PlanarMechanism, as_points
 
 __all__ = ["Biglide", "MODES", "ASSEMBLY_MODES", "GTQI_METHODS", "summary", "SUMMARY_KEYS"]
@@ -487,18 +486,7 @@ class Biglide(PlanarMechanism):
         if method in ("quad", "gauss"):
             w = self.workspace_area()
             return float(self.tqi_integral(method=method) / w) if w > 0 else float("nan")
-        box = self.bounding_box()
-        if step is None:
-            side = min(box[1] - box[0], box[3] - box[2])
-            if side <= 0:
-                return float("nan")
-            step = side / RASTER_CELLS
-        grid = grid_over(box, _v.positive_length("step", step))
-        X, Y = grid.points()
-        mask = self.reachable(X, Y)
-        if not np.any(mask):
-            return float("nan")
-        return grid.mean(self.tqi(X, Y), mask)
+        return self.raster_mean(self.tqi, step, RASTER_CELLS)
 
 
 def summary(mech: Biglide) -> dict:

@@ -62,7 +62,6 @@ import numpy as np
 
 from .. import geometry as _g
 from .. import validation as _v
-from ..quadrature import grid_over
 from .base import PlanarMechanism, as_points
 
 __all__ = [
@@ -332,18 +331,7 @@ class Bipod(PlanarMechanism):
         if method == "exact":
             w = self.workspace_area()
             return float(self.tqi_integral() / w) if w > 0 else float("nan")
-        box = self.bounding_box()
-        side = min(box[1] - box[0], box[3] - box[2])
-        if step is None:
-            if side <= 0:  # the outer disks do not meet
-                return float("nan")
-            step = side / RASTER_CELLS
-        grid = grid_over(box, _v.positive_length("step", step))
-        X, Y = grid.points()
-        mask = self.reachable(X, Y)
-        if not np.any(mask):
-            return float("nan")
-        return grid.mean(self.tqi(X, Y), mask)
+        return self.raster_mean(self.tqi, step, RASTER_CELLS)
 
 
 def summary(mech: Bipod) -> dict:

@@ -440,24 +440,6 @@ class Gantry(PlanarMechanism):
             pts.update((r, -r))
         return sorted(pts)
 
-    def classify_singularity(self, x, y, tol: float = 1e-9):
-        """As :meth:`PlanarMechanism.classify_singularity`, with the dimensionless type-I
-        measure of a prismatic actuator, ``|B_ii| / |a_i| = |cos theta_i|``, compared
-        squared like the base class's: ``cos^2 theta_i <= tol``.
-
-        (The base measure ``|B_ii| / (|a_i| length_scale)`` is dimensionless only when
-        ``B_ii`` is a length squared, as for revolute actuators.)"""
-        A, b, ok = self.closure(x, y)
-        with np.errstate(invalid="ignore"):
-            t1 = np.any((b / self.l) ** 2 <= tol, axis=-1)
-        t2 = np.abs(self.type2_function(x, y)) <= tol
-        out = np.full(np.shape(ok), "none", dtype=object)
-        out[t1 & ~t2] = "type-I"
-        out[t2 & ~t1] = "type-II"
-        out[t1 & t2] = "both"
-        out[~ok] = "unreachable"
-        return out
-
     # --- workspace -----------------------------------------------------------------
     def workspace_area(self) -> float:
         """Exact area of the reachable set [L^2] (closed form, to rounding).
