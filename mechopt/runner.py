@@ -161,11 +161,16 @@ def resume(out, n_jobs: int = 2, client=None, progress: bool = True, plot: bool 
 def _save_checkpoint(algo, state, out: Path):
     import pickle
 
+    # cloudpickle (a joblib dependency) because pymoo's algorithms hold local
+    # functions (its random-state decorator) that plain pickle refuses; the file
+    # loads with plain pickle
+    import cloudpickle
+
     callback, display = algo.callback, algo.display
     algo.callback, algo.display = None, None  # hold streams and a progress bar
     try:
         with _io.atomic_path(out / CHECKPOINT) as tmp, open(tmp, "wb") as fh:
-            pickle.dump({"algorithm_state": algo, "state": state}, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            cloudpickle.dump({"algorithm_state": algo, "state": state}, fh, protocol=pickle.HIGHEST_PROTOCOL)
     finally:
         algo.callback, algo.display = callback, display
 

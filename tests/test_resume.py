@@ -9,7 +9,8 @@ import pytest
 
 from mechopt.cli import main
 
-ARGS = ["liu2006-w-gci", "--pop", "8", "--gen", "5", "--seed", "3", "--n-jobs", "1"]
+# about 6 ms per design: slow enough to be killed after its first checkpoint
+ARGS = ["le2013-relaxed", "--pop", "40", "--gen", "20", "--seed", "3", "--n-jobs", "1"]
 
 
 def _cli(*argv):
@@ -56,3 +57,21 @@ def test_checkpoint_every_must_be_positive(tmp_path, capsys):
     assert main(["optimize", "le2013", "--checkpoint-every", "0", "--out", str(tmp_path / "o")]) == 2
     assert "checkpoint_every must be a positive integer" in capsys.readouterr().err
     assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("problem, algorithm", [("stan2008-bipod", "nsga2"), ("le2013", "ga"),
+                                                ("liu2006-many", "nsga3")])
+def test_every_algorithm_checkpoints_and_resumes_identically(tmp_path, problem, algorithm):
+    from mechopt.problems import get
+    from mechopt.runner import _save_checkpoint, make_algorithm, optimize, resume
+
+    ref = optimize(get(problem), algorithm, pop=8, gen=3, seed=5, n_jobs=1, progress=False)
+    p = get(problem)
+    algo = make_algorithm(algorithm, 8, p.n_obj)
+    algo.setup(p, termination=("n_gen", 3), seed=5, verbose=False)
+    algo.next()  # generation 1, then "killed"
+    state = {"algorithm": algorithm, "pop": 8, "gen": 3, "seed": 5, "rows": [], "ref": None,
+             "elapsed": 0.0, "checkpoint_every": 1}
+    _save_checkpoint(algo, state, tmp_path)
+    res = resume(tmp_path, n_jobs=1, progress=False, plot=False)
+    assert res.front.equals(ref.front)
