@@ -96,10 +96,7 @@ _TITLES = {
 # --- inputs -----------------------------------------------------------------
 def check_step(step) -> float:
     """The lattice step of the atlas: a finite number in (0, 0.5]."""
-    step = _v.finite_number("step", step)
-    if not 0.0 < step <= STEP_MAX:
-        raise ValueError(f"step must lie in (0, {STEP_MAX}], got {step!r}")
-    return step
+    return _v.step("step", step, STEP_MAX)
 
 
 def parse_indices(indices) -> tuple:

@@ -237,21 +237,8 @@ def _run_info(problem, algorithm, pop, gen, seed, n_jobs, client, wall) -> dict:
     }
 
 
-def parse_weights(text: str) -> np.ndarray:
-    """``"0:1:0.1"`` (start:stop:step, inclusive) or ``"0,0.25,1"``; each in [0, 1]."""
-    try:
-        if ":" in text:
-            a, b, s = (float(v) for v in text.split(":"))
-            if not s > 0 or b < a:
-                raise ValueError
-            w = a + s * np.arange(int(np.floor((b - a) / s + 1e-9)) + 1)
-        else:
-            w = np.array([float(v) for v in text.split(",")])
-    except ValueError:
-        raise ValueError(f"weights must be start:stop:step or a comma list, got {text!r}") from None
-    if w.size == 0 or not np.all(np.isfinite(w)) or w.min() < 0 or w.max() > 1:
-        raise ValueError(f"weights must lie in [0, 1], got {text!r}")
-    return np.round(w, 12)
+#: sweep weights are checked where every input is (:func:`mechopt.validation.weights`)
+parse_weights = _v.weights
 
 
 def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int = 2, client=None,

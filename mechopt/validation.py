@@ -6,22 +6,41 @@ parameter, the value given and what is allowed; the CLI turns it into exit statu
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Iterable, Sequence
 
 __all__ = [
+    "LENGTH_MIN",
+    "LENGTH_MAX",
     "positive_length",
     "nonnegative_length",
+    "coordinate",
     "choice",
     "open_unit_interval",
     "finite_number",
+    "finite_numbers",
+    "integer",
+    "show",
 ]
+
+#: admissible magnitudes of a length, in any unit: the kinematics square and
+#: multiply lengths (and their ratios), which overflows or underflows in double
+#: precision for lengths far outside this range
+LENGTH_MIN = 1e-12
+LENGTH_MAX = 1e12
+
+
+def show(value, width: int = 80) -> str:
+    """``repr(value)`` on one line, shortened to ``width`` characters (for messages)."""
+    text = " ".join(repr(value).split())
+    return text if len(text) <= width else text[: width - 3] + "..."
 
 
 def _as_float(name: str, value) -> float:
     try:
         out = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name} must be a number, got {show(value)}") from None
     return out
 
 
@@ -29,32 +48,84 @@ def finite_number(name: str, value) -> float:
     """Return ``value`` as a float, or raise if it is NaN or infinite."""
     out = _as_float(name, value)
     if not math.isfinite(out):
-        raise ValueError(f"{name} must be finite, got {value!r}")
+        raise ValueError(f"{name} must be finite, got {show(value)}")
+    return out
+
+
+def _length_range(name: str, out: float, value) -> float:
+    if not LENGTH_MIN <= out <= LENGTH_MAX:
+        raise ValueError(f"{name} must lie in [{LENGTH_MIN:g}, {LENGTH_MAX:g}] (any unit; lengths "
+                         f"beyond overflow the kinematics), got {show(value)}")
     return out
 
 
 def positive_length(name: str, value) -> float:
-    """A link length: finite and strictly positive."""
+    """A link length: finite, strictly positive, in [LENGTH_MIN, LENGTH_MAX]."""
     out = finite_number(name, value)
     if out <= 0.0:
-        raise ValueError(f"{name} must be a positive finite length, got {value!r}")
-    return out
+        raise ValueError(f"{name} must be a positive finite length, got {show(value)}")
+    return _length_range(name, out, value)
 
 
 def nonnegative_length(name: str, value) -> float:
-    """A length that may vanish (e.g. the half base distance r3 of a five-bar)."""
+    """A length that may vanish (e.g. the half base distance r3 of a five-bar);
+    otherwise in [LENGTH_MIN, LENGTH_MAX]."""
     out = finite_number(name, value)
     if out < 0.0:
-        raise ValueError(f"{name} must be a non-negative finite length, got {value!r}")
+        raise ValueError(f"{name} must be a non-negative finite length, got {show(value)}")
+    return out if out == 0.0 else _length_range(name, out, value)
+
+
+def coordinate(name: str, value) -> float:
+    """A signed position (e.g. a stroke limit): finite, ``|value| <= LENGTH_MAX``."""
+    out = finite_number(name, value)
+    if abs(out) > LENGTH_MAX:
+        raise ValueError(f"{name} must lie in [-{LENGTH_MAX:g}, {LENGTH_MAX:g}], got {show(value)}")
     return out
+
+
+def integer(name: str, value, minimum: int | None = None, maximum: int | None = None) -> int:
+    """A whole number (``3``, ``3.0`` or ``"3"``) within ``[minimum, maximum]``."""
+    if isinstance(value, numbers.Integral):
+        out = int(value)
+    else:
+        f = finite_number(name, value)
+        if f != math.floor(f):
+            raise ValueError(f"{name} must be an integer, got {show(value)}")
+        out = int(f)
+    if (minimum is not None and out < minimum) or (maximum is not None and out > maximum):
+        if maximum is None:
+            allowed = f">= {minimum}"
+        elif minimum is None:
+            allowed = f"<= {maximum}"
+        else:
+            allowed = f"in [{minimum}, {maximum}]"
+        raise ValueError(f"{name} must be an integer {allowed}, got {show(value)}")
+    return out
+
+
+def finite_numbers(name: str, value, n: int, what: str | None = None) -> tuple:
+    """A sequence of exactly ``n`` finite numbers, e.g. a point or a box."""
+    what = what or f"{n} numbers"
+    try:
+        items = list(value)
+    except TypeError:
+        raise ValueError(f"{name} must be {what}, got {show(value)}") from None
+    if len(items) != n:
+        raise ValueError(f"{name} must be {what}, got {show(value)}")
+    return tuple(finite_number(name, v) for v in items)
 
 
 def choice(name: str, value, allowed: Sequence[str] | Iterable[str]) -> str:
     """A string that must be one of ``allowed``."""
     allowed = tuple(allowed)
-    if value not in allowed:
+    try:
+        ok = bool(value in allowed)
+    except (TypeError, ValueError):  # e.g. an array: no single truth value
+        ok = False
+    if not ok:
         raise ValueError(
-            f"{name} must be one of {', '.join(repr(a) for a in allowed)}, got {value!r}"
+            f"{name} must be one of {', '.join(repr(a) for a in allowed)}, got {show(value)}"
         )
     return value
 
@@ -63,5 +134,41 @@ def open_unit_interval(name: str, value) -> float:
     """A threshold strictly between 0 and 1 (e.g. the LCI level gamma)."""
     out = finite_number(name, value)
     if not 0.0 < out < 1.0:
-        raise ValueError(f"{name} must lie in the open interval (0, 1), got {value!r}")
+        raise ValueError(f"{name} must lie in the open interval (0, 1), got {show(value)}")
     return out
+
+
+def positive_int(name: str, value, minimum: int = 1) -> int:
+    """An integer count (population, generations, workers) of at least ``minimum``."""
+    out = finite_number(name, value)
+    if out != int(out) or out < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(out)
+
+
+def step(name: str, value, upper: float) -> float:
+    """A lattice step in ``(0, upper]``."""
+    out = finite_number(name, value)
+    if not 0.0 < out <= upper:
+        raise ValueError(f"{name} must lie in (0, {upper}], got {value!r}")
+    return out
+
+
+def weights(text: str):
+    """Weights of a sweep: ``"0:1:0.1"`` (start:stop:step, inclusive) or ``"0,0.25,1"``;
+    each in [0, 1]. Returns a NumPy array."""
+    import numpy as np
+
+    try:
+        if ":" in text:
+            a, b, s = (float(v) for v in text.split(":"))
+            if not s > 0 or b < a:
+                raise ValueError
+            w = a + s * np.arange(int(np.floor((b - a) / s + 1e-9)) + 1)
+        else:
+            w = np.array([float(v) for v in text.split(",")])
+    except (ValueError, TypeError, AttributeError, OverflowError):
+        raise ValueError(f"weights must be start:stop:step or a comma list, got {text!r}") from None
+    if w.size == 0 or not np.all(np.isfinite(w)) or w.min() < 0 or w.max() > 1:
+        raise ValueError(f"weights must lie in [0, 1], got {text!r}")
+    return np.round(w, 12)
