@@ -76,6 +76,7 @@ RESULT_COLUMNS = ("r_mic", "mic_center_y") + _k.DISK_STAT_NAMES
 SUM = 3.0
 R3_MAX = 1.5
 STEP_MAX = 0.5
+STEP_MIN = 0.001
 #: a MIC radius below this (relative to the length scale 1) counts as none
 _MIN_RADIUS = 1e-9
 
@@ -95,8 +96,11 @@ _TITLES = {
 
 # --- inputs -----------------------------------------------------------------
 def check_step(step) -> float:
-    """The lattice step of the atlas: a finite number in (0, 0.5]."""
-    return _v.step("step", step, STEP_MAX)
+    """The lattice step of the atlas: a finite number in [0.001, 0.5]."""
+    out = _v.step("step", step, STEP_MAX)
+    if out < STEP_MIN:  # 3.4 million designs; finer lattices exhaust memory or never end
+        raise ValueError(f"step must lie in [{STEP_MIN}, {STEP_MAX}], got {_v.show(step)}")
+    return out
 
 
 def parse_indices(indices) -> tuple:
@@ -104,7 +108,11 @@ def parse_indices(indices) -> tuple:
     if isinstance(indices, str):
         items = [s.strip() for s in indices.split(",")]
     else:
-        items = [str(s).strip() for s in indices]
+        try:
+            items = [str(s).strip() for s in indices]
+        except TypeError:
+            raise ValueError(f"index must be a comma-separated list of {', '.join(INDEX_GROUPS)}, "
+                             f"got {_v.show(indices)}") from None
     if not items or any(s == "" for s in items):
         raise ValueError(f"index must be a comma-separated list of {', '.join(INDEX_GROUPS)}, "
                          f"got {indices!r}")
@@ -168,9 +176,26 @@ def evaluate_designs(r1, r2, r3, quadrature: str = "area", mode: str = "+-", com
 
     The fast path of :mod:`mechopt.kernels`; degenerate designs (MIC radius 0)
     get ``r_mic = 0`` and NaN elsewhere. Lengths in any unit (results scale as in
-    :func:`mechopt.performance.global_indices`).
+    :func:`mechopt.performance.global_indices`); r1, r2 in [LENGTH_MIN, LENGTH_MAX] and
+    r3 in [0, LENGTH_MAX] of :mod:`mechopt.validation`.
     """
-    r1, r2, r3 = (np.asarray(v, dtype=float).ravel() for v in np.broadcast_arrays(r1, r2, r3))
+    arrays = []
+    for name, v, lo in (("r1", r1, _v.LENGTH_MIN), ("r2", r2, _v.LENGTH_MIN), ("r3", r3, 0.0)):
+        try:
+            a = np.asarray(v)
+        except (TypeError, ValueError):  # e.g. ragged lists
+            a = None
+        if a is None or a.dtype.kind not in "biuf":
+            raise ValueError(f"{name} must be a number or an array of numbers, got {_v.show(v)}")
+        a = a.astype(float)
+        if not np.all((a >= lo) & (a <= _v.LENGTH_MAX)):  # NaN fails too
+            raise ValueError(f"{name} must hold lengths in [{lo:g}, {_v.LENGTH_MAX:g}], got {_v.show(v)}")
+        arrays.append(a)
+    try:
+        r1, r2, r3 = (a.ravel() for a in np.broadcast_arrays(*arrays))
+    except ValueError:
+        raise ValueError(f"r1, r2 and r3 must broadcast to one shape, got "
+                         f"{', '.join(str(a.shape) for a in arrays)}") from None
     R, yc = _k.mic_batch(r1, r2, r3, mode=mode, compiled=compiled)
     scale = (r1 + r2 + r3) / 3.0
     ok = R > _MIN_RADIUS * scale
@@ -286,9 +311,7 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
         workers = int(_v.finite_number("n_jobs", n_jobs))
         if workers < 1 or workers != n_jobs:
             raise ValueError(f"n_jobs must be a positive integer, got {n_jobs!r}")
-    chunk_size = DEFAULT_CHUNK_SIZE if chunk_size is None else chunk_size
-    if int(chunk_size) < 1:
-        raise ValueError(f"chunk_size must be a positive integer, got {chunk_size!r}")
+    chunk_size = DEFAULT_CHUNK_SIZE if chunk_size is None else _v.integer("chunk_size", chunk_size, 1)
     n_chunks = max(1, math.ceil(n / int(chunk_size)))
     idx = np.arange(n)
     parts = chunks(idx, n_chunks)
@@ -453,6 +476,11 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
         if nj < 1 or nj != int(nj):
             raise ValueError(f"n_jobs must be a positive integer, got {n_jobs!r}")
         n_jobs = int(nj)
+    if chunk_size is not None:
+        chunk_size = _v.integer("chunk_size", chunk_size, 1)
+    if dask is not None:
+        if not _v.finite_number("dask_timeout", dask_timeout) > 0:
+            raise ValueError(f"dask_timeout must be a positive number of seconds, got {_v.show(dask_timeout)}")
     cond = None
     if where is not None:
         cond = parse_condition(where, names=("r1", "r2", "r3", "s", "t") + cols)

@@ -204,14 +204,26 @@ def _add_strokes(p):
     p.add_argument("--q2-max", type=float, default=None, help="default: q1-max")
 
 
+def _first_missing(path):
+    """The outermost folder of ``path`` that does not exist yet (None if ``path`` exists)."""
+    try:
+        p = os.path.abspath(path)
+    except (TypeError, ValueError):
+        return None
+    if os.path.lexists(p):
+        return None
+    while not os.path.lexists(os.path.dirname(p)) and os.path.dirname(p) != p:
+        p = os.path.dirname(p)
+    return p
+
+
 def _remove_if_we_made_it_empty(out_before):
-    """Nothing is left behind on failure: drop an output folder this run created
-    if it is still empty."""
-    if out_before and not out_before[1]:
-        try:
-            os.rmdir(out_before[0])
-        except OSError:
-            pass
+    """Nothing is left behind on failure: drop the output folder (and the parents)
+    this run created."""
+    if out_before:
+        import shutil
+
+        shutil.rmtree(out_before, ignore_errors=True)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -297,9 +309,12 @@ def main(argv=None) -> int:
     parser = build_parser()
     out_before = None
     try:
-        args = parser.parse_args(argv)
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as exc:  # --help and --version have printed; no exception escapes
+            return exc.code if isinstance(exc.code, int) else 0
         out = getattr(args, "out", None)
-        out_before = (out, os.path.exists(out)) if out else None
+        out_before = _first_missing(out) if out else None
         return args.func(args)
     except (_UsageError, ValueError) as exc:
         _remove_if_we_made_it_empty(out_before)

@@ -164,12 +164,28 @@ class _Not:
         return f"not ({self.arg})"
 
 
+#: deepest nesting of "not", parentheses and signs (recursive descent: Python's stack)
+MAX_DEPTH = 100
+
+
 class _Parser:
     def __init__(self, text: str, param: str):
         self.text = text
         self.param = param
         self.toks = _tokenize(text, param)
         self.i = 0
+        self.depth = 0
+
+    def _nested(self, parse):
+        """``parse()`` one level deeper (after a "not", a "(" or a sign)."""
+        if self.depth >= MAX_DEPTH:
+            raise ValueError(f"{self.param}: the condition nests deeper than {MAX_DEPTH} levels "
+                             f"(at position {self.tok.pos})")
+        self.depth += 1
+        try:
+            return parse()
+        finally:
+            self.depth -= 1
 
     @property
     def tok(self) -> _Tok:
@@ -209,12 +225,12 @@ class _Parser:
 
     def not_expr(self):
         if self._take("keyword", "not"):
-            return _Not(self.not_expr())
+            return _Not(self._nested(self.not_expr))
         return self.primary()
 
     def primary(self):
         if self._take("paren", "("):
-            node = self.or_expr()
+            node = self._nested(self.or_expr)
             if not self._take("paren", ")"):
                 self._fail("')'")
             return node
@@ -235,7 +251,7 @@ class _Parser:
         t = self.tok
         if t.kind == "sign":
             self.i += 1
-            arg = self.operand()
+            arg = self._nested(self.operand)
             return _Neg(arg) if t.text == "-" else arg
         if t.kind == "number":
             self.i += 1

@@ -149,7 +149,7 @@ class GantryInertia:
         units = {"I": "kg m^2", "s": "m", "g": "m/s^2"}
         for f in fields(self):
             v = getattr(self, f.name)
-            if v is None:
+            if v is None and f.default is None:  # optional: derived from the others
                 continue
             object.__setattr__(self, f.name, _mass(f.name, v, units.get(f.name[0], "kg")))
 
@@ -188,10 +188,8 @@ def rectangle_rule(box, n: int = 48):
     ``sum(w * f(x, y))`` is the area mean of ``f`` over the rectangle; exact for
     polynomials of degree ``2n - 1`` in each variable.
     """
-    n = int(n)
-    if n < 1:
-        raise ValueError(f"n must be a positive integer, got {n!r}")
-    xmin, xmax, ymin, ymax = (float(v) for v in box)
+    n = _v.integer("n", n, 1)
+    xmin, xmax, ymin, ymax = _v.finite_numbers("box", box, 4, "(xmin, xmax, ymin, ymax)")
     g, gw = np.polynomial.legendre.leggauss(n)
     xs = 0.5 * (xmax - xmin) * g + 0.5 * (xmax + xmin)
     ys = 0.5 * (ymax - ymin) * g + 0.5 * (ymax + ymin)
@@ -315,9 +313,7 @@ class GantryDynamics:
         """``(X, Y, kappa_D)`` on an ``n x n`` grid of cell centres over ``region``
         (default the task workspace), for atlases such as Wu Fig. 6-7."""
         box = self._region(region)
-        n = int(n)
-        if n < 1:
-            raise ValueError(f"n must be a positive integer, got {n!r}")
+        n = _v.integer("n", n, 1)
         xmin, xmax, ymin, ymax = box
         xs = xmin + (np.arange(n) + 0.5) * (xmax - xmin) / n
         ys = ymin + (np.arange(n) + 0.5) * (ymax - ymin) / n
@@ -348,13 +344,10 @@ class GantryDynamics:
             if self.gantry.task_workspace is None:
                 raise ValueError("region must be given when the gantry has no task_workspace, got None")
             return self.gantry.task_workspace
-        try:
-            box = tuple(float(v) for v in region)
-        except (TypeError, ValueError):
-            raise ValueError(f"region must be (xmin, xmax, ymin, ymax), got {region!r}") from None
-        if len(box) != 4 or not (box[0] < box[1] and box[2] < box[3]):
+        box = _v.finite_numbers("region", region, 4, "(xmin, xmax, ymin, ymax)")
+        if not (box[0] < box[1] and box[2] < box[3]):
             raise ValueError(
-                f"region must be (xmin, xmax, ymin, ymax) with xmin < xmax, ymin < ymax, got {region!r}")
+                f"region must be (xmin, xmax, ymin, ymax) with xmin < xmax, ymin < ymax, got {_v.show(region)}")
         return box
 
     def inertia_ellipse(self, x, y, kind: str = "acceleration"):
@@ -484,8 +477,8 @@ def trapezoidal_profile(p0, p1, v_max, a_max, t):
     """
     v = _v.positive_length("v_max", v_max)
     a = _v.positive_length("a_max", a_max)
-    x0, y0 = (_v.finite_number("p0", c) for c in p0)
-    x1, y1 = (_v.finite_number("p1", c) for c in p1)
+    x0, y0 = (_v.coordinate("p0", c) for c in _v.finite_numbers("p0", p0, 2, "a point (x, y)"))
+    x1, y1 = (_v.coordinate("p1", c) for c in _v.finite_numbers("p1", p1, 2, "a point (x, y)"))
     L = math.hypot(x1 - x0, y1 - y0)
     if L == 0.0:
         raise ValueError(f"p1 must differ from p0 = {(x0, y0)!r}, got {(x1, y1)!r}")
@@ -494,7 +487,13 @@ def trapezoidal_profile(p0, p1, v_max, a_max, t):
         v = math.sqrt(a * L)
     T0 = v / a
     Tf = T0 + L / v
-    t = np.clip(np.asarray(t, dtype=float), 0.0, Tf)
+    try:
+        t = np.asarray(t)
+    except (TypeError, ValueError):  # e.g. ragged lists
+        t = np.asarray(None)
+    if t.dtype.kind not in "biuf":
+        raise ValueError(f"t must be a number or an array of numbers [s], got {_v.show(t)}")
+    t = np.clip(t.astype(float), 0.0, Tf)
     s = np.where(t < T0, 0.5 * a * t * t,
                  np.where(t <= Tf - T0, 0.5 * a * T0 * T0 + v * (t - T0),
                           L - 0.5 * a * (Tf - t) ** 2))
@@ -509,9 +508,7 @@ def wu2008_trajectory(n: int = 651):
     ``n`` equally spaced times over ``[0, Tf]``; ``T0 = 0.150 s``, ``Tf = 0.650 s``."""
     pub = wu2008_published()
     val = {k: pub[("table3", k)][0] for k in ("x0", "y0", "x1", "y1", "v_max", "a_s")}
-    n = int(n)
-    if n < 2:
-        raise ValueError(f"n must be an integer >= 2, got {n!r}")
+    n = _v.integer("n", n, 2)
     L = math.hypot(val["x1"] - val["x0"], val["y1"] - val["y0"])
     Tf = val["v_max"] / val["a_s"] + L / val["v_max"]
     return trapezoidal_profile((val["x0"], val["y0"]), (val["x1"], val["y1"]), val["v_max"],

@@ -75,17 +75,23 @@ def prepare_out_dir(path) -> Path:
     Raises ValueError (one line) when it cannot be created or written; nothing
     is left behind in that case.
     """
+    if not str(path).strip():
+        raise ValueError(f"--out must name a folder, got {str(path)!r}")
     path = Path(path)
     if path.exists() and not path.is_dir():
         raise ValueError(f"--out must be a folder, got the file {str(path)!r}")
-    created = not path.exists()
+    created = []  # the folders mkdir makes, innermost first
+    p = path.absolute()
+    while not p.exists() and p != p.parent:
+        created.append(p)
+        p = p.parent
     try:
         path.mkdir(parents=True, exist_ok=True)
         with tempfile.TemporaryFile(dir=path):
             pass
     except OSError as exc:
-        if created:
+        for p in created:
             with contextlib.suppress(OSError):
-                path.rmdir()
+                p.rmdir()
         raise ValueError(f"--out {str(path)!r} is not writable: {exc.strerror}") from None
     return path

@@ -804,6 +804,8 @@ def mic_batch(r1, r2, r3, mode="+-", compiled=None, **sizes):
         for i in range(0, r1.size, block):
             sl = slice(i, i + block)
             out_r[sl], out_y[sl] = _mic_block_np(r1[sl], r2[sl], r3[sl], s1, s2, ugrid, cfg)
+    if s1 == s2:  # r3 = 0 in mode ++ or --: the two legs coincide, every pose is type-II singular
+        out_r[r3 == 0.0] = 0.0
     return out_r * L, out_y * L
 
 

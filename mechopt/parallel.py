@@ -14,11 +14,14 @@ from . import validation as _v
 
 __all__ = ["parallel_map", "chunks", "connect"]
 
+#: most local worker processes (a typo such as --n-jobs 1e9 would overflow joblib)
+MAX_JOBS = 1024
+
 
 def chunks(seq: Sequence, n_chunks: int) -> list:
     """Split ``seq`` into at most ``n_chunks`` contiguous, nearly equal slices."""
     n = len(seq)
-    n_chunks = max(1, min(int(n_chunks), n)) if n else 1
+    n_chunks = max(1, min(_v.integer("n_chunks", n_chunks), n)) if n else 1
     size = math.ceil(n / n_chunks) if n else 0
     return [seq[i:i + size] for i in range(0, n, size)] if n else []
 
@@ -29,6 +32,12 @@ def connect(address: str, timeout: float = 10.0):
     Raises ValueError with one line when dask is not installed or the scheduler
     cannot be reached within ``timeout`` seconds.
     """
+    if not isinstance(address, str) or not address.strip():
+        raise ValueError(f"the Dask scheduler address must be a string such as tcp://host:8786, "
+                         f"got {_v.show(address)}")
+    timeout = _v.finite_number("dask_timeout", timeout)
+    if not timeout > 0:
+        raise ValueError(f"dask_timeout must be a positive number of seconds, got {_v.show(timeout)}")
     try:
         from dask.distributed import Client
     except ImportError:
@@ -37,6 +46,11 @@ def connect(address: str, timeout: float = 10.0):
         return Client(address, timeout=timeout)
     except (OSError, TimeoutError) as exc:
         raise ValueError(f"cannot reach the Dask scheduler at {address!r}: {type(exc).__name__}") from None
+    except ValueError as exc:  # a malformed address
+        raise ValueError(f"bad Dask scheduler address {address!r}: {exc}") from None
+    except Exception as exc:  # noqa: BLE001 - e.g. an AssertionError inside distributed
+        raise ValueError(f"cannot reach the Dask scheduler at {address!r}: "
+                         f"{type(exc).__name__} {exc}") from None
 
 
 def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
@@ -82,9 +96,7 @@ def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
             out.append(None)
             _tick(i, results[i])
         return results
-    n_jobs = int(_v.finite_number("n_jobs", n_jobs))
-    if n_jobs < 1:
-        raise ValueError(f"n_jobs must be a positive integer, got {n_jobs!r}")
+    n_jobs = _v.integer("n_jobs", n_jobs, 1, MAX_JOBS)
     if n_jobs == 1 or total <= 1:
         for i, item in enumerate(items):
             out.append(func(item))

@@ -41,6 +41,7 @@ def disk_mean(mech, center_y, radius, quadrature="area", n_r=None, n_theta=None)
     Returns a dict keyed by :data:`mechopt.indices.LOCAL_INDEX_NAMES`.
     """
     kw = {k: v for k, v in (("n_r", n_r), ("n_theta", n_theta)) if v is not None}
+    center_y = _v.coordinate("center_y", center_y)
     dx, dy, w = disk_rule(radius, quadrature, **kw)
     loc = mech.local_indices(dx, center_y + dy)
     return {k: float(np.sum(w * v)) for k, v in loc.items()}
@@ -52,7 +53,11 @@ def max_lci(mech, center_y, radius, n_r=64, n_theta=128, iters=40):
     The best node of a polar grid seeds a compass search (step halved on failure)
     kept inside the disk.
     """
+    center_y = _v.coordinate("center_y", center_y)
+    iters = _v.integer("iters", iters, 0)
+    n_r = _v.integer("n_r", n_r, 1)
     dx, dy, _ = disk_rule(radius, "polar", n_r=n_r, n_theta=n_theta)
+    radius = float(radius)  # a finite number >= 0 (disk_rule)
     v = mech.lci(dx, center_y + dy)
     k = int(np.argmax(v))
     p = np.array([dx[k], dy[k]])
@@ -68,6 +73,8 @@ def max_lci(mech, center_y, radius, n_r=64, n_theta=128, iters=40):
             best, p = float(vals[j]), cand[j]
         else:
             step *= 0.5
+            if step == 0.0:  # converged to the last bit: more iterations change nothing
+                break
     return best
 
 

@@ -32,6 +32,8 @@ QUADRATURES = ("area", "polar")
 #: default resolutions; ``tests/test_quadrature.py`` shows each converged to 1e-3
 DEFAULT_N_R = 48
 DEFAULT_N_THETA = 96
+#: most nodes of one rule or raster (a bad step or resolution would exhaust memory)
+MAX_NODES = 10**7
 
 
 @lru_cache(maxsize=32)
@@ -60,8 +62,10 @@ def disk_rule(radius, rule: str = "area", n_r: int = DEFAULT_N_R, n_theta: int =
     given radius under the named rule (see the module docstring).
     """
     _v.choice("quadrature", rule, QUADRATURES)
-    radius = _v.finite_number("radius", radius)
-    dx, dy, w = _unit_disk_rule(rule, int(n_r), int(n_theta))
+    radius = _v.nonnegative_length("radius", radius)
+    n_r = _v.integer("n_r", n_r, 1, MAX_NODES)
+    n_theta = _v.integer("n_theta", n_theta, 1, MAX_NODES // n_r)
+    dx, dy, w = _unit_disk_rule(rule, n_r, n_theta)
     return radius * dx, radius * dy, w
 
 
@@ -97,11 +101,19 @@ class Grid:
 
 
 def grid_over(box, step) -> Grid:
-    """Cell-centred grid covering ``box = (xmin, xmax, ymin, ymax)`` with cells of ``step``."""
+    """Cell-centred grid covering ``box = (xmin, xmax, ymin, ymax)`` with cells of ``step``
+    (at most :data:`MAX_NODES` cells)."""
     step = _v.positive_length("step", step)
-    xmin, xmax, ymin, ymax = (float(v) for v in box)
-    nx = max(1, int(np.ceil((xmax - xmin) / step)))
-    ny = max(1, int(np.ceil((ymax - ymin) / step)))
+    xmin, xmax, ymin, ymax = _v.finite_numbers("box", box, 4, "(xmin, xmax, ymin, ymax)")
+    if not (xmin <= xmax and ymin <= ymax):
+        raise ValueError(f"box must be (xmin, xmax, ymin, ymax) with xmin <= xmax, ymin <= ymax, "
+                         f"got {_v.show(box)}")
+    fx, fy = float(np.ceil((xmax - xmin) / step)), float(np.ceil((ymax - ymin) / step))
+    if not max(fx, 1.0) * max(fy, 1.0) <= MAX_NODES:
+        raise ValueError(f"step {step!r} gives a raster of more than {MAX_NODES:.0e} cells over "
+                         f"{_v.show(box)}; use a larger step")
+    nx = max(1, int(fx))
+    ny = max(1, int(fy))
     x = xmin + (np.arange(nx) + 0.5) * step
     y = ymin + (np.arange(ny) + 0.5) * step
     return Grid(x, y, step)

@@ -34,6 +34,9 @@ def make_algorithm(name: str, pop: int, n_obj: int):
     """A pymoo algorithm by name with population ``pop`` (NSGA-III: Das-Dennis
     reference directions, as many partitions as fit in ``pop``)."""
     _v.choice("algorithm", name, ALGORITHMS)
+    pop = _v.integer("pop", pop, 2, MAX_POP)
+    if name == "nsga3" and n_obj < 2:
+        raise ValueError(f"algorithm 'nsga3' needs at least 2 objectives, the problem has {n_obj}")
     if name == "ga":
         if n_obj != 1:
             raise ValueError(f"algorithm 'ga' needs a single objective, the problem has {n_obj}")
@@ -63,13 +66,20 @@ class RunResult:
     info: dict
 
 
+#: largest population and number of generations accepted (a typo such as
+#: ``--pop 100000000000`` would otherwise exhaust memory or never end)
+MAX_POP = MAX_GEN = 1_000_000
+
+
 def _check_sizes(pop, gen):
-    pop = int(_v.finite_number("pop", pop))
-    gen = int(_v.finite_number("gen", gen))
+    pop = _v.integer("pop", pop)
+    gen = _v.integer("gen", gen)
     if pop < 2:
         raise ValueError(f"pop must be at least 2, got {pop}")
     if gen < 1:
         raise ValueError(f"gen must be at least 1, got {gen}")
+    if pop > MAX_POP or gen > MAX_GEN:
+        raise ValueError(f"pop and gen must be at most {MAX_POP:,}, got pop {pop}, gen {gen}")
     return pop, gen
 
 
@@ -127,7 +137,8 @@ def optimize(problem, algorithm: str | None = None, pop: int | None = None, gen:
     algorithm = algorithm or problem.default_algorithm
     pop, gen = _check_sizes(problem.default_pop if pop is None else pop,
                             problem.default_gen if gen is None else gen)
-    seed = int(_v.finite_number("seed", seed))
+    seed = _v.integer("seed", seed, 0)
+    n_jobs = _v.integer("n_jobs", n_jobs, 1)
     if checkpoint_every is not None:
         checkpoint_every = int(_v.finite_number("checkpoint_every", checkpoint_every))
         if checkpoint_every < 1:
@@ -151,9 +162,12 @@ def resume(out, n_jobs: int = 2, client=None, progress: bool = True, plot: bool 
         with open(path, "rb") as fh:
             ck = pickle.load(fh)
         algo, state = ck["algorithm_state"], ck["state"]
+        if not (hasattr(algo, "has_next") and hasattr(algo, "problem") and isinstance(state, dict)):
+            raise TypeError("not a mechopt checkpoint")
     except FileNotFoundError:
         raise ValueError(f"--resume {str(out)!r} holds no {CHECKPOINT}") from None
-    except (OSError, pickle.UnpicklingError, EOFError, KeyError, AttributeError, TypeError) as exc:
+    except (OSError, pickle.UnpicklingError, EOFError, KeyError, AttributeError, TypeError,
+            ValueError, ImportError, IndexError) as exc:  # ImportError: written by another version
         raise ValueError(f"--resume {str(out)!r}: unreadable {CHECKPOINT} ({type(exc).__name__})") from None
     return _drive(algo, state, n_jobs, client, Path(out), progress, plot)
 
@@ -254,6 +268,15 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int = 2, 
 
     if problem.n_obj != 2:
         raise ValueError(f"sweep needs a 2-objective problem, {problem.name} has {problem.n_obj}")
+    try:  # every input is checked before the first run writes into out
+        weights = [_v.finite_number("weights", w) for w in weights]
+    except TypeError:
+        raise ValueError(f"weights must be a sequence of numbers in [0, 1], got {_v.show(weights)}") from None
+    if not weights or not all(0.0 <= w <= 1.0 for w in weights):
+        raise ValueError(f"weights must be numbers in [0, 1], got {_v.show(weights)}")
+    _check_sizes(problem.default_pop if pop is None else pop, problem.default_gen if gen is None else gen)
+    _v.integer("seed", seed, 0)
+    _v.integer("n_jobs", n_jobs, 1)
     out = _io.prepare_out_dir(out) if out is not None else None
     front_run = optimize(problem, "nsga2", pop, gen, seed, n_jobs, client, out, progress, plot=False)
     F = np.column_stack([ob.sense * front_run.front[ob.name].to_numpy() for ob in problem.objectives])

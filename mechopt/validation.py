@@ -68,12 +68,12 @@ def positive_length(name: str, value) -> float:
 
 
 def nonnegative_length(name: str, value) -> float:
-    """A length that may vanish (e.g. the half base distance r3 of a five-bar);
-    otherwise in [LENGTH_MIN, LENGTH_MAX]."""
+    """A length that may vanish (e.g. the half base distance r3 of a five-bar),
+    at most LENGTH_MAX (tiny values act as 0: such lengths are only added to others)."""
     out = finite_number(name, value)
     if out < 0.0:
         raise ValueError(f"{name} must be a non-negative finite length, got {show(value)}")
-    return out if out == 0.0 else _length_range(name, out, value)
+    return out if out <= LENGTH_MAX else _length_range(name, out, value)
 
 
 def coordinate(name: str, value) -> float:
@@ -154,6 +154,10 @@ def step(name: str, value, upper: float) -> float:
     return out
 
 
+#: most weights of one sweep (each is a full optimisation run)
+MAX_WEIGHTS = 10_001
+
+
 def weights(text: str):
     """Weights of a sweep: ``"0:1:0.1"`` (start:stop:step, inclusive) or ``"0,0.25,1"``;
     each in [0, 1]. Returns a NumPy array."""
@@ -164,11 +168,16 @@ def weights(text: str):
             a, b, s = (float(v) for v in text.split(":"))
             if not s > 0 or b < a:
                 raise ValueError
-            w = a + s * np.arange(int(np.floor((b - a) / s + 1e-9)) + 1)
+            n = int(np.floor((b - a) / s + 1e-9)) + 1
+            if n > MAX_WEIGHTS:
+                raise ValueError(f"weights {text!r} give {n} weights, more than {MAX_WEIGHTS}")
+            w = a + s * np.arange(n)
         else:
             w = np.array([float(v) for v in text.split(",")])
-    except (ValueError, TypeError, AttributeError, OverflowError):
-        raise ValueError(f"weights must be start:stop:step or a comma list, got {text!r}") from None
+    except (ValueError, TypeError, AttributeError, OverflowError) as exc:
+        if str(exc).startswith("weights "):
+            raise
+        raise ValueError(f"weights must be start:stop:step or a comma list, got {show(text)}") from None
     if w.size == 0 or not np.all(np.isfinite(w)) or w.min() < 0 or w.max() > 1:
         raise ValueError(f"weights must lie in [0, 1], got {text!r}")
     return np.round(w, 12)

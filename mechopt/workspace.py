@@ -84,8 +84,12 @@ def type2_clearance(mech, cx, cy, radius, n_phi=128, n_r=96, n_refine=64):
     cells. At the closest point the locus is tangent to the circle, so the ray
     there crosses it transversally and the bracketing cannot miss it.
     """
+    from .mechanisms.base import as_points
+
     scalar = np.ndim(cx) == 0 and np.ndim(cy) == 0 and np.ndim(radius) == 0
-    cx, cy, radius = (np.atleast_1d(np.asarray(v, float)) for v in np.broadcast_arrays(cx, cy, radius))
+    cx, cy = as_points(cx, cy)
+    radius, _ = as_points(radius, 0.0)
+    cx, cy, radius = (np.atleast_1d(v) for v in np.broadcast_arrays(cx, cy, radius))
     out = np.zeros(cx.shape)
     live = radius > 0
     if live.any():
@@ -129,6 +133,10 @@ def mic(mech, method: str = "auto", n_y: int = 48, tol: float = 1e-6) -> MIC:
     from .mechanisms.five_bar import FiveBar
 
     _v.choice("method", method, ("auto", "explicit", "rays"))
+    n_y = _v.integer("n_y", n_y, 1)
+    tol = _v.finite_number("tol", tol)
+    if not tol > 0.0:
+        raise ValueError(f"tol must be a positive relative tolerance, got {_v.show(tol)}")
     if method == "auto":
         method = "explicit" if isinstance(mech, FiveBar) else "rays"
     if method == "explicit":
@@ -152,7 +160,9 @@ def mic(mech, method: str = "auto", n_y: int = 48, tol: float = 1e-6) -> MIC:
     x1 = b - _GOLDEN * (b - a)
     x2 = a + _GOLDEN * (b - a)
     f1, f2 = _mic_radius_at(mech, [x1, x2])
-    while b - a > tol * mech.length_scale:
+    for _ in range(200):  # 0.618^200: below any tol in double precision
+        if not b - a > tol * mech.length_scale:
+            break
         if f1 >= f2:
             b, x2, f2 = x2, x1, f1
             x1 = b - _GOLDEN * (b - a)
@@ -202,6 +212,7 @@ def usable_region(mech, step=None, center=None) -> Region:
     step = _default_step(mech) if step is None else _v.positive_length("step", step)
     if center is None:
         center = (0.0, mic(mech).center_y)
+    center = _v.finite_numbers("center", center, 2, "a point (x, y)")
     xmin, xmax, _, ymax = mech.bounding_box()
     grid = grid_over((xmin, xmax, 0.0, ymax), step)
     X, Y = grid.points()

@@ -23,14 +23,32 @@ from abc import ABC, abstractmethod
 import numpy as np
 
 from .. import indices as _ix
+from .. import validation as _v
 
 __all__ = ["PlanarMechanism", "as_points"]
 
 
+#: a coordinate beyond this magnitude lies out of reach of every admissible design
+#: (lengths are at most ``validation.LENGTH_MAX``); it is treated as NaN, so that
+#: squares and products of it cannot overflow
+POINT_MAX = 1e3 * _v.LENGTH_MAX
+
+
+def _coordinates(name, v):
+    try:
+        v = np.asarray(v, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name} must be a number or an array of numbers, got {_v.show(v)}") from None
+    if v.size and not (v.max() <= POINT_MAX and v.min() >= -POINT_MAX):  # NaN or far away
+        v = np.where(np.abs(v) > POINT_MAX, np.nan, v)
+    return v
+
+
 def as_points(x, y):
-    """Broadcast ``x`` and ``y`` to float arrays of a common shape."""
-    x = np.asarray(x, dtype=float)
-    y = np.asarray(y, dtype=float)
+    """Broadcast ``x`` and ``y`` to float arrays of a common shape (coordinates
+    beyond :data:`POINT_MAX` become NaN: unreachable)."""
+    x = _coordinates("x", x)
+    y = _coordinates("y", y)
     try:
         return np.broadcast_arrays(x, y)
     except ValueError:
@@ -165,6 +183,9 @@ class PlanarMechanism(ABC):
         The type-I measure is compared squared: near a serial boundary it grows
         like the square root of the distance (a leg folding), so a pose on the
         boundary up to rounding has a measure of order sqrt(eps) ~ 1e-8."""
+        tol = _v.finite_number("tol", tol)
+        if tol < 0.0:
+            raise ValueError(f"tol must be >= 0, got {_v.show(tol)}")
         A, b, ok = self.closure(x, y)
         n = np.hypot(A[..., :, 0], A[..., :, 1])
         # B_ii / |a_i| has units of length for angular joints, none for sliders

@@ -105,8 +105,8 @@ def _gauss_nodes(n: int = 128):
 
 
 def _stroke(name_min, q_min, name_max, q_max):
-    lo = _v.finite_number(name_min, q_min)
-    hi = _v.finite_number(name_max, q_max)
+    lo = _v.coordinate(name_min, q_min)
+    hi = _v.coordinate(name_max, q_max)
     if not hi > lo:
         raise ValueError(f"{name_max} must be greater than {name_min} = {lo!r}, got {q_max!r}")
     return lo, hi
@@ -463,10 +463,13 @@ class Biglide(PlanarMechanism):
             return (total, float("nan")) if return_error else total
         total, err = 0.0, 0.0
         f = lambda t: float(self.tqi_of_x(t) * self.chord(t))  # noqa: E731
+        # an absolute floor far below the result: a sliver interval (1e-8 wide at an end
+        # of the x range) cannot reach the relative tolerance in floating point
+        epsabs = 1e-14 * self.length_scale ** 2
         for x0, x1 in zip(pts[:-1], pts[1:]):
             if x1 <= x0:
                 continue
-            v, e = integrate.quad(f, x0, x1, epsabs=0.0, epsrel=_QUAD_EPSREL, limit=200)
+            v, e = integrate.quad(f, x0, x1, epsabs=epsabs, epsrel=_QUAD_EPSREL, limit=200)
             total += v
             err += e
         return (total, err) if return_error else total

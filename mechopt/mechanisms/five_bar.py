@@ -101,7 +101,7 @@ class FiveBar(PlanarMechanism):
             dx = x - ax
             dsq = dx * dx + y * y
             d = np.sqrt(dsq)
-            with np.errstate(divide="ignore", invalid="ignore"):
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # P at A_i: masked
                 # law of cosines at A_i (Le eq. 13-14), scaled by r1/d
                 c = (r1 * r1 + dsq - r2 * r2) / (2.0 * dsq)  # = r1 cos(alpha) / d
                 h2 = (r1 * r1) / dsq - c * c  # = (r1 sin(alpha) / d)^2
@@ -110,8 +110,9 @@ class FiveBar(PlanarMechanism):
             tol = 1e-12
             leg_ok = (h2 >= -tol) & (d > 0)
             h = np.sqrt(np.clip(h2, 0.0, None)) * s
-            bx = ax + c * dx - h * y
-            by = c * y + h * dx
+            with np.errstate(invalid="ignore", over="ignore"):  # inf * 0 at a base joint: masked below
+                bx = ax + c * dx - h * y
+                by = c * y + h * dx
             out += [bx, by]
             ok &= leg_ok
         b1x, b1y, b2x, b2y = (np.where(ok, v, np.nan) for v in out)
@@ -164,7 +165,7 @@ class FiveBar(PlanarMechanism):
         ok = self.reachable(x, y)
         d1 = np.hypot(x + r3, y)
         d2 = np.hypot(x - r3, y)
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # clipped below
             c1 = (r1 * r1 + d1 * d1 - r2 * r2) / (2 * r1 * d1)
             c2 = (r1 * r1 + d2 * d2 - r2 * r2) / (2 * r1 * d2)
         alpha1 = np.arccos(np.clip(c1, -1.0, 1.0))
@@ -193,8 +194,9 @@ class FiveBar(PlanarMechanism):
             h2 = r2 * r2 / m2 - 0.25
         valid = (h2 >= 0) & (m2 > 0)
         h = np.sqrt(np.clip(h2, 0, None)) * (1.0 if assembly == "up" else -1.0)
-        x = b1x + 0.5 * mx - h * my
-        y = b1y + 0.5 * my + h * mx
+        with np.errstate(invalid="ignore"):  # inf * 0 where B1 = B2: not valid, masked below
+            x = b1x + 0.5 * mx - h * my
+            y = b1y + 0.5 * my + h * mx
         return np.where(valid, x, np.nan), np.where(valid, y, np.nan), valid
 
     def assembly_of(self, x, y):

@@ -146,15 +146,18 @@ def k_av_literal_of_design(theta_1S):
     ``theta_1S`` in rad, in (0, pi/4). Decreases from +inf to 1 over that interval
     (Wu sec. 4.3: "k_av descends when theta_1 varies from 0 to 90 deg").
     """
-    th = np.asarray(theta_1S, dtype=float)
+    try:
+        th = np.asarray(theta_1S, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"theta_1S must be a number or an array of numbers, got {_v.show(theta_1S)}") from None
     if np.any(~np.isfinite(th)) or np.any((th <= 0) | (th >= math.pi / 4)):
         raise ValueError(
-            f"theta_1S must lie in the open interval (0, pi/4) rad, got {theta_1S!r}"
+            f"theta_1S must lie in the open interval (0, pi/4) rad, got {_v.show(theta_1S)}"
         )
 
     def F(s):
         c = np.sqrt(1.0 - s * s)
-        return c - np.log((1.0 + c) / s)
+        return c - (np.log(1.0 + c) - np.log(s))  # (1 + c)/s overflows for a tiny theta_1S
 
     s0, s1 = np.sin(th), np.cos(th)
     return (F(s1) - F(s0)) / (s1 - s0)
@@ -203,22 +206,22 @@ class Gantry(PlanarMechanism):
         if not self.l > self.d1:
             raise ValueError(f"l must be greater than d1 = {self.d1!r} (Wu sec. 3.1), got {l!r}")
         self.stroke = _v.positive_length("stroke", stroke)
-        self.q_min = _v.finite_number("q_min", q_min)
+        self.q_min = _v.coordinate("q_min", q_min)
         self.l2 = _v.nonnegative_length("l2", l2)
         self.d2 = _v.nonnegative_length("d2", d2)
         self.mode = _v.choice("mode", mode, MODES)
         self._s = (_SIGN[mode[0]], _SIGN[mode[1]])
         if task_workspace is not None:
             try:
-                tw = tuple(_v.finite_number("task_workspace", v) for v in task_workspace)
+                tw = tuple(_v.coordinate("task_workspace", v) for v in task_workspace)
             except TypeError:
                 raise ValueError(
-                    f"task_workspace must be (xmin, xmax, ymin, ymax), got {task_workspace!r}"
+                    f"task_workspace must be (xmin, xmax, ymin, ymax), got {_v.show(task_workspace)}"
                 ) from None
             if len(tw) != 4 or not (tw[0] < tw[1] and tw[2] < tw[3]):
                 raise ValueError(
                     "task_workspace must be (xmin, xmax, ymin, ymax) with xmin < xmax and "
-                    f"ymin < ymax, got {task_workspace!r}"
+                    f"ymin < ymax, got {_v.show(task_workspace)}"
                 )
             task_workspace = tw
         self.task_workspace = task_workspace
@@ -235,7 +238,7 @@ class Gantry(PlanarMechanism):
         on the boundary of the reachable set.
         """
         d, d1, l, stroke = dimensional_synthesis(b, h, theta_1S)
-        y0 = _v.finite_number("task_y_min", task_y_min)
+        y0 = _v.coordinate("task_y_min", task_y_min)
         l2 = _v.nonnegative_length("l2", l2)
         q_min = y0 - l2 / 2.0 - l * math.cos(theta_1S)
         return cls(d1, l, stroke, q_min=q_min, l2=l2, d2=d2, mode="--",
