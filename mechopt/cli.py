@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 
@@ -54,16 +55,23 @@ def _cmd_evaluate_five_bar(args):
 
     fb = FiveBar(args.r1, args.r2, args.r3, mode=args.mode)
     res = evaluate_five_bar(fb, quadrature=args.quadrature, gamma=args.gamma)
-    if args.json:
-        print(json.dumps(res))
-    else:
-        _print_table(res, repr(fb))
+    _print_result(res, repr(fb), args.json)
     return 0
+
+
+def _json_safe(v):
+    """Standard JSON has no NaN or Infinity: such values (an empty workspace's
+    mean, an unbounded k_av) are printed as null."""
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, list):
+        return [_json_safe(x) for x in v]
+    return v
 
 
 def _print_result(res: dict, title: str, as_json: bool):
     if as_json:
-        print(json.dumps(res))
+        print(json.dumps({k: _json_safe(v) for k, v in res.items()}, allow_nan=False))
     else:
         _print_table(res, title)
 
@@ -219,10 +227,14 @@ def _first_missing(path):
 
 def _remove_if_we_made_it_empty(out_before):
     """Nothing is left behind on failure: drop the output folder (and the parents)
-    this run created."""
+    this run created, unless it already holds finished work (a reproduced paper's
+    ``table.csv``, written last, is complete and is kept for the next run to skip)."""
     if out_before:
         import shutil
+        from pathlib import Path
 
+        if any(Path(out_before).rglob("table.csv")):
+            return
         shutil.rmtree(out_before, ignore_errors=True)
 
 

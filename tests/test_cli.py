@@ -57,3 +57,12 @@ def test_console_script_exit_status_and_no_traceback():
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr and proc.stderr.strip().startswith("mechopt: error:")
     assert proc.stdout == ""
+
+
+def test_json_has_no_nan_or_infinity(capsys):
+    # k_av is unbounded when the x range contains a guide: printed as null, valid JSON
+    assert main(["evaluate", "biglide", "--l1", "0.3", "--l2", "1.615", "--q1-min", "-1.9",
+                 "--q1-max", "3", "--q2-min", "-3", "--mode=-+", "--json"]) == 0
+    text = capsys.readouterr().out
+    out = json.loads(text, parse_constant=lambda c: pytest.fail(f"non-standard JSON constant {c}"))
+    assert out["k_av_1"] is None and out["workspace_area"] > 0
