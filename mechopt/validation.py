@@ -181,3 +181,13 @@ def weights(text: str):
     if w.size == 0 or not np.all(np.isfinite(w)) or w.min() < 0 or w.max() > 1:
         raise ValueError(f"weights must lie in [0, 1], got {text!r}")
     return np.round(w, 12)
+
+
+def stroke(name_min: str, q_min, name_max: str, q_max, positive: bool = True):
+    """An actuator range ``(lo, hi)`` with ``lo < hi``: strut lengths (``positive``)
+    or slider positions (any sign, as :func:`coordinate`)."""
+    check = positive_length if positive else coordinate
+    lo, hi = check(name_min, q_min), check(name_max, q_max)
+    if not hi > lo:
+        raise ValueError(f"{name_max} must be greater than {name_min} = {lo!r}, got {q_max!r}")
+    return lo, hi

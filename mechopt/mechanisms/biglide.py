@@ -105,11 +105,7 @@ def _gauss_nodes(n: int = 128):
 
 
 def _stroke(name_min, q_min, name_max, q_max):
-    lo = _v.coordinate(name_min, q_min)
-    hi = _v.coordinate(name_max, q_max)
-    if not hi > lo:
-        raise ValueError(f"{name_max} must be greater than {name_min} = {lo!r}, got {q_max!r}")
-    return lo, hi
+    return _v.stroke(name_min, q_min, name_max, q_max, positive=False)
 
 
 class Biglide(PlanarMechanism):

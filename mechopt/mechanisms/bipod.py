@@ -92,11 +92,7 @@ LIMIT_RTOL = 1e-12
 
 
 def _stroke(name_min, q_min, name_max, q_max):
-    lo = _v.positive_length(name_min, q_min)
-    hi = _v.positive_length(name_max, q_max)
-    if not hi > lo:
-        raise ValueError(f"{name_max} must be greater than {name_min} = {lo!r}, got {q_max!r}")
-    return lo, hi
+    return _v.stroke(name_min, q_min, name_max, q_max, positive=True)
 
 
 def _half_factor(branch):
