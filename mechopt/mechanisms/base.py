@@ -103,6 +103,15 @@ class PlanarMechanism(ABC):
         """A characteristic length, used to set tolerances and grid steps."""
 
     # --- derived once for every mechanism ------------------------------------
+    def _within_strokes(self, q1, q2, rtol: float = 1e-12):
+        """Actuator values inside ``self.joint_limits`` (for mechanisms with stroke
+        limits), widened by ``rtol * length_scale`` so that a pose computed by
+        ``fk`` from a limit value stays reachable despite rounding."""
+        (lo1, hi1), (lo2, hi2) = self.joint_limits
+        t = rtol * self.length_scale
+        return (q1 >= lo1 - t) & (q1 <= hi1 + t) & (q2 >= lo2 - t) & (q2 <= hi2 + t)
+
+
     def jacobian(self, x, y):
         """``J = B^-1 A`` with ``q_dot = J p_dot``; shape ``(..., 2, 2)``, NaN where unreachable."""
         A, b, _ = self.closure(x, y)

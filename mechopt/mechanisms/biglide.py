@@ -203,23 +203,16 @@ class Biglide(PlanarMechanism):
         q2 = np.where(ok2, y + self._s[1] * h2, np.nan)
         return q1, q2
 
-    def _within_strokes(self, q1, q2):
-        t = LIMIT_RTOL * self.length_scale
-        return (
-            (q1 >= self.q1_min - t) & (q1 <= self.q1_max + t)
-            & (q2 >= self.q2_min - t) & (q2 <= self.q2_max + t)
-        )
-
     def reachable(self, x, y):
         """Both links reach their guides and both sliders lie within their strokes
         (to ``LIMIT_RTOL * length_scale``)."""
         q1, q2 = self.slider_positions(x, y)
-        return self._within_strokes(q1, q2)
+        return self._within_strokes(q1, q2, LIMIT_RTOL)
 
     def ik(self, x, y):
         """Slider positions (Stan eq. 5) ``(q1, q2, reachable)`` [L]; NaN where unreachable."""
         q1, q2 = self.slider_positions(x, y)
-        ok = self._within_strokes(q1, q2)
+        ok = self._within_strokes(q1, q2, LIMIT_RTOL)
         return np.where(ok, q1, np.nan), np.where(ok, q2, np.nan), ok
 
     def fk(self, q1, q2, assembly: str = "up", limits: bool = True):
@@ -240,7 +233,7 @@ class Biglide(PlanarMechanism):
             h2 = l2 * l2 / m2 - 0.25  # (distance M -> P)^2 / |m|^2
             valid = h2 >= 0
             if limits:
-                valid &= self._within_strokes(q1, q2)
+                valid &= self._within_strokes(q1, q2, LIMIT_RTOL)
         h = np.sqrt(np.where(valid, h2, 0.0)) * (1.0 if assembly == "up" else -1.0)
         x = -h * dq
         y = 0.5 * (q1 + q2) + h * 2.0 * l1

@@ -213,19 +213,12 @@ class Bipod(PlanarMechanism):
             return y <= 0
         return np.ones(y.shape, dtype=bool)
 
-    def _within_strokes(self, q1, q2):
-        t = LIMIT_RTOL * self.length_scale
-        return (
-            (q1 >= self.q1_min - t) & (q1 <= self.q1_max + t)
-            & (q2 >= self.q2_min - t) & (q2 <= self.q2_max + t)
-        )
-
     def reachable(self, x, y):
         """Both strut lengths within their strokes (to ``LIMIT_RTOL * length_scale``)
         and ``y`` on the branch's side."""
         x, y = as_points(x, y)
         q1, q2 = self.strut_lengths(x, y)
-        return self._within_strokes(q1, q2) & self._in_branch(y)
+        return self._within_strokes(q1, q2, LIMIT_RTOL) & self._in_branch(y)
 
     def ik(self, x, y):
         """Strut lengths (Stan eq. 6) ``(q1, q2, reachable)`` [L]; NaN where unreachable."""
@@ -249,7 +242,7 @@ class Bipod(PlanarMechanism):
             heron = (q1 + q2 + b) * (q2 - q1 + b) * (q1 - q2 + b) * (q1 + q2 - b)
             valid = (heron >= 0) & (q1 >= 0) & (q2 >= 0)
             if limits:
-                valid &= self._within_strokes(q1, q2)
+                valid &= self._within_strokes(q1, q2, LIMIT_RTOL)
             x = ((q1 - q2) * (q1 + q2) + b * b) / (2.0 * b)
             y = np.sqrt(np.where(valid, heron, 0.0)) / (2.0 * b)
         if assembly == "down":
