@@ -55,7 +55,7 @@ the area mean of ``kappa_D`` over the task workspace ``W_t``. ``kappa_D`` depend
 ``x`` only.
 
 Units: SI. The gantry must be given in metres (:func:`mechopt.mechanisms.gantry.wu2008_gantry`
-with ``unit="m"``, or :meth:`Gantry.rescaled`), masses in kg, inertias in kg m^2.
+with ``unit="m"``, or :meth:`Gantry.scaled`), masses in kg, inertias in kg m^2.
 
 References
 ----------
@@ -74,7 +74,7 @@ import numpy as np
 from . import indices as _ix
 from . import validation as _v
 from .mechanisms.base import as_points
-from .mechanisms.gantry import Gantry
+from .mechanisms.gantry import Gantry, dimensional_synthesis
 
 __all__ = [
     "GantryInertia",
@@ -123,7 +123,16 @@ class GantryInertia:
     mass centre. ``I4``/``s4`` (link ``A3B3``) default to ``I12``/``s12`` (Wu eq. 36-37:
     it moves, and is taken to load the machine, like ``A1B1``). ``m5``, ``I5``, ``s5``
     describe the extra link ``A4B4`` of the symmetric variant (sec. 6.3), absent by
-    default. ``None`` offsets mean mid-link, ``l/2``. ``g`` [m/s^2] is the gravity.
+    default (``m5 = 0``; ``I5 = None`` then means no inertia, and ``I22`` when
+    ``m5 > 0``). ``None`` offsets mean mid-link, ``l/2``. ``g`` [m/s^2] is the gravity.
+
+    Assumptions where the paper is silent: each link's mass centre lies on the
+    segment ``B_i A_i`` at ``s`` from ``B_i`` (the direction of eq. 1; the printed
+    eq. 32-33 carry ``E [sin, -cos]``, a sign that contradicts eq. 1 and is not
+    followed); ``A3B3`` loads slider 1 with ``A1B1``'s mass and inertia (eq. 36-37);
+    counterweights hang at ``-q_i`` (eq. 23). The independent sympy derivation of
+    ``tests/test_gantry_dynamics_independent.py`` checks ``M``, ``kappa_D``,
+    ``eta_D`` and the Table 3 forces under these assumptions to 1e-9.
     """
 
     m11: float
@@ -160,6 +169,40 @@ class GantryInertia:
         names = ("m11", "m21", "m12", "m22", "m13", "m23", "m4", "mN", "I12", "I22")
         kw = {k: pub[("table2", k)][0] for k in names}
         return cls(**kw, g=pub[("table2", "g")][0])
+
+    @classmethod
+    def wu2008_scaled(cls, l: float) -> "GantryInertia":
+        """Table 2 carried over to a machine whose links have length ``l`` [m].
+
+        Table 2 belongs to the Table 1 design (``theta_1S = 10`` deg, ``l = l_0 =
+        616.40`` mm); another ``theta_1S`` gives another ``l`` (eq. 14-15), for which
+        Table 2's 11.3 kg m^2 can be below ``m (l/2)^2``, which no rigid body has. The
+        law used here (an assumption, the paper has no other machine):
+
+        * each link is a uniform plate of Table 2's mass per length: ``m(l) = m_0 l / l_0``
+          (``m_0 = 80`` kg for ``A1B1``, ``A2B2``, ``A3B3``), mass centre at mid-link;
+        * of the same cross-section, i.e. a plate of fixed width ``w``, central
+          inertia ``m (l^2 + w^2) / 12``, with ``w`` fixed by Table 2 at ``l_0``:
+          ``w^2 = 12 I_0 / m_0 - 4 l_0^2`` (``w = 0.419`` m), so that about the slider
+          joint ``I(l) = m(l) (l^2 / 3 + w^2 / 12)`` and ``I(l_0) = I_0 = 11.3`` kg m^2;
+        * sliders and platform do not depend on ``l`` (Table 2 values);
+        * each counterweight is half the mass of all moving parts (Wu sec. 6.2),
+          462 kg at ``l_0``.
+
+        At ``l = l_0`` this is Table 2 (to rounding).
+        """
+        l = _v.positive_length("l", l)
+        base = cls.wu2008()
+        l0 = 1e-3 * dimensional_synthesis(500.0, 400.0, math.radians(10.0))[2]
+        k = l / l0
+        w2 = {name: 12.0 * I0 / m0 - 4.0 * l0 * l0
+              for name, m0, I0 in (("1", base.m12, base.I12), ("2", base.m22, base.I22))}
+        m12, m22, m4 = base.m12 * k, base.m22 * k, base.m4 * k
+        I12 = m12 * (l * l / 3.0 + w2["1"] / 12.0)
+        I22 = m22 * (l * l / 3.0 + w2["2"] / 12.0)
+        out = replace(base, m12=m12, m22=m22, m4=m4, I12=I12, I22=I22)
+        half = 0.5 * out.moving_mass
+        return replace(out, m13=half, m23=half)
 
     @property
     def moving_mass(self) -> float:
@@ -219,7 +262,10 @@ class GantryDynamics:
         s22 = half if p.s22 is None else p.s22
         I4 = p.I12 if p.I4 is None else p.I4
         s4 = s12 if p.s4 is None else p.s4
-        I5 = p.I22 if p.I5 is None else p.I5
+        # A4B4 exists only in the symmetric variant (m5 > 0); absent, it has no inertia.
+        # (Defaulting I5 to I22 for an absent link once put a phantom 11.3 kg m^2 on
+        # slider 2 of the built machine: M_xx 1107.8 instead of 1063.0 kg at (0, 0.5) m.)
+        I5 = (p.I22 if p.m5 > 0.0 else 0.0) if p.I5 is None else p.I5
         s5 = s22 if p.s5 is None else p.s5
         #: links per slider: (name, m, I about B, s)
         self.links = (
@@ -230,6 +276,10 @@ class GantryDynamics:
             for name, m, I, s in leg:
                 if s > l:
                     raise ValueError(f"mass-centre offset of link {name} must be <= l = {l!r}, got {s!r}")
+                if m == 0.0 and I > 0.0:
+                    raise ValueError(
+                        f"inertia of link {name} must be 0 when its mass is 0 (a massless "
+                        f"body has no inertia), got {I!r} kg m^2")
                 if I < m * s * s * (1.0 - 1e-12):
                     raise ValueError(
                         f"inertia of link {name} about its slider joint must be >= m s^2 = "

@@ -32,7 +32,9 @@ def evaluate_five_bar(fb, quadrature: str = "area", gamma: float = 0.5, step=Non
         Raster step [L] of the usable workspace and GCW (default ``length_scale/400``).
 
     Returns a dict with :data:`FIVE_BAR_KEYS`; ranges are ``[lo, hi]`` in degrees
-    over the GCW.
+    over the GCW. An empty GCW (no usable point with LCI >= gamma, e.g. Liu's
+    (0.4, 2.33, 0.27)) is a result: ``gcw_area = 0``, ``gcw_square_side = 0``, NaN
+    GCW means and square centre, ``None`` ranges; the MIC indices are still given.
     """
     _v.choice("quadrature", quadrature, QUADRATURES)
     gamma = _v.open_unit_interval("gamma", gamma)
@@ -51,10 +53,17 @@ def evaluate_five_bar(fb, quadrature: str = "area", gamma: float = 0.5, step=Non
         gcw_gsi_min=reg["gsi_min"],
         gcw_square_side=side,
         gcw_square_center_y=cy,
-        theta1_range_deg=[float(np.degrees(t1lo)), float(np.degrees(t1hi))],
-        theta2_range_deg=[float(np.degrees(t2lo)), float(np.degrees(t2hi))],
+        theta1_range_deg=_range_deg(t1lo, t1hi),
+        theta2_range_deg=_range_deg(t2lo, t2hi),
         quadrature=quadrature,
         mode=fb.mode,
         gamma=gamma,
     )
     return {k: out[k] for k in FIVE_BAR_KEYS}
+
+
+def _range_deg(lo, hi):
+    """``[lo, hi]`` in degrees, or ``None`` when the region is empty (NaN bounds)."""
+    if np.isnan(lo):
+        return None
+    return [float(np.degrees(lo)), float(np.degrees(hi))]

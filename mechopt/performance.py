@@ -95,7 +95,10 @@ def global_indices(mech, quadrature: str = "area", mic: MIC | None = None, **rul
 
 
 def region_indices(mech, region: Region) -> dict:
-    """Area means over a raster region (e.g. the GCW): ``gci``, ``gsi_max``, ``gsi_min``."""
+    """Area means over a raster region (e.g. the GCW): ``gci``, ``gsi_max``, ``gsi_min``;
+    NaN for an empty region (no mean exists)."""
+    if not region.mask.any():
+        return {"gci": np.nan, "gsi_max": np.nan, "gsi_min": np.nan}
     x, y = region.points()
     loc = _ix.local_indices(mech.jacobian(x, y))
     return {"gci": float(np.mean(loc["lci"])),

@@ -15,6 +15,8 @@
 """
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -231,14 +233,13 @@ def usable_region(mech, step=None, center=None) -> Region:
 def gcw(mech, gamma: float = 0.5, usable: Region | None = None) -> Region:
     """Good-conditioning workspace ``{LCI >= gamma}`` inside the usable workspace.
 
-    Liu 2006 sec. 3.2.3 step 1 (Fig. 25). Raises ValueError if it is empty.
+    Liu 2006 sec. 3.2.3 step 1 (Fig. 25). It may be empty (``area == 0``): Liu's
+    design (0.4, 2.33, 0.27) has no GCW at ``gamma = 0.5``, a result, not an error.
     """
     gamma = _v.open_unit_interval("gamma", gamma)
     usable = usable_region(mech) if usable is None else usable
     X, Y = usable.grid.points()
     mask = usable.mask & (mech.lci(X, Y) >= gamma)
-    if not mask.any():
-        raise ValueError(f"{mech!r}: no point of the usable workspace has LCI >= {gamma}")
     return Region(usable.grid, mask)
 
 
@@ -248,6 +249,8 @@ def largest_square(region: Region):
     For a centre ``(0, yc)`` the half side is the Chebyshev distance to the
     nearest cell outside the region, ``min max(|x|, |y - yc|)`` (only boundary
     cells matter). Returns ``(side, center_y)``; accurate to about one cell.
+    A region that does not meet the y axis (an empty one included) holds no such
+    square: ``(0.0, nan)``.
     """
     from scipy import ndimage
 
@@ -264,7 +267,7 @@ def largest_square(region: Region):
     y0, y1 = grid.y[0] - half, grid.y[-1] + half
     rows = np.flatnonzero(mask[:, np.argmin(np.abs(grid.x))])
     if rows.size == 0:
-        raise ValueError("the region does not meet the y axis")
+        return 0.0, math.nan
     best = (0.0, float(grid.y[rows[0]]))
     for chunk in np.array_split(grid.y[rows], max(1, rows.size // 256)):
         # cell edges: a square reaching an outside cell's centre minus half a cell
@@ -280,7 +283,9 @@ def largest_square(region: Region):
 def joint_ranges(mech, region: Region):
     """``((q1_lo, q1_hi), (q2_lo, q2_hi))`` of the actuator coordinates over a region
     (rad for angular joints). For the five-bar the angles follow Le eq. (17)-(18)
-    without wrapping, so the ranges are continuous."""
+    without wrapping, so the ranges are continuous. NaN bounds for an empty region."""
+    if not region.mask.any():
+        return (math.nan, math.nan), (math.nan, math.nan)
     x, y = region.points()
     q1, q2, _ = mech.ik(x, y)
     return (float(np.nanmin(q1)), float(np.nanmax(q1))), (float(np.nanmin(q2)), float(np.nanmax(q2)))

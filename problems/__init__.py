@@ -29,14 +29,26 @@ def names() -> tuple[str, ...]:
     return tuple(_REGISTRY)
 
 
-def get(name: str):
-    """A new instance of the registered Problem ``name``."""
+def get(name: str, **options):
+    """A new instance of the registered Problem ``name``.
+
+    ``options`` are passed to its constructor (e.g. ``quadrature="area"`` for the
+    Liu problems); an option the problem does not take is a ValueError.
+    """
+    import inspect
+
     from mechopt import validation as _v
 
     _v.choice("problem", name, names())
     module, cls, kw = _REGISTRY[name]
     mod = importlib.import_module(f"{__name__}.{module}")
-    return getattr(mod, cls)(**kw)
+    klass = getattr(mod, cls)
+    accepted = set(inspect.signature(klass.__init__).parameters) - {"self"} - set(kw)
+    for key in options:
+        if key not in accepted:
+            takes = ", ".join(sorted(accepted)) or "none"
+            raise ValueError(f"problem {name!r} takes no option {key!r} (its options: {takes})")
+    return klass(**kw, **options)
 
 
 def available():

@@ -39,7 +39,8 @@ class MechoptProblem(Problem):
 
     Class attributes to set: ``name`` (registry key), ``summary`` (one line),
     ``var_names``, ``objectives`` (tuple of :class:`Objective`), ``constr_names``,
-    ``default_algorithm``, ``default_pop``, ``default_gen``.
+    ``default_algorithm``, ``default_pop``, ``default_gen``, and ``settings`` (the
+    constructor options that change the numbers).
     """
 
     name = "base"
@@ -50,6 +51,9 @@ class MechoptProblem(Problem):
     default_algorithm = "nsga2"
     default_pop = 40
     default_gen = 30
+    #: options that change the numbers (e.g. the quadrature of the Liu means);
+    #: written to ``run.json`` so that a front can be recomputed elsewhere
+    settings: dict = {}
 
     def __init__(self, xl, xu):
         super().__init__(n_var=len(self.var_names), n_obj=len(self.objectives),

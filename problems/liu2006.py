@@ -3,8 +3,11 @@
 Design space (Liu 2006 sec. 2.1, Ref. [19]): ``r1 + r2 + r3 = 3``, two free
 variables ``(r1, r3)`` with ``r2 = 3 - r1 - r3 > 0``, ``0 < r1 < 3``,
 ``0 <= r3 <= 1.5``. Indices are the global means of
-:func:`mechopt.performance.global_indices` with the ``polar`` quadrature (the
-one that reproduces the paper's numbers, see ``tests/test_liu2006.py``).
+:func:`mechopt.performance.global_indices` with a named quadrature, ``polar`` by
+default (the one that reproduces the paper's numbers, see ``tests/test_liu2006.py``);
+``quadrature="area"`` gives the true area means that ``mechopt evaluate`` reports by
+default. The quadrature is part of the problem's :attr:`settings`, written to
+``run.json`` and to the summary of ``mechopt problems``.
 
 Each optimum region of sec. 3.1 is a set of constraints; the objectives of a
 region problem are the MIC radius and the GCI (both maximised), so its front is
@@ -14,6 +17,8 @@ maximises r_MIC, GCI, GVI_min, GPI_min and minimises GSI_max.
 from __future__ import annotations
 
 import numpy as np
+
+from mechopt.quadrature import QUADRATURES
 
 from .base import MechoptProblem, Objective
 
@@ -80,19 +85,21 @@ class LiuRegion(MechoptProblem):
     default_pop = 24
     default_gen = 12
 
-    def __init__(self, region: str = "w-gci"):
+    def __init__(self, region: str = "w-gci", quadrature: str = "polar"):
         from mechopt import validation as _v
 
         self.region = _v.choice("region", region, tuple(REGIONS))
+        self.quadrature = _v.choice("quadrature", quadrature, QUADRATURES)
+        self.settings = {"quadrature": self.quadrature}
         self.name = f"liu2006-{region}"
         self.summary = "Liu 2006 region " + ", ".join(f"{q} {op} {t}" for q, op, t in REGIONS[region]) \
-            + "; max (r_MIC, GCI) over (r1, r3), r2 = 3 - r1 - r3"
+            + f"; max (r_MIC, GCI) over (r1, r3), r2 = 3 - r1 - r3; {self.quadrature} means"
         self.constr_names = ("r2_positive",) + tuple(f"{q}{'_min' if op == '>' else '_max'}"
                                                      for q, op, _ in REGIONS[region])
         super().__init__(*_bounds())
 
     def evaluate_designs(self, X):
-        ex = liu_indices(X)
+        ex = liu_indices(X, self.quadrature)
         G = [(X[:, 0] + X[:, 1] - (3.0 - _MIN_R2)) / 3.0]
         for q, op, t in REGIONS[self.region]:
             v = ex[q]
@@ -107,6 +114,7 @@ class LiuManyObjective(MechoptProblem):
 
     name = "liu2006-many"
     summary = "Liu 2006 many-objective: max r_MIC, GCI, GVI_min, GPI_min and min GSI_max over (r1, r3)"
+    _summary = summary
     var_names = ("r1", "r3")
     objectives = (Objective("r_mic", -1, "L"), Objective("gci", -1), Objective("gvi_min", -1, "L"),
                   Objective("gpi_min", -1, "1/L"), Objective("gsi_max", 1, "L^2"))
@@ -115,10 +123,15 @@ class LiuManyObjective(MechoptProblem):
     default_pop = 30
     default_gen = 10
 
-    def __init__(self):
+    def __init__(self, quadrature: str = "polar"):
+        from mechopt import validation as _v
+
+        self.quadrature = _v.choice("quadrature", quadrature, QUADRATURES)
+        self.settings = {"quadrature": self.quadrature}
+        self.summary = f"{self._summary}; {self.quadrature} means"
         super().__init__(*_bounds())
 
     def evaluate_designs(self, X):
-        ex = liu_indices(X)
+        ex = liu_indices(X, self.quadrature)
         G = ((X[:, 0] + X[:, 1] - (3.0 - _MIN_R2)) / 3.0)[:, None]
         return {"F": _objective_matrix(ex, self.objectives), "G": G, "extra": ex}

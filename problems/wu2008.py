@@ -7,7 +7,9 @@ global velocity output ratio ``k_av`` (eq. 7, literal reading: the x-mean of
 ``|cot theta_1|``, maximised) and the machine size measured by the link length
 ``l`` (minimised); ``d1`` and the stroke are reported with every design. The
 variant ``wu2008-dynamic`` adds the global dynamic index ``eta_D`` (eq. 44,
-minimised) with the masses of Wu Table 2 (link inertias scaled with ``l^2``).
+minimised) with the masses of Wu Table 2 carried over to each design's link length
+(:meth:`mechopt.dynamics.GantryInertia.wu2008_scaled`: constant mass per length and
+cross-section, counterweights half the moving mass).
 
 Both objectives of ``wu2008`` improve as ``theta_1S`` decreases (Wu sec. 4.3:
 a larger ``theta_1S`` gives "larger volume ... and smaller value of k_av"), so
@@ -56,21 +58,6 @@ class WuGantry(MechoptProblem):
         return {"F": np.column_stack([-ex["k_av"], ex["l"]]), "extra": ex}
 
 
-def scaled_inertia(l_mm: float):
-    """Wu Table 2 masses with the link inertias about the slider joints scaled as
-    ``l^2`` from the Table 1 design (l = 616.4 mm): a link of another length with the
-    same mass distribution. Table 2's 11.3 kg m^2 is below ``m (l/2)^2`` for longer
-    links, which no rigid body can have."""
-    import dataclasses
-
-    from mechopt.dynamics import GantryInertia
-
-    base = GantryInertia.wu2008()
-    l_ref = dimensional_synthesis(500.0, 400.0, math.radians(10.0))[2]
-    k = (l_mm / l_ref) ** 2
-    return dataclasses.replace(base, I12=base.I12 * k, I22=base.I22 * k)
-
-
 class WuGantryDynamic(WuGantry):
     name = "wu2008-dynamic"
     summary = "Wu 2008 gantry, three objectives: max k_av, min l, min eta_D (eq. 44, Table 2 masses)"
@@ -80,7 +67,6 @@ class WuGantryDynamic(WuGantry):
     def evaluate_designs(self, X):
         ex = self._synthesis(X)
         ex["eta_d"] = np.array([
-            summary(self.b, self.h, math.radians(t), n=24, inertia=scaled_inertia(l))["eta_d"]
-            for t, l in zip(X[:, 0], ex["l"])])
+            summary(self.b, self.h, math.radians(t), n=24)["eta_d"] for t in X[:, 0]])
         F = np.column_stack([-ex["k_av"], ex["l"], ex["eta_d"]])
         return {"F": F, "extra": ex}

@@ -278,7 +278,8 @@ def test_summary():
     m = Biglide(1.0, 1.1, 0.0, 1.0)
     s = summary(m)
     assert tuple(s) == SUMMARY_KEYS
-    assert all(isinstance(v, float) for v in s.values())
+    assert all(isinstance(v, float) for k, v in s.items() if k != "quadrature")
+    assert s["quadrature"] == "adaptive-1d"
     assert s["workspace_area"] == pytest.approx(m.workspace_area(), rel=1e-15)
     assert s["gtqi"] == pytest.approx(m.gtqi(), rel=1e-12)
     assert 0 < s["gtqi"] < 1

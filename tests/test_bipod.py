@@ -278,7 +278,8 @@ def test_gtqi_nan_for_empty_workspace():
 def test_summary():
     s = summary(stan())
     assert tuple(s) == SUMMARY_KEYS
-    assert all(isinstance(v, float) for v in s.values())
+    assert all(isinstance(v, float) for k, v in s.items() if k != "quadrature")
+    assert s["quadrature"] == "exact"
     assert s["workspace_area"] == pytest.approx(4863.877990351752, rel=1e-14)
     assert s["tqi_integral"] == pytest.approx(2500.0, rel=1e-14)
     assert s["gtqi"] == pytest.approx(0.5139931562755, rel=1e-12)

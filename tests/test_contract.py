@@ -297,18 +297,38 @@ def test_lci_equals_svd_ratio(case):
     np.testing.assert_allclose(mech.lci(x, y), s[:, 1] / s[:, 0], rtol=1e-12, atol=1e-15)
 
 
-def test_scale_invariance_if_scalable(case):
+def test_scale_invariance(case):
+    """Every mechanism has ``scaled(D)``: LCI and TQI of the pose ``D p`` equal those
+    of ``p``; reachability (hence every area) maps by ``p -> D p``, so areas scale as
+    D^2; the Jacobian scales as 1/D for angular joints and not at all for sliders
+    (q is then a length: q_dot = J p_dot is homogeneous of degree 0)."""
     cid, mech, sampler = case
-    if not hasattr(mech, "scaled"):
-        pytest.skip("mechanism has no scaled()")
     x, y = sampler(mech, _rng(cid, 13), 200)
+    xmin, xmax, ymin, ymax = mech.bounding_box()
+    rng = _rng(cid, 14)
+    bx, by = rng.uniform(xmin, xmax, 2000), rng.uniform(ymin, ymax, 2000)
     for D in (0.01, 3.7, 250.0):
         big = mech.scaled(D)
+        assert type(big) is type(mech) and getattr(big, "mode", None) == getattr(mech, "mode", None)
+        assert big.length_scale == pytest.approx(D * mech.length_scale, rel=1e-12)
+        np.testing.assert_allclose(big.bounding_box(), D * np.asarray(mech.bounding_box()),
+                                   rtol=1e-12, atol=1e-12 * D * mech.length_scale)
         np.testing.assert_allclose(big.lci(D * x, D * y), mech.lci(x, y), rtol=1e-10, atol=1e-14)
-        np.testing.assert_allclose(
-            big.jacobian(D * x, D * y), mech.jacobian(x, y) / D, rtol=1e-9,
-            atol=1e-12 * np.abs(mech.jacobian(x, y)).max() / D,
-        )
+        np.testing.assert_allclose(big.tqi(D * x, D * y), mech.tqi(x, y), rtol=1e-10, atol=1e-14)
+        k = 1.0 / D if mech.angular_joints else 1.0
+        J = mech.jacobian(x, y)
+        np.testing.assert_allclose(big.jacobian(D * x, D * y), J * k, rtol=1e-9,
+                                   atol=1e-12 * np.abs(J).max() * k)
+        # reachability maps point for point, away from the boundary's rounding band
+        clear = np.abs(np.asarray(mech.serial_clearance(bx, by))) > 1e-6 * mech.length_scale
+        np.testing.assert_array_equal(np.asarray(big.reachable(D * bx, D * by))[clear],
+                                      np.asarray(mech.reachable(bx, by))[clear])
+        if hasattr(mech, "workspace_area"):
+            assert big.workspace_area() == pytest.approx(D * D * mech.workspace_area(), rel=1e-9)
+    with pytest.raises(ValueError, match="factor"):
+        mech.scaled(0.0)
+    with pytest.raises(ValueError, match="factor"):
+        mech.scaled(float("nan"))
 
 
 # --- errors on wrong shapes ------------------------------------------------------

@@ -1050,7 +1050,7 @@ def gantry(draw):
     stroke, q_min, l2, d2 = draw(length), draw(real), draw(length0), draw(length0)
     mode = draw(name_of(("--", "++", "-+", "+-")))
     tw = draw(st.one_of(st.none(), st.lists(real, min_size=0, max_size=5), mixed(st.none())))
-    what = draw(st.sampled_from(["area", "k_av", "vor", "fk", "classify", "rescaled", "task"]))
+    what = draw(st.sampled_from(["area", "k_av", "vor", "fk", "classify", "scaled", "task"]))
     xr = [draw(st.one_of(st.none(), real)), draw(st.one_of(st.none(), real))]
     leg = draw(mixed(st.sampled_from([1, 2])))
     reading = draw(name_of(("literal", "chebyshev", "mean")))
@@ -1070,8 +1070,8 @@ def gantry(draw):
             g.fk(xr[0] if xr[0] is not None else 0.0, xr[1] if xr[1] is not None else 0.0, assembly=asm)
         elif what == "classify":
             g.classify_singularity(xr[0] if xr[0] is not None else 0.0, 0.5)
-        elif what == "rescaled":
-            g.rescaled(factor)
+        elif what == "scaled":
+            g.scaled(factor)
         else:
             g.task_workspace_area()
     return run

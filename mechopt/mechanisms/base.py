@@ -102,6 +102,17 @@ class PlanarMechanism(ABC):
     def length_scale(self) -> float:
         """A characteristic length, used to set tolerances and grid steps."""
 
+    @abstractmethod
+    def scaled(self, factor: float) -> "PlanarMechanism":
+        """The same mechanism with every length (links, strokes, offsets, task
+        regions) multiplied by ``factor`` > 0, e.g. 1e-3 for mm -> m.
+
+        Contract (checked on every case of the contract suite): the pose
+        ``factor * p`` of the scaled mechanism has the same LCI and TQI as ``p``;
+        areas scale as ``factor^2``; the Jacobian scales as ``1/factor`` for angular
+        joints and is unchanged for prismatic ones (``q`` is then a length).
+        """
+
     # --- derived once for every mechanism ------------------------------------
     def _within_strokes(self, q1, q2, rtol: float = 1e-12):
         """Actuator values inside ``self.joint_limits`` (for mechanisms with stroke

@@ -89,7 +89,7 @@ MODES = ("--", "++", "+-", "-+")
 ASSEMBLY_MODES = ("up", "down")
 #: how :meth:`Biglide.gtqi` integrates: 1-D adaptive quadrature of exact chords, or raster
 GTQI_METHODS = ("gauss", "quad", "raster")
-SUMMARY_KEYS = ("workspace_area", "gtqi", "tqi_integral", "k_av_1", "k_av_2")
+SUMMARY_KEYS = ("workspace_area", "gtqi", "tqi_integral", "k_av_1", "k_av_2", "quadrature")
 _SIGN = {"+": 1.0, "-": -1.0}
 #: default raster resolution: cells across the smaller side of the bounding box
 RASTER_CELLS = 400
@@ -159,6 +159,13 @@ class Biglide(PlanarMechanism):
     def with_mode(self, mode: str) -> "Biglide":
         """The same dimensions in another working mode."""
         return Biglide(self.l1, self.l2, self.q1_min, self.q1_max, self.q2_min, self.q2_max, mode)
+
+    def scaled(self, factor: float) -> "Biglide":
+        """Every length (``l1``, ``l2``, the stroke limits) multiplied by ``factor``
+        (the Jacobian of these prismatic actuators is unchanged)."""
+        f = _v.positive_length("factor", factor)
+        return Biglide(self.l1 * f, self.l2 * f, self.q1_min * f, self.q1_max * f,
+                       self.q2_min * f, self.q2_max * f, self.mode)
 
     @property
     def length_scale(self) -> float:
@@ -487,7 +494,9 @@ def summary(mech: Biglide) -> dict:
     ``workspace_area`` [L^2] exact (Stan eq. 8, mode of ``mech``); ``gtqi`` the area
     mean of the TQI (Stan eq. 9, 1-D quadrature, rel. error ~1e-10);
     ``tqi_integral`` [L^2] its numerator; ``k_av_1``, ``k_av_2`` Wu's eq. (7) over
-    the whole x range (``inf`` when it contains that leg's guide, i.e. ``l2 >= 2 l1``).
+    the whole x range (``inf`` when it contains that leg's guide, i.e. ``l2 >= 2 l1``);
+    ``quadrature`` names the rule of the GTQI: ``"adaptive-1d"`` (exact area, adaptive
+    1-D quadrature of the TQI's column integrals, relative tolerance 1e-10).
     """
     if not isinstance(mech, Biglide):
         raise ValueError(f"mech must be a Biglide, got {type(mech).__name__}")
@@ -499,4 +508,5 @@ def summary(mech: Biglide) -> dict:
         "tqi_integral": ti,
         "k_av_1": mech.k_av(1),
         "k_av_2": mech.k_av(2),
+        "quadrature": "adaptive-1d",
     }

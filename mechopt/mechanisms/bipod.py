@@ -82,7 +82,7 @@ ASSEMBLY_MODES = ("up", "down")
 #: how :meth:`Bipod.gtqi` integrates: closed form, or mid-point raster
 GTQI_METHODS = ("exact", "raster")
 #: keys of :func:`summary`
-SUMMARY_KEYS = ("workspace_area", "gtqi", "tqi_integral", "q1_min_over_b")
+SUMMARY_KEYS = ("workspace_area", "gtqi", "tqi_integral", "q1_min_over_b", "quadrature")
 
 #: default raster resolution: cells across the smaller side of the bounding box
 RASTER_CELLS = 400
@@ -184,6 +184,13 @@ class Bipod(PlanarMechanism):
         return Bipod(self.b, self.q1_min, self.q1_max, self.q2_min, self.q2_max, branch)
 
     with_mode = with_branch
+
+    def scaled(self, factor: float) -> "Bipod":
+        """``b`` and the strokes multiplied by ``factor`` (the Jacobian of these
+        prismatic actuators is unchanged, areas scale as ``factor^2``)."""
+        f = _v.positive_length("factor", factor)
+        return Bipod(self.b * f, self.q1_min * f, self.q1_max * f, self.q2_min * f,
+                     self.q2_max * f, self.branch)
 
     @property
     def length_scale(self) -> float:
@@ -328,7 +335,8 @@ def summary(mech: Bipod) -> dict:
 
     ``workspace_area`` [L^2] exact (Stan eq. 8, branch of ``mech``), ``gtqi`` the
     exact area mean of the TQI (Stan eq. 9), ``tqi_integral`` [L^2] its
-    numerator, ``q1_min_over_b`` Stan's design variable (eq. 11).
+    numerator, ``q1_min_over_b`` Stan's design variable (eq. 11); ``quadrature`` names
+    how the mean is taken: ``"exact"`` (closed form, no quadrature).
     """
     if not isinstance(mech, Bipod):
         raise ValueError(f"mech must be a Bipod, got {type(mech).__name__}")
@@ -337,4 +345,5 @@ def summary(mech: Bipod) -> dict:
         "gtqi": mech.gtqi("exact"),
         "tqi_integral": mech.tqi_integral(),
         "q1_min_over_b": mech.q1_min / mech.b,
+        "quadrature": "exact",
     }

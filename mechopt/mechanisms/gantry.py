@@ -188,7 +188,7 @@ class Gantry(PlanarMechanism):
 
     Lengths may be in any consistent unit [L]; angles are in rad. The actuator
     coordinates are lengths, so the Jacobian is dimensionless and invariant under a
-    change of length unit (see :meth:`rescaled`).
+    change of length unit (see :meth:`scaled`).
     """
 
     modes = MODES
@@ -253,11 +253,10 @@ class Gantry(PlanarMechanism):
         return Gantry(self.d1, self.l, self.stroke, self.q_min, self.l2, self.d2, mode,
                       self.task_workspace)
 
-    def rescaled(self, factor) -> "Gantry":
+    def scaled(self, factor) -> "Gantry":
         """Every length (and the task rectangle) multiplied by ``factor``, e.g. 1e-3 for mm -> m.
 
-        Named ``rescaled`` rather than ``scaled``: with prismatic actuators the
-        Jacobian does not change with the length unit (a five-bar's scales as 1/D).
+        With prismatic actuators the Jacobian does not change (a five-bar's scales as 1/D).
         """
         f = _v.positive_length("factor", factor)
         tw = None if self.task_workspace is None else tuple(f * v for v in self.task_workspace)
@@ -583,10 +582,10 @@ def wu2008_gantry(theta_1S_deg: float = 10.0, unit: str = "mm") -> Gantry:
     th = math.radians(_v.finite_number("theta_1S_deg", theta_1S_deg))
     g = Gantry.from_synthesis(500.0, 400.0, th, l2=200.0, d2=100.0,
                               task_y_min=WU2008_TASK_Y_MIN_MM)
-    return g if unit == "mm" else g.rescaled(1e-3)
+    return g if unit == "mm" else g.scaled(1e-3)
 
 
-SUMMARY_KEYS = ("workspace_area", "k_av", "d", "d1", "l", "stroke", "eta_d", "gtqi")
+SUMMARY_KEYS = ("workspace_area", "k_av", "d", "d1", "l", "stroke", "eta_d", "gtqi", "quadrature")
 
 
 def summary(b=500.0, h=400.0, theta_1S=math.radians(10.0), d2=100.0, l2=200.0,
@@ -604,7 +603,9 @@ def summary(b=500.0, h=400.0, theta_1S=math.radians(10.0), d2=100.0, l2=200.0,
     length_unit : {"mm", "m"}
         Unit of the lengths given and returned; the dynamics run in metres.
     inertia : mechopt.dynamics.GantryInertia, optional
-        Masses and inertias (default: Wu Table 2, reused unchanged for any design).
+        Masses and inertias (default: Wu Table 2 carried over to this design's link
+        length, :meth:`mechopt.dynamics.GantryInertia.wu2008_scaled`; Table 2 itself at
+        ``theta_1S = 10`` deg).
     n : int
         Gauss-Legendre nodes per axis of the task-rectangle means (eta_D, GTQI).
 
@@ -614,7 +615,8 @@ def summary(b=500.0, h=400.0, theta_1S=math.radians(10.0), d2=100.0, l2=200.0,
     set, [length_unit^2]), ``k_av`` (literal reading of eq. 7 over ``[-b/2, b/2]``),
     ``d``, ``d1``, ``l``, ``stroke`` (eq. 14-16, [length_unit]), ``eta_d`` (eq. 44,
     area mean of kappa_D over the task rectangle) and ``gtqi`` (area mean of
-    :func:`mechopt.indices.tqi` over the task rectangle).
+    :func:`mechopt.indices.tqi` over the task rectangle); ``quadrature`` names their
+    rule, ``"gauss-legendre-NxN"`` (tensor Gauss-Legendre, ``n`` nodes per axis).
     """
     from .. import dynamics as _dyn  # late import: dynamics imports this module
 
@@ -622,11 +624,15 @@ def summary(b=500.0, h=400.0, theta_1S=math.radians(10.0), d2=100.0, l2=200.0,
     d, d1, l, stroke = dimensional_synthesis(b, h, theta_1S)
     g = Gantry.from_synthesis(b, h, theta_1S, l2=l2, d2=d2)
     k_av = g.k_av(reading="literal")
-    g_m = g.rescaled(_LENGTH_UNITS[length_unit])
-    dyn = _dyn.GantryDynamics(g_m, inertia if inertia is not None else _dyn.GantryInertia.wu2008())
+    g_m = g.scaled(_LENGTH_UNITS[length_unit])
+    if inertia is None:
+        inertia = _dyn.GantryInertia.wu2008_scaled(g_m.l)
+    dyn = _dyn.GantryDynamics(g_m, inertia)
     eta = dyn.eta_d(n=n)
     xs, ys, w = _dyn.rectangle_rule(g.task_workspace, n)
     gtqi = float(np.sum(w * g.tqi(xs, ys)))
     out = dict(workspace_area=g.workspace_area(), k_av=k_av, d=d, d1=d1, l=l, stroke=stroke,
                eta_d=eta, gtqi=gtqi)
-    return {k: float(out[k]) for k in SUMMARY_KEYS}
+    res = {k: float(out[k]) for k in SUMMARY_KEYS[:-1]}
+    res["quadrature"] = f"gauss-legendre-{n}x{n}"
+    return res
