@@ -158,8 +158,8 @@ def atlas_figures(out, quick: bool = False):
         inside = ""
         if example is not None:
             # the paper's claim: its example design lies in the region (our indices, polar)
-            ex = liu_indices(np.array([[example[0], example[2]]]))
-            ex = pd.DataFrame({**{k: v for k, v in ex.items()}, "r1": [example[0]], "r3": [example[2]],
+            ex = liu_indices([example[0]], [example[1]], [example[2]])
+            ex = pd.DataFrame({**{k: v for k, v in ex.items()},
                                **dict(zip(("s", "t"), plane_coordinates(*example)))})
             inside = bool(parse_condition(where, names=tuple(ex.columns)).evaluate(ex)[0])
         rows.append({"region": name, "condition": where, "n_designs": int(mask.sum()),

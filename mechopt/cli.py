@@ -150,7 +150,7 @@ def _client(args):
 
 def _cmd_optimize(args):
     from .problems import get
-    from .runner import optimize, resume
+    from .runner import infeasible_line, optimize, resume
 
     if args.resume is not None:
         args.out = args.resume
@@ -163,7 +163,7 @@ def _cmd_optimize(args):
     else:
         if args.problem is None or args.out is None:
             raise ValueError("optimize needs PROBLEM and --out (or --resume DIR)")
-        problem = get(args.problem)
+        problem = get(args.problem, **_problem_options(args))
         client = _client(args)
         try:
             res = optimize(problem, args.algorithm, args.pop, args.gen, args.seed, args.n_jobs, client,
@@ -171,6 +171,9 @@ def _cmd_optimize(args):
         finally:
             if client is not None:
                 client.close()
+    if infeasible_line(res.info):  # an empty front is an answer: one line, status 0
+        print(infeasible_line(res.info))
+        return 0
     print(f"{len(res.front)} designs on the front; wrote {args.out}/front.csv, history.csv, "
           f"run.json, front.png ({res.info['wall_time_s']:.1f} s)")
     return 0
@@ -178,9 +181,9 @@ def _cmd_optimize(args):
 
 def _cmd_sweep(args):
     from .problems import get
-    from .runner import parse_weights, sweep
+    from .runner import infeasible_line, parse_weights, sweep
 
-    problem = get(args.problem)
+    problem = get(args.problem, **_problem_options(args))
     weights = parse_weights(args.weights)
     client = _client(args)
     try:
@@ -188,8 +191,20 @@ def _cmd_sweep(args):
     finally:
         if client is not None:
             client.close()
-    print(f"{len(table)} weighted-sum optima; wrote {args.out}/sweep.csv, sweep.png, front.csv")
+    info = table.attrs["sweep"]
+    if infeasible_line(info):
+        print(infeasible_line(info))
+        return 0
+    missing = len(table) - info["feasible_weights"]
+    print(f"{info['feasible_weights']} weighted-sum optima"
+          + (f" ({missing} weights without a feasible design)" if missing else "")
+          + f"; wrote {args.out}/sweep.csv, sweep.png, front.csv")
     return 0
+
+
+def _problem_options(args) -> dict:
+    """Problem constructor options given on the command line (only those set)."""
+    return {k: v for k, v in (("quadrature", args.quadrature),) if v is not None}
 
 
 def _add_run_options(p, resumable=False):
@@ -202,6 +217,9 @@ def _add_run_options(p, resumable=False):
     p.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None,
                    help="evaluate on a Dask cluster instead of joblib")
     p.add_argument("--out", required=not resumable, default=None, help="output folder")
+    p.add_argument("--quadrature", default=None, choices=None,
+                   help="rule of the disk means of the Liu 2006 problems: polar (default, the "
+                        "paper's) or area; recorded in run.json")
 
 
 def _add_strokes(p):

@@ -2,22 +2,32 @@
 
 Figures are built with :class:`matplotlib.figure.Figure` (no global pyplot
 state, no display needed) and saved through :func:`mechopt.io.save_figure`.
+A run without any feasible design has no front: its figure is the final
+population in design space, coloured by constraint violation
+(:func:`plot_population`).
 """
 from __future__ import annotations
 
 from matplotlib.figure import Figure
 
-__all__ = ["plot_front", "plot_sweep"]
+import numpy as np
+
+__all__ = ["plot_front", "plot_sweep", "plot_population"]
 
 
 def _label(ob):
     return f"{ob.name} [{ob.unit}] ({'max' if ob.sense < 0 else 'min'})"
 
 
-def plot_front(problem, front, history) -> Figure:
+def plot_front(problem, front, history, population=None, info=None) -> Figure:
     """The front of a 2-3 objective run (pairs of objectives for more), or the
-    best-so-far curve of a single-objective run."""
+    best-so-far curve of a single-objective run; with an empty front (no feasible
+    design) and the final ``population``, :func:`plot_population` instead."""
     obs = problem.objectives
+    if len(front) == 0 and population is not None:
+        n_eval = (info or {}).get("evaluations")
+        within = f" in {n_eval} evaluations" if n_eval is not None else ""
+        return plot_population(problem, population, f"{problem.name}: no feasible design{within}")
     if len(obs) == 1:
         fig = Figure(figsize=(5, 3.5))
         ax = fig.add_subplot()
@@ -38,18 +48,68 @@ def plot_front(problem, front, history) -> Figure:
     return fig
 
 
-def plot_sweep(problem, front, sweep) -> Figure:
-    """Weighted-sum optima (labelled by weight) over the NSGA-II front."""
+def plot_sweep(problem, front, sweep, population=None, info=None) -> Figure:
+    """Weighted-sum optima (labelled by weight) over the NSGA-II front. Weights
+    without a feasible optimum (``feasible`` False in ``sweep``) are listed, not
+    drawn; when nothing at all is feasible, the runs' final ``population``
+    coloured by constraint violation (:func:`plot_population`)."""
     a, b = problem.objectives[:2]
+    ok = sweep["feasible"].astype(bool) if "feasible" in sweep else np.ones(len(sweep), bool)
+    if len(front) == 0 and not ok.any() and population is not None:
+        n_eval = (info or {}).get("evaluations")
+        within = f" in {n_eval} evaluations" if n_eval is not None else ""
+        return plot_population(problem, population,
+                               f"{problem.name} weighting sweep: no feasible design{within}")
     fig = Figure(figsize=(5.5, 4))
     ax = fig.add_subplot()
-    ax.scatter(front[a.name], front[b.name], s=12, color="0.6", label="NSGA-II front")
-    ax.scatter(sweep[a.name], sweep[b.name], s=30, color="C3", marker="x", label="weighted-sum optima")
-    for rec in sweep.itertuples():
-        ax.annotate(f"{rec.weight:g}", (getattr(rec, a.name), getattr(rec, b.name)), fontsize=7,
-                    xytext=(3, 3), textcoords="offset points")
+    ax.scatter(front[a.name].astype(float), front[b.name].astype(float), s=12, color="0.6",
+               label="NSGA-II front")
+    best = sweep[ok]
+    ax.scatter(best[a.name].astype(float), best[b.name].astype(float), s=30, color="C3", marker="x",
+               label="weighted-sum optima")
+    for w, x, y in zip(best["weight"], best[a.name].astype(float), best[b.name].astype(float)):
+        if np.isfinite(x) and np.isfinite(y):
+            ax.annotate(f"{w:g}", (x, y), fontsize=7, xytext=(3, 3), textcoords="offset points")
     ax.set_xlabel(_label(a))
     ax.set_ylabel(_label(b))
     ax.legend(fontsize=8)
-    ax.set_title(f"{problem.name}: weighting sweep")
+    title = f"{problem.name}: weighting sweep"
+    if not ok.all():
+        title += "\nno feasible design for w = " + ", ".join(f"{w:g}" for w in sweep["weight"][~ok])
+    ax.set_title(title, fontsize=9 if not ok.all() else None)
+    return fig
+
+
+def plot_population(problem, population, title=None) -> Figure:
+    """The final population of a run without a feasible design, in design space
+    (first two variables; a single variable against the violation), coloured by
+    its constraint violation (``violation`` = sum of max(0, g)); the
+    least-violating design is starred."""
+    from matplotlib.colors import LogNorm, Normalize
+
+    names = list(problem.var_names)
+    v = population["violation"].to_numpy(float)
+    finite = np.isfinite(v)
+    lo, hi = (v[finite].min(), v[finite].max()) if finite.any() else (0.0, 1.0)
+    norm = LogNorm(lo, hi) if lo > 0 and hi > 100 * lo else Normalize(lo, hi if hi > lo else lo + 1.0)
+    x = population[names[0]].to_numpy(float)
+    y = population[names[1]].to_numpy(float) if len(names) > 1 else v
+    fig = Figure(figsize=(5.8, 4))
+    ax = fig.add_subplot()
+    sc = ax.scatter(x, y, c=np.where(finite, v, hi), cmap="viridis_r", norm=norm, s=22,
+                    edgecolors="0.3", linewidths=0.4)
+    fig.colorbar(sc, ax=ax, label="constraint violation (sum of max(0, g))")
+    if finite.any():
+        k = int(np.argmin(np.where(finite, v, np.inf)))
+        ax.scatter([x[k]], [y[k]], marker="*", s=160, color="C3", edgecolors="k", linewidths=0.5,
+                   label=f"least violation {v[k]:.3g}", zorder=3)
+        ax.legend(fontsize=8)
+    ax.set_xlabel(names[0])
+    ax.set_ylabel(names[1] if len(names) > 1 else "constraint violation (sum of max(0, g))")
+    if len(names) == 1 and isinstance(norm, LogNorm):
+        ax.set_yscale("log")
+    if len(names) > 1:
+        ax.set_xlim(problem.xl[0], problem.xu[0])
+        ax.set_ylim(problem.xl[1], problem.xu[1])
+    ax.set_title(title or f"{problem.name}: population, no feasible design", fontsize=9)
     return fig

@@ -8,8 +8,18 @@ the same front for any ``n_jobs`` and either backend. Outputs go through
 ``front.csv``    one row per non-dominated feasible design (variables, objectives
                  with their natural sign, constraint values, derived indices)
 ``history.csv``  per generation: evaluations, best objective values, hypervolume
-``run.json``     problem, algorithm and parameters, seed, versions, wall time
+``run.json``     problem, algorithm and parameters, seed, versions, wall time,
+                 ``feasible`` (feasible designs in the final population) and
+                 ``evaluations``
 ``front.png``    the front (or the convergence curve of a single objective)
+
+A run may end without any feasible design (a small budget, a demanding
+requirement). That is an answer, not an error: ``front.csv`` keeps its header
+and has no rows, ``run.json`` has ``"feasible": 0`` and the least-violating
+design of the final population (``least_violating_design``, its
+``least_violation`` = sum of max(0, g) and ``constraint_violations`` per
+``g_*`` column), and ``front.png`` shows the population coloured by constraint
+violation; :func:`infeasible_line` is the one-line summary the CLI prints.
 """
 from __future__ import annotations
 
@@ -25,7 +35,8 @@ from . import io as _io
 from . import validation as _v
 from .progress import Progress
 
-__all__ = ["ALGORITHMS", "make_algorithm", "optimize", "resume", "sweep", "parse_weights", "RunResult"]
+__all__ = ["ALGORITHMS", "make_algorithm", "optimize", "resume", "sweep", "parse_weights", "RunResult",
+           "infeasible_line"]
 
 ALGORITHMS = ("ga", "nsga2", "nsga3")
 
@@ -64,6 +75,12 @@ class RunResult:
     front: pd.DataFrame
     history: pd.DataFrame
     info: dict
+    #: the final population: variables, objectives (natural sign), ``g_*`` and
+    #: ``violation`` (sum of max(0, g), pymoo's CV)
+    population: pd.DataFrame | None = None
+    #: ``describe`` row (one-row table) of the least-violating design when no
+    #: design is feasible, else None
+    least: pd.DataFrame | None = None
 
 
 #: largest population and number of generations accepted (a typo such as
@@ -219,10 +236,19 @@ def _drive(algo, state, n_jobs, client, out, progress, plot) -> RunResult:
     wall = time.perf_counter() - t0
     X = res.opt.get("X") if res.opt is not None else np.empty((0, problem.n_var))
     feas = res.opt.get("FEAS")[:, 0] if res.opt is not None else np.zeros(0, bool)
-    front = _front_table(problem, X[feas]) if feas.any() else pd.DataFrame(columns=list(problem.var_names))
-    history = pd.DataFrame(hist.rows)
+    population = _population_table(problem, res.pop)
     info = _run_info(problem, state["algorithm"], state["pop"], state["gen"], state["seed"], n_jobs,
                      client, wall)
+    info["evaluations"] = int(algo.evaluator.n_eval)
+    info["feasible"] = int(res.pop.get("FEAS")[:, 0].sum()) if feas.any() else 0
+    least = None
+    if feas.any():
+        front = _front_table(problem, X[feas])
+    else:  # nothing feasible: an empty front with its full header, and how far the best design is
+        least = _least_violating(problem, population)
+        front = least.iloc[:0]
+        info.update(_violation_info(problem, least))
+    history = pd.DataFrame(hist.rows)
     if out is not None:
         _io.write_csv(front, out / "front.csv")
         _io.write_csv(history, out / "history.csv")
@@ -230,10 +256,51 @@ def _drive(algo, state, n_jobs, client, out, progress, plot) -> RunResult:
         if plot:
             from .plotting import plot_front
 
-            _io.save_figure(plot_front(problem, front, history), out / "front.png")
+            _io.save_figure(plot_front(problem, front, history, population, info), out / "front.png")
         if (out / CHECKPOINT).exists():
             (out / CHECKPOINT).unlink()  # the run is complete: nothing to resume
-    return RunResult(front, history, info)
+    return RunResult(front, history, info, population, least)
+
+
+def _population_table(problem, pop) -> pd.DataFrame:
+    """The final population from pymoo's stored values (no re-evaluation)."""
+    X, F, CV = pop.get("X"), pop.get("F"), pop.get("CV")
+    cols = {name: X[:, i] for i, name in enumerate(problem.var_names)}
+    for j, ob in enumerate(problem.objectives):
+        cols[ob.name] = ob.sense * F[:, j]
+    if problem.n_ieq_constr:
+        G = pop.get("G")
+        for j, name in enumerate(problem.constr_names):
+            cols[f"g_{name}"] = G[:, j]
+    cols["violation"] = np.asarray(CV, float).reshape(len(X), -1)[:, 0] if len(X) else np.zeros(0)
+    return pd.DataFrame(cols)
+
+
+def _least_violating(problem, population) -> pd.DataFrame:
+    """``describe`` of the design with the smallest total violation (first of ties)."""
+    cv = np.where(np.isnan(population["violation"].to_numpy()), np.inf, population["violation"].to_numpy())
+    x = population[list(problem.var_names)].to_numpy()[int(np.argmin(cv))]
+    return pd.DataFrame(problem.describe(x[None, :]))
+
+
+def _violation_info(problem, least: pd.DataFrame) -> dict:
+    """run.json keys of an infeasible run: the least-violating design, its violation
+    per constraint (``g_*``: max(0, g)) and in total (their sum)."""
+    row = least.iloc[0]
+    per = {f"g_{n}": max(0.0, float(row[f"g_{n}"])) for n in problem.constr_names}
+    return {"least_violation": float(sum(per.values())),
+            "least_violating_design": {n: float(row[n]) for n in problem.var_names},
+            "constraint_violations": per}
+
+
+def infeasible_line(info: dict) -> str | None:
+    """``no feasible design in N evaluations; least violation V at r1=..., r3=...``
+    for a run (or a sweep) that found no feasible design, else None."""
+    if info.get("feasible", 1) or "least_violation" not in info:
+        return None
+    design = ", ".join(f"{k}={v:.6g}" for k, v in info["least_violating_design"].items())
+    return (f"no feasible design in {info['evaluations']} evaluations; "
+            f"least violation {info['least_violation']:.6g} at {design}")
 
 
 def _run_info(problem, algorithm, pop, gen, seed, n_jobs, client, wall) -> dict:
@@ -242,6 +309,8 @@ def _run_info(problem, algorithm, pop, gen, seed, n_jobs, client, wall) -> dict:
     return {
         "problem": problem.name,
         "summary": problem.summary,
+        "settings": dict(problem.settings),
+        "single_optimum": problem.single_optimum,
         "algorithm": {"name": algorithm, "pop": pop, "gen": gen},
         "seed": seed,
         "n_jobs": n_jobs,
@@ -263,6 +332,11 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int = 2, 
     (``Z = w f1/s1 + (1 - w) f2/s2`` in minimisation form), unless the problem
     defines ``weighted_sum(w)`` itself (e.g. Stan 2008's ``Z = W1 T + W2 W``).
     Writes ``sweep.csv``, the front run's files and ``sweep.png`` when ``out``.
+
+    A weight whose GA run finds no feasible design has ``feasible`` False, NaN
+    objectives and its least-violating design with its ``violation``; the totals
+    (``table.attrs["sweep"]``, also under ``"sweep"`` in ``run.json``) say how many
+    weights are feasible and, if none and the front is empty, the least violation.
     """
     from .problems.weighted import WeightedSum  # noqa: F401 (installed sub-package)
 
@@ -279,24 +353,51 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int = 2, 
     _v.integer("n_jobs", n_jobs, 1)
     out = _io.prepare_out_dir(out) if out is not None else None
     front_run = optimize(problem, "nsga2", pop, gen, seed, n_jobs, client, out, progress, plot=False)
-    F = np.column_stack([ob.sense * front_run.front[ob.name].to_numpy() for ob in problem.objectives])
+    F = np.column_stack([ob.sense * front_run.front[ob.name].to_numpy(float) for ob in problem.objectives])
     scales = np.ptp(F, axis=0) if len(F) > 1 else np.ones(2)
     scales = np.where(scales > 0, scales, 1.0)
-    rows = []
+    rows, columns = [], None
+    runs = [front_run]
     bar = Progress(len(weights), f"{problem.name} sweep") if progress else None
     for i, w in enumerate(weights):
         single = WeightedSum(problem, float(w), scales)
         r = optimize(single, "ga", pop, gen, seed, n_jobs, client, None, progress=False, plot=False)
-        best = r.front.iloc[0].to_dict() if len(r.front) else {}
-        rows.append({"weight": float(w), **best})
+        runs.append(r)
+        columns = columns or list(r.front.columns)
+        if len(r.front):
+            rows.append({"weight": float(w), **r.front.iloc[0].to_dict(), "feasible": True, "violation": 0.0})
+        else:  # no feasible design for this weight: no optimum, only the least-violating design
+            keep = list(problem.var_names) + [f"g_{n}" for n in problem.constr_names]
+            rows.append({"weight": float(w), **r.least.iloc[0][keep].to_dict(), "feasible": False,
+                         "violation": r.info["least_violation"]})
         if bar is not None:
             bar.update(i + 1, f"w={w:.3g}")
     if bar is not None:
         bar.close()
-    table = pd.DataFrame(rows)
+    table = pd.DataFrame(rows).reindex(columns=["weight", *columns, "feasible", "violation"])
+    table.attrs["sweep"] = info = _sweep_info(problem, runs, table)
     if out is not None:
         from .plotting import plot_sweep
 
         _io.write_csv(table, out / "sweep.csv")
-        _io.save_figure(plot_sweep(problem, front_run.front, table), out / "sweep.png")
+        _io.write_json({**front_run.info, "sweep": info}, out / "run.json")
+        keep = [*problem.var_names, "violation"]  # every run's final population, for the figure
+        population = pd.concat([r.population[keep] for r in runs], ignore_index=True)
+        _io.save_figure(plot_sweep(problem, front_run.front, table, population, info), out / "sweep.png")
     return table
+
+
+def _sweep_info(problem, runs, table) -> dict:
+    """The sweep as a whole: weights, how many have a feasible optimum, evaluations and
+    feasible designs (in the final populations) of every run (the NSGA-II front and
+    each weight); with no feasible design anywhere, the least-violating design over
+    all of them."""
+    info = {"weights": [float(w) for w in table["weight"]],
+            "feasible_weights": int(table["feasible"].sum()),
+            "evaluations": int(sum(r.info["evaluations"] for r in runs)),
+            "feasible": int(sum(r.info["feasible"] for r in runs))}
+    if info["feasible"] == 0:
+        best = min(runs, key=lambda r: r.info["least_violation"])
+        info.update({k: best.info[k] for k in ("least_violation", "least_violating_design",
+                                              "constraint_violations")})
+    return info

@@ -43,7 +43,8 @@ def get(name: str, **options):
     module, cls, kw = _REGISTRY[name]
     mod = importlib.import_module(f"{__name__}.{module}")
     klass = getattr(mod, cls)
-    accepted = set(inspect.signature(klass.__init__).parameters) - {"self"} - set(kw)
+    params = inspect.signature(klass.__init__).parameters.values()
+    accepted = {p.name for p in params if p.kind is p.POSITIONAL_OR_KEYWORD} - {"self"} - set(kw)
     for key in options:
         if key not in accepted:
             takes = ", ".join(sorted(accepted)) or "none"
@@ -52,5 +53,11 @@ def get(name: str, **options):
 
 
 def available():
-    """``[(name, one-line summary)]`` of every registered problem."""
-    return [(n, get(n).summary) for n in names()]
+    """``[(name, one-line summary)]`` of every registered problem; the summary of a
+    problem whose front is a single design says so, with the reason."""
+    rows = []
+    for n in names():
+        p = get(n)
+        note = f" [single optimum: {p.single_optimum}]" if p.single_optimum else ""
+        rows.append((n, p.summary + note))
+    return rows

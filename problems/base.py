@@ -55,13 +55,29 @@ class MechoptProblem(Problem):
     #: written to ``run.json`` so that a front can be recomputed elsewhere
     settings: dict = {}
 
-    def __init__(self, xl, xu):
+    #: why the front is a single design, when it is (shown by ``mechopt problems``
+    #: and written to ``run.json``); None for a problem with a real trade-off
+    single_optimum: str | None = None
+
+    def __init__(self, xl, xu, **kwargs):
+        """``kwargs`` go to :class:`pymoo.core.problem.Problem` (e.g. ``callback``)."""
         super().__init__(n_var=len(self.var_names), n_obj=len(self.objectives),
                          n_ieq_constr=len(self.constr_names), xl=np.asarray(xl, float),
-                         xu=np.asarray(xu, float))
+                         xu=np.asarray(xu, float), **kwargs)
         self.n_jobs = 1
         self.client = None
         self.on_chunk = None
+
+    def __repr__(self):
+        opts = ", ".join(f"{k}={v!r}" for k, v in self.settings.items())
+        return f"{type(self).__name__}({opts})  # {self.name!r}"
+
+    def __str__(self):
+        # pymoo's Problem.__str__ calls self.name(); ours is the registry key (a str)
+        senses = ", ".join(f"{'max' if o.sense < 0 else 'min'} {o.name}" for o in self.objectives)
+        return (f"# name: {self.name}\n# summary: {self.summary}\n# n_var: {self.n_var} "
+                f"({', '.join(self.var_names)})\n# objectives: {senses}\n"
+                f"# n_ieq_constr: {self.n_ieq_constr}\n")
 
     # the runner sets these; they never travel to the workers
     def use_parallel(self, n_jobs: int = 1, client=None):
@@ -77,8 +93,31 @@ class MechoptProblem(Problem):
         """Return ``{"F": (n, n_obj), "G": (n, n_constr), "extra": {name: (n,)}}``."""
         raise NotImplementedError
 
+    def check_designs(self, X) -> np.ndarray:
+        """``X`` as an ``(n, n_var)`` float array; ValueError on NaN or a value
+        outside ``[xl, xu]`` (beyond rounding): such a design is not of this problem."""
+        X = np.asarray(X, float)
+        if X.ndim == 1 and X.size == self.n_var:
+            X = X[None, :]
+        if X.ndim != 2 or X.shape[1] != self.n_var:
+            raise ValueError(f"X must have shape (n, {self.n_var}) for {self.name}, got {X.shape}")
+        if not np.all(np.isfinite(X)):
+            raise ValueError(f"X must be finite for {self.name}; got NaN or inf")
+        tol = 1e-9 * np.maximum(1.0, np.abs(self.xu - self.xl))
+        bad = (X < self.xl - tol) | (X > self.xu + tol)
+        if bad.any():
+            i, j = np.argwhere(bad)[0]
+            raise ValueError(f"{self.var_names[j]} = {X[i, j]!r} is outside [{self.xl[j]!r}, "
+                             f"{self.xu[j]!r}] of {self.name}")
+        return np.clip(X, self.xl, self.xu)
+
     def _evaluate(self, X, out, *args, **kwargs):
-        X = np.atleast_2d(np.asarray(X, float))
+        X = self.check_designs(X)
+        if len(X) == 0:
+            out["F"] = np.empty((0, self.n_obj))
+            if self.n_ieq_constr:
+                out["G"] = np.empty((0, self.n_ieq_constr))
+            return
         n_workers = 1 if self.client is None else max(1, len(self.client.ncores()))
         n_workers = max(n_workers, self.n_jobs)
         parts = parallel_map(_evaluate_chunk, [(self, c) for c in chunks(X, n_workers)],
@@ -86,6 +125,11 @@ class MechoptProblem(Problem):
         out["F"] = np.concatenate([p["F"] for p in parts])
         if self.n_ieq_constr:
             out["G"] = np.concatenate([p["G"] for p in parts])
+        # derived quantities under their names, so that res.pop.get("r_mic") works
+        for key in parts[0].get("extra", {}):
+            if key not in ("F", "G", "H", "X"):
+                out[key] = np.concatenate([np.asarray(p["extra"][key], float).reshape(-1)
+                                           for p in parts])
 
     def describe(self, X) -> dict:
         """Columns for ``front.csv``: variables, objective values (natural sign),

@@ -24,6 +24,9 @@ THETA_LIMITS = (-np.pi / 3, 4 * np.pi / 3)
 #: Le 2013 sec. IV: gamma = 0.5
 GAMMA = 0.5
 RHO_BOUNDS = (1.2, 4.0)
+#: a design without a feasible square (no MIC, or LCI/joint limits failing at the
+#: MIC centre) violates this constraint; its a_max = 0 no feasible design is below
+SQUARE_CONSTRAINT = ("square_exists",)
 
 
 def tied_half_base(rho: float, l1: float = 1.0) -> float:
@@ -34,14 +37,18 @@ def tied_half_base(rho: float, l1: float = 1.0) -> float:
 def square_side(l1, l2, l0, gamma=GAMMA, theta_limits=THETA_LIMITS) -> dict:
     """``a_MAX`` of Le Fig. 4 for one design (``l0`` is the half base, our ``r3``).
 
-    Returns ``a_max``, ``r_mic``, ``mic_center_y`` and the LCI range inside the
-    square; ``a_max = 0`` when the design has no MIC.
+    Returns ``a_max``, ``r_mic``, ``mic_center_y``, the LCI range inside the square
+    and ``violation``: ``-a_max / a_in`` (< 0, ``a_in = sqrt(2) r_MIC`` the inscribed
+    square) when a square exists; otherwise how far the design is from having one:
+    1 without a MIC, else the larger of ``(gamma - LCI) / gamma`` and the joint-limit
+    excess over pi at the MIC centre (> 0). ``a_max = 0`` when no square exists.
     """
     try:
         fb = FiveBar(l1, l2, l0)
         m = mic(fb)
     except ValueError:
-        return dict(a_max=0.0, r_mic=0.0, mic_center_y=np.nan, lci_min=np.nan, lci_max=np.nan)
+        return dict(a_max=0.0, r_mic=0.0, mic_center_y=np.nan, lci_min=np.nan, lci_max=np.nan,
+                    violation=1.0)
     lo, hi = theta_limits
 
     def feasible(x, y):
@@ -54,12 +61,19 @@ def square_side(l1, l2, l0, gamma=GAMMA, theta_limits=THETA_LIMITS) -> dict:
     s = np.linspace(-a / 2, a / 2, 81)
     X, Y = np.meshgrid(s, m.center_y + s)
     L = fb.lci(X, Y)
+    if a > 0:
+        violation = -a / (np.sqrt(2.0) * m.radius)
+    else:
+        t1, t2, _ = fb.ik(0.0, m.center_y)
+        excess = max(lo - float(t1), float(t1) - hi, lo - float(t2), float(t2) - hi) / np.pi
+        violation = max((gamma - float(fb.lci(0.0, m.center_y))) / gamma, excess, 1e-9)
     return dict(a_max=a, r_mic=m.radius, mic_center_y=m.center_y,
-                lci_min=float(L.min()) if a > 0 else np.nan, lci_max=float(L.max()) if a > 0 else np.nan)
+                lci_min=float(L.min()) if a > 0 else np.nan, lci_max=float(L.max()) if a > 0 else np.nan,
+                violation=violation)
 
 
 def _evaluate(rows, gamma_col=None, l0_col=None, tied=True):
-    out = {k: [] for k in ("a_max", "r_mic", "mic_center_y", "lci_min", "lci_max", "l0")}
+    out = {k: [] for k in ("a_max", "r_mic", "mic_center_y", "lci_min", "lci_max", "violation", "l0")}
     for row in rows:
         rho = row[0]
         l0 = tied_half_base(rho) if tied else row[l0_col]
@@ -78,16 +92,17 @@ class LeSquare(MechoptProblem):
     summary = "Le 2013: max square in the MIC of a 5R, LCI >= 0.5, joint limits, l0 tied (eq. 24); rho in [1.2, 4]"
     var_names = ("rho",)
     objectives = (Objective("a_max", -1, "l1"),)
+    constr_names = SQUARE_CONSTRAINT
     default_algorithm = "ga"
     default_pop = 16
     default_gen = 20
 
-    def __init__(self):
-        super().__init__([RHO_BOUNDS[0]], [RHO_BOUNDS[1]])
+    def __init__(self, **kwargs):
+        super().__init__([RHO_BOUNDS[0]], [RHO_BOUNDS[1]], **kwargs)
 
     def evaluate_designs(self, X):
         ex = _evaluate(X)
-        return {"F": -ex["a_max"][:, None], "extra": ex}
+        return {"F": -ex["a_max"][:, None], "G": ex["violation"][:, None], "extra": ex}
 
 
 class LeSquareRelaxed(MechoptProblem):
@@ -97,16 +112,17 @@ class LeSquareRelaxed(MechoptProblem):
     summary = "Le 2013 relaxed: as le2013 with the half base l0 free in [0, 2] (eq. 24 dropped)"
     var_names = ("rho", "l0")
     objectives = (Objective("a_max", -1, "l1"),)
+    constr_names = SQUARE_CONSTRAINT
     default_algorithm = "ga"
     default_pop = 40
-    default_gen = 40
+    default_gen = 80
 
-    def __init__(self):
-        super().__init__([RHO_BOUNDS[0], 0.0], [RHO_BOUNDS[1], 2.0])
+    def __init__(self, **kwargs):
+        super().__init__([RHO_BOUNDS[0], 0.0], [RHO_BOUNDS[1], 2.0], **kwargs)
 
     def evaluate_designs(self, X):
         ex = _evaluate(X, l0_col=1, tied=False)
-        return {"F": -ex["a_max"][:, None], "extra": ex}
+        return {"F": -ex["a_max"][:, None], "G": ex["violation"][:, None], "extra": ex}
 
 
 class LeSquareGamma(MechoptProblem):
@@ -119,28 +135,29 @@ class LeSquareGamma(MechoptProblem):
     name = "le2013-gamma"
     summary = "Le 2013 two-objective: max square side and max gamma over (rho, gamma), l0 tied by eq. (24)"
     objectives = (Objective("a_max", -1, "l1"), Objective("gamma", -1))
+    constr_names = SQUARE_CONSTRAINT
     default_algorithm = "nsga2"
     default_pop = 40
     default_gen = 30
 
-    def __init__(self, tied: bool = True):
+    def __init__(self, tied: bool = True, **kwargs):
         self.tied = bool(tied)
         if self.tied:
             self.var_names = ("rho", "gamma")
-            super().__init__([RHO_BOUNDS[0], 0.05], [RHO_BOUNDS[1], 0.95])
+            super().__init__([RHO_BOUNDS[0], 0.05], [RHO_BOUNDS[1], 0.95], **kwargs)
         else:
             self.var_names = ("rho", "gamma", "l0")
-            super().__init__([RHO_BOUNDS[0], 0.05, 0.0], [RHO_BOUNDS[1], 0.95, 2.0])
+            super().__init__([RHO_BOUNDS[0], 0.05, 0.0], [RHO_BOUNDS[1], 0.95, 2.0], **kwargs)
 
     def evaluate_designs(self, X):
         ex = _evaluate(X, gamma_col=1, l0_col=2, tied=self.tied)
         F = np.column_stack([-ex["a_max"], -X[:, 1]])
-        return {"F": F, "extra": ex}
+        return {"F": F, "G": ex["violation"][:, None], "extra": ex}
 
 
 class LeSquareGammaRelaxed(LeSquareGamma):
     name = "le2013-gamma-relaxed"
     summary = "Le 2013 two-objective with l0 free in [0, 2]: the front eq. (24) is measured against"
 
-    def __init__(self):
-        super().__init__(tied=False)
+    def __init__(self, **kwargs):
+        super().__init__(tied=False, **kwargs)

@@ -1,8 +1,13 @@
 """Liu, Wang, Pritschow (2006): optimum regions of the 5R design space as pymoo Problems.
 
-Design space (Liu 2006 sec. 2.1, Ref. [19]): ``r1 + r2 + r3 = 3``, two free
-variables ``(r1, r3)`` with ``r2 = 3 - r1 - r3 > 0``, ``0 < r1 < 3``,
-``0 <= r3 <= 1.5``. Indices are the global means of
+Design space (Liu 2006 sec. 2.1, Ref. [19]): ``r1 + r2 + r3 = 3``, ``0 < r1, r2 < 3``,
+``0 <= r3 <= 1.5``, covered by two bounded variables ``(u, r3)`` with
+``r1 = u (3 - r3)``, ``r2 = (1 - u) (3 - r3)`` (:func:`designs`) and
+``r3 <= R3_MAX`` just below 1.5 (at 1.5 no design has a workspace); front.csv lists
+``r1, r2, r3`` too. Every design of the box has a MIC, so the many-objective
+problem has no constraint (MOEA/D runs on it); a region problem's design that
+misses its region violates its thresholds, and one without a MIC (kept as a
+guard, ``has_mic``) carries objective values no feasible design can beat. Indices are the global means of
 :func:`mechopt.performance.global_indices` with a named quadrature, ``polar`` by
 default (the one that reproduces the paper's numbers, see ``tests/test_liu2006.py``);
 ``quadrature="area"`` gives the true area means that ``mechopt evaluate`` reports by
@@ -22,7 +27,7 @@ from mechopt.quadrature import QUADRATURES
 
 from .base import MechoptProblem, Objective
 
-__all__ = ["REGIONS", "LiuRegion", "LiuManyObjective", "liu_indices"]
+__all__ = ["REGIONS", "LiuRegion", "LiuManyObjective", "liu_indices", "designs"]
 
 #: Liu 2006 sec. 3.1: (quantity, ">" or "<", threshold) for each optimum region
 REGIONS = {
@@ -40,11 +45,32 @@ REGIONS = {
 }
 _INDEX_KEYS = ("r_mic", "mic_center_y", "gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min",
                "gsi_max", "gsi_min")
-_MIN_R2 = 1e-3
+#: Liu's space r1 + r2 + r3 = 3
+SUM = 3.0
+#: smallest share u of r1 in r1 + r2 (and of r2): keeps both links positive
+U_MIN = 1e-4
+#: objective values no feasible design can beat, carried by designs without a MIC
+#: (which violate ``has_mic``): the worst end of each index's range (r_MIC, GCI,
+#: GVI_min, GPI_min >= 0); GSI_max has no upper bound, so a large finite value
+WORST = {"r_mic": 0.0, "gci": 0.0, "gvi_min": 0.0, "gpi_min": 0.0, "gsi_max": 1e3}
 
 
-def liu_indices(X, quadrature: str = "polar") -> dict:
-    """Global indices for rows ``(r1, r3)`` of ``X``; NaN where the design has no MIC.
+def designs(X):
+    """``(r1, r2, r3)`` of rows ``(u, r3)``: ``r1 = u (3 - r3)``, ``r2 = (1 - u) (3 - r3)``.
+
+    This parametrisation covers the whole design triangle of Liu sec. 2.1
+    (``r1 + r2 + r3 = 3``, ``r1, r2 > 0``, ``0 <= r3 <= 1.5``) with the bounds
+    ``u in [U_MIN, 1 - U_MIN]``, ``r3 in [0, 1.5]`` alone, so that every pymoo
+    algorithm (MOEA/D included, which ignores constraints) stays inside it.
+    """
+    X = np.atleast_2d(np.asarray(X, float))
+    u, r3 = X[:, 0], X[:, 1]
+    rest = SUM - r3
+    return u * rest, (1.0 - u) * rest, r3
+
+
+def liu_indices(r1, r2, r3, quadrature: str = "polar") -> dict:
+    """Global indices of designs ``(r1, r2, r3)`` (arrays); NaN where a design has no MIC.
 
     Vectorised over the designs through :func:`mechopt.atlas.evaluate_designs`
     (the explicit-locus MIC and the compiled disk means; agreement with
@@ -52,40 +78,43 @@ def liu_indices(X, quadrature: str = "polar") -> dict:
     """
     from mechopt.atlas import RESULT_COLUMNS, evaluate_designs
 
-    X = np.atleast_2d(np.asarray(X, float))
-    r1, r3 = X[:, 0], X[:, 1]
-    r2 = 3.0 - r1 - r3
-    out = {k: np.full(len(X), np.nan) for k in _INDEX_KEYS}
-    out["r2"] = r2
-    ok = r2 >= _MIN_R2
-    if ok.any():
-        res = evaluate_designs(r1[ok], r2[ok], r3[ok], quadrature=quadrature)
-        for j, name in enumerate(RESULT_COLUMNS):
-            if name in out:
-                out[name][ok] = res[:, j]
+    r1, r2, r3 = (np.atleast_1d(np.asarray(v, float)) for v in (r1, r2, r3))
+    res = evaluate_designs(r1, r2, r3, quadrature=quadrature)
+    out = {name: res[:, j] for j, name in enumerate(RESULT_COLUMNS) if name in _INDEX_KEYS}
     out["r_mic"] = np.where(out["r_mic"] > 0, out["r_mic"], np.nan)
+    out.update(r1=r1, r2=r2, r3=r3)
     return out
 
 
+#: upper bound of r3: at r3 = 1.5 exactly, r1 + r2 = r3 and the arms meet only on the
+#: base line (no workspace, no MIC); below it every design of the box has a MIC
+#: (checked on 2e5 random designs and the corners in tests/test_problem_conventions.py)
+R3_MAX = 1.5 - 1e-6
+
+
 def _bounds():
-    return [1e-3, 0.0], [3.0 - _MIN_R2, 1.5]
+    return [U_MIN, 0.0], [1.0 - U_MIN, R3_MAX]
 
 
-def _objective_matrix(ex, objectives, worst=1e3):
-    F = np.column_stack([ob.sense * ex[ob.name] for ob in objectives])
-    return np.where(np.isfinite(F), F, worst)
+def _objectives_and_mic(ex, objectives):
+    """``F`` (minimisation form) with :data:`WORST` where a design has no MIC, and the
+    ``has_mic`` constraint column (1 without a MIC: no index is defined; else -1)."""
+    has = np.isfinite(ex["r_mic"])
+    F = np.column_stack([ob.sense * np.where(has, ex[ob.name], WORST[ob.name])
+                         for ob in objectives])
+    return F, np.where(has, -1.0, 1.0)
 
 
 class LiuRegion(MechoptProblem):
     """Maximise (r_MIC, GCI) inside one optimum region of Liu 2006 sec. 3.1."""
 
-    var_names = ("r1", "r3")
+    var_names = ("u", "r3")
     objectives = (Objective("r_mic", -1, "L"), Objective("gci", -1))
     default_algorithm = "nsga2"
     default_pop = 24
     default_gen = 12
 
-    def __init__(self, region: str = "w-gci", quadrature: str = "polar"):
+    def __init__(self, region: str = "w-gci", quadrature: str = "polar", **kwargs):
         from mechopt import validation as _v
 
         self.region = _v.choice("region", region, tuple(REGIONS))
@@ -93,45 +122,47 @@ class LiuRegion(MechoptProblem):
         self.settings = {"quadrature": self.quadrature}
         self.name = f"liu2006-{region}"
         self.summary = "Liu 2006 region " + ", ".join(f"{q} {op} {t}" for q, op, t in REGIONS[region]) \
-            + f"; max (r_MIC, GCI) over (r1, r3), r2 = 3 - r1 - r3; {self.quadrature} means"
-        self.constr_names = ("r2_positive",) + tuple(f"{q}{'_min' if op == '>' else '_max'}"
+            + f"; max (r_MIC, GCI) over r1 + r2 + r3 = 3; {self.quadrature} means"
+        self.constr_names = ("has_mic",) + tuple(f"{q}{'_min' if op == '>' else '_max'}"
                                                      for q, op, _ in REGIONS[region])
-        super().__init__(*_bounds())
+        super().__init__(*_bounds(), **kwargs)
 
     def evaluate_designs(self, X):
-        ex = liu_indices(X, self.quadrature)
-        G = [(X[:, 0] + X[:, 1] - (3.0 - _MIN_R2)) / 3.0]
+        ex = liu_indices(*designs(X), self.quadrature)
+        F, has_mic = _objectives_and_mic(ex, self.objectives)
+        G = [has_mic]
         for q, op, t in REGIONS[self.region]:
             v = ex[q]
             # relative violation, so thresholds of different magnitude compare
             g = (t - v) / abs(t) if op == ">" else (v - t) / abs(t)
             G.append(np.where(np.isfinite(g), g, 1.0))
-        return {"F": _objective_matrix(ex, self.objectives), "G": np.column_stack(G), "extra": ex}
+        return {"F": F, "G": np.column_stack(G), "extra": ex}
 
 
 class LiuManyObjective(MechoptProblem):
     """Five objectives over the design space: r_MIC, GCI, GVI_min, GPI_min (max) and GSI_max (min)."""
 
     name = "liu2006-many"
-    summary = "Liu 2006 many-objective: max r_MIC, GCI, GVI_min, GPI_min and min GSI_max over (r1, r3)"
+    summary = "Liu 2006 many-objective: max r_MIC, GCI, GVI_min, GPI_min and min GSI_max over r1 + r2 + r3 = 3"
     _summary = summary
-    var_names = ("r1", "r3")
+    var_names = ("u", "r3")
     objectives = (Objective("r_mic", -1, "L"), Objective("gci", -1), Objective("gvi_min", -1, "L"),
                   Objective("gpi_min", -1, "1/L"), Objective("gsi_max", 1, "L^2"))
-    constr_names = ("r2_positive",)
     default_algorithm = "nsga3"
     default_pop = 30
     default_gen = 10
 
-    def __init__(self, quadrature: str = "polar"):
+    def __init__(self, quadrature: str = "polar", **kwargs):
         from mechopt import validation as _v
 
         self.quadrature = _v.choice("quadrature", quadrature, QUADRATURES)
         self.settings = {"quadrature": self.quadrature}
         self.summary = f"{self._summary}; {self.quadrature} means"
-        super().__init__(*_bounds())
+        super().__init__(*_bounds(), **kwargs)
 
     def evaluate_designs(self, X):
-        ex = liu_indices(X, self.quadrature)
-        G = ((X[:, 0] + X[:, 1] - (3.0 - _MIN_R2)) / 3.0)[:, None]
-        return {"F": _objective_matrix(ex, self.objectives), "G": G, "extra": ex}
+        ex = liu_indices(*designs(X), self.quadrature)
+        F, has_mic = _objectives_and_mic(ex, self.objectives)
+        if np.any(has_mic > 0):  # unconstrained (so that MOEA/D runs): R3_MAX guarantees a MIC
+            raise RuntimeError(f"a design inside the bounds has no MIC: {X[has_mic > 0][0]!r}")
+        return {"F": F, "extra": ex}

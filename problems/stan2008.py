@@ -74,8 +74,8 @@ class StanBipod(_StanProblem):
     summary = "Stan 2008 Bipod: max workspace W and global TQI T over q1_min/b in (0.52, 1.35), q_max = 1.6 q_min"
     var_names = ("q1_min_over_b",)
 
-    def __init__(self):
-        super().__init__([BIPOD_BOUNDS[0]], [BIPOD_BOUNDS[1]])
+    def __init__(self, **kwargs):
+        super().__init__([BIPOD_BOUNDS[0]], [BIPOD_BOUNDS[1]], **kwargs)
 
     def _mechanism(self, u):
         return Bipod(1.0, u, Q_MAX_OVER_Q_MIN * u)
@@ -85,11 +85,13 @@ class StanBiglide(_StanProblem):
     name = "stan2008-biglide"
     summary = "Stan 2008 Biglide: max workspace W and global TQI T over L2 in (1, 1.2), L1 = 1, strokes [0, 1]"
     var_names = ("L2",)
+    single_optimum = ("with L1 = 1 and strokes [0, 1] (the paper states neither) W and T both grow "
+                      "with L2, so the front is the upper bound L2 = 1.2")
 
-    def __init__(self, l1: float = 1.0, q_min: float = 0.0, q_max: float = 1.0):
+    def __init__(self, l1: float = 1.0, q_min: float = 0.0, q_max: float = 1.0, **kwargs):
         self.l1, self.q_min, self.q_max = float(l1), float(q_min), float(q_max)
         # L2 = L1 exactly leaves no workspace: keep the open interval open
-        super().__init__([BIGLIDE_BOUNDS[0] + 1e-6], [BIGLIDE_BOUNDS[1]])
+        super().__init__([BIGLIDE_BOUNDS[0] + 1e-6], [BIGLIDE_BOUNDS[1]], **kwargs)
 
     def _mechanism(self, l2):
         return Biglide(self.l1, l2, self.q_min, self.q_max)

@@ -17,13 +17,13 @@ class WeightedSum(MechoptProblem):
 
     objectives = (Objective("z", 1),)
 
-    def __init__(self, base: MechoptProblem, weight: float, scales=(1.0, 1.0)):
+    def __init__(self, base: MechoptProblem, weight: float, scales=(1.0, 1.0), **kwargs):
         self.base, self.weight, self.scales = base, float(weight), np.asarray(scales, float)
         self.name = f"{base.name}-w{self.weight:g}"
         self.summary = f"weighted sum of {base.name}, w = {self.weight:g}"
         self.var_names = base.var_names
         self.constr_names = base.constr_names
-        super().__init__(base.xl, base.xu)
+        super().__init__(base.xl, base.xu, **kwargs)
 
     def evaluate_designs(self, X):
         res = self.base.evaluate_designs(X)
