@@ -76,9 +76,9 @@ def _paper(pub, design, quantity):
     return rec.iloc[0]
 
 
-def _row(rec, quantity, reproduced, rel_tol, note):
+def _row(rec, quantity, reproduced, rel_tol, note, kind="computed"):
     return comparison_row(quantity, f"Stan 2008 {rec.source}", rec.value, reproduced, rec.unit,
-                          rec.digits, rel_tol, note)
+                          rec.digits, rel_tol, note, kind=kind)
 
 
 # --- optimisation (one job per mechanism, run in parallel in the full run) ---------------
@@ -239,7 +239,7 @@ def _ga_rows(pub, pop, gen, quick):
     rows = []
     for q, (value, note) in ours.items():
         rec = _paper(pub, "table1", q)
-        rows.append(_row(rec, f"ga_{q}", float(value), REL_TOL_SETTING, note))
+        rows.append(_row(rec, f"ga_{q}", float(value), REL_TOL_SETTING, note, kind="setting"))
     return rows
 
 

@@ -140,7 +140,7 @@ def _k_av_rows(out: Path, quick: bool) -> list[dict]:
     rows = [comparison_row("k_av[table1]", source, value, literal, "-", digits, REL_TOL["k_av"],
                            note_lit),
             comparison_row("k_av_alternative[table1]", source, value, alt, "-", digits,
-                           REL_TOL["k_av"], note_alt)]
+                           REL_TOL["k_av"], note_alt, kind="reading")]
 
     thetas = np.linspace(1.0, 44.0, 44 if quick else 431)
     curve = _k_av_curve(thetas)

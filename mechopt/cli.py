@@ -110,10 +110,11 @@ def _cmd_reproduce(args):
     def log(msg):
         print(msg, file=sys.stderr, flush=True)
 
+    from .published import counts
+    from .reproduce import counts_line
+
     table = reproduce(args.paper, out=args.out, quick=args.quick, force=args.force, log=log)
-    counts = table["status"].value_counts()
-    print(f"{counts.get('match', 0)} match, {counts.get('differs', 0)} differ, "
-          f"{counts.get('not-reported', 0)} not reported; summary in {args.out}/README.md")
+    print(f"{counts_line(counts(table))}; summary in {args.out}/README.md")
     return 0
 
 

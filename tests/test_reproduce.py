@@ -89,3 +89,37 @@ def test_unknown_paper(capsys, tmp_path):
     assert main(["reproduce", "smith1999", "--out", str(tmp_path / "r")]) == 2
     assert "paper must be one of" in capsys.readouterr().err
     assert not (tmp_path / "r").exists()
+
+
+def test_counts_are_over_computed_rows_only(results):
+    """match/differs count only what the paper computed and we recompute; settings,
+    readings and claims are counted apart (mechopt.published.counts)."""
+    from mechopt.published import KINDS, counts
+
+    total = {"computed": 0, "match": 0, "differs": 0}
+    for paper in REQUIRED:
+        table = pd.read_csv(results / paper / "table.csv")
+        assert set(table["kind"]) <= set(KINDS)
+        c = counts(table)
+        comp = table[table["kind"] == "computed"]
+        assert c["match"] == int((comp["status"] == "match").sum())
+        assert c["match"] + c["differs"] == c["computed"]
+        # an echoed setting never counts as a match
+        assert c["settings"] == int((table["kind"] == "setting").sum())
+        for k in total:
+            total[k] += c[k]
+    text = (results / "README.md").read_text()
+    assert "| total |" in text
+    row = next(line for line in text.splitlines() if line.startswith("| total |")).split("|")
+    assert [int(v) for v in row[2:5]] == [total["computed"], total["match"], total["differs"]]
+
+
+def test_mirror_angle_rows_have_the_same_status(results):
+    """theta2 = 180 deg - theta1 over the symmetric GCW (Liu 2006 sec. 3.2.3): the
+    mirror-image rows carry the same error, so they must carry the same status."""
+    t = pd.read_csv(results / "liu2006" / "table.csv").set_index("quantity")
+    for a, b in (("theta1_lo_deg", "theta2_hi_deg"), ("theta1_hi_deg", "theta2_lo_deg"),
+                 ("square_theta1_lo_deg", "square_theta2_hi_deg"),
+                 ("square_theta1_hi_deg", "square_theta2_lo_deg")):
+        assert t.loc[a, "status"] == t.loc[b, "status"], (a, b)
+        assert abs(t.loc[a, "reproduced"] + t.loc[b, "reproduced"] - 180.0) < 1e-6
