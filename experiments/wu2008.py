@@ -37,7 +37,7 @@ from mechopt.dynamics import (GantryDynamics, GantryInertia, rectangle_rule,
                               wu2008_driving_forces)
 from mechopt.mechanisms.gantry import (Gantry, dimensional_synthesis, k_av_literal_of_design,
                                        wu2008_gantry)
-from mechopt.published import TABLE_COLUMNS, comparison_row, load
+from mechopt.published import TABLE_COLUMNS, claim_row, compare, comparison_row, load, lookup
 
 __all__ = ["run", "REL_TOL", "ALTERNATIVE_READING", "QUANTITIES"]
 
@@ -57,6 +57,8 @@ QUANTITIES = (
     "kappa_d_min[built]", "kappa_d_max[built]", "kappa_d_centre[built]",
     "kappa_d_min[symmetric]", "kappa_d_max[symmetric]",
     "driving_force_peak_1", "driving_force_peak_2",
+    "theta_2L[table1]", "claim:counterweights_half_moving_mass", "claim:a_s_gives_T0_0.15s",
+    "claim:2l_greater_than_2d1", "claim:k_av_descends_with_theta",
 )
 
 B_MM, H_MM = 500.0, 400.0  # task rectangle of sec. 4.2-4.3
@@ -433,6 +435,55 @@ def _plot_forces(data: pd.DataFrame, T0: float, Tf: float) -> Figure:
 
 
 # --- fronts and sweep ------------------------------------------------------------------------
+# --- printed claims and derived settings (issue: every printed claim a row) -------------------
+def _claim_rows(curve: pd.DataFrame) -> list[dict]:
+    """theta_2L, the counterweight rule, a_s and T0, 2l > 2d1, and k_av's descent."""
+    rows = []
+    # theta_2L: the largest angle of link 2 over the task rectangle of the Table 1 design
+    g = wu2008_gantry(10.0)
+    xmin, xmax, ymin, ymax = g.task_workspace
+    _, th2 = g.link_angles(np.array([xmin, xmin]), np.array([ymin, ymax]))
+    rec = lookup("wu2008", "theta_2L", "table1")
+    rows.append(compare(rec, float(np.degrees(np.max(np.abs(th2)))), quantity="theta_2L[table1]",
+                        note="largest |theta_2| over W_t of the Table 1 design (at x = -b/2); "
+                             "eq. (11)-(13) make theta_1S + theta_2L = 90 deg"))
+    # counterweights: "each is half of the masses of all moving parts" (sec. 6.2)
+    pub = load("wu2008").set_index(["design", "quantity"])["value"]
+    moving = sum(pub[("table2", k)] for k in ("m11", "m21", "m12", "m22", "m4", "mN"))
+    cw = pub[("table2", "m13")]
+    rows.append(claim_row("claim:counterweights_half_moving_mass", "Wu 2008 sec. 6.2, Table 2",
+                          cw == moving / 2 == pub[("table2", "m23")],
+                          f"moving parts 250 + 198 + 80 + 80 + 80 + 236 = {moving:g} kg, half "
+                          f"{moving / 2:g} kg; Table 2 prints m13 = m23 = {cw:g} kg"))
+    # a_s = 6.67 m/s^2: accelerating time T0 = v_max / a_s (eq. 45 with equal phases)
+    v, a = pub[("table3", "v_max")], pub[("table3", "a_s")]
+    length = abs(pub[("table3", "x1")] - pub[("table3", "x0")])
+    T0, Tf = v / a, v / a + length / v
+    rows.append(claim_row("claim:a_s_gives_T0_0.15s", "Wu 2008 eq. (45), Table 3",
+                          round(1.0 / 0.15, 2) == a,
+                          f"T0 = v_max / a_s = {T0:.4f} s, Tf = T0 + |q1 - q0| / v_max = {Tf:.4f} s; "
+                          f"6.67 is 1/0.15 = {1 / 0.15:.4f} rounded to the printed 2 decimals, so the "
+                          "paper's T0 = 0.15 s, Tf = 0.65 s"))
+    # 2l > 2d1 (sec. 3.1): no combined singularity
+    ok = all(dimensional_synthesis(B_MM, H_MM, math.radians(t))[2]
+             > dimensional_synthesis(B_MM, H_MM, math.radians(t))[1] for t in np.linspace(1, 44, 44))
+    _, d1, l, _ = dimensional_synthesis(B_MM, H_MM, math.radians(10.0))
+    rows.append(claim_row("claim:2l_greater_than_2d1", "Wu 2008 sec. 3.1", ok,
+                          f"Table 1: 2l = {2 * l:.1f} mm > 2d1 = {2 * d1:.1f} mm; eq. (14)-(15) give "
+                          f"l > d1 for every theta_1S in [1, 44] deg (checked at 1 deg steps)"))
+    # "k_av descends as theta_1 goes from 0 to 90 deg" (sec. 4.3)
+    lit = curve["k_av_literal"].to_numpy()
+    alt = curve["k_av_max_speed"].to_numpy()
+    desc = bool(np.all(np.diff(lit) < 0) and np.all(np.diff(alt) < 0))
+    rows.append(claim_row("claim:k_av_descends_with_theta", "Wu 2008 sec. 4.3, Fig. 3", desc,
+                          f"on {len(curve)} designs theta_1S in [{curve['theta_1S_deg'].min():g}, "
+                          f"{curve['theta_1S_deg'].max():g}] deg (k_av_vs_theta.csv) both the literal "
+                          f"({lit[0]:.3f} -> {lit[-1]:.3f}) and the max_speed reading "
+                          f"({alt[0]:.3f} -> {alt[-1]:.3f}) descend strictly; locally k_v = |cot theta| "
+                          "falls on (0, 90) deg"))
+    return rows
+
+
 def _runs(out: Path, quick: bool):
     kw = dict(seed=1, progress=False, n_jobs=1 if quick else 2)
     small = dict(pop=8, gen=3) if quick else {}
@@ -454,6 +505,7 @@ def run(out: Path, quick: bool = False) -> pd.DataFrame:
     rows += _k_av_rows(out, quick)
     rows += _dynamics_rows()
     rows += _driving_force_rows(out, quick)
+    rows += _claim_rows(pd.read_csv(out / "k_av_vs_theta.csv"))
     _io.save_figure(_plot_workspace(), out / "fig2_workspace.png")
     _figures_5_to_7(out, quick)
     _runs(out, quick)
