@@ -10,10 +10,11 @@ import pandas as pd
 
 from mechopt import FiveBar
 from mechopt.performance import global_indices, region_indices
-from mechopt.published import comparison_row, load
+from mechopt.published import claim_row, compare, comparison_row, load, lookup
 from mechopt.workspace import gcw, joint_ranges, largest_square, mic, usable_region
 
-__all__ = ["reproduce_section3", "dimension_rows", "run", "REL_TOL", "NOTES"]
+__all__ = ["reproduce_section3", "dimension_rows", "paper_d_rows", "claim_rows", "run", "REL_TOL",
+           "NOTES"]
 
 #: acceptance tolerance per quantity class (issue "Foundation"): the paper does not
 #: state its quadrature or resolution, so its own numerical error is of this order
@@ -160,6 +161,111 @@ def dimension_rows() -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def paper_d_rows() -> pd.DataFrame:
+    """Sec. 3.2.3 steps 2-3 under the paper's own rounded D = 6.6 (its R_i and scaled GSI
+    are computed with it), beside our unrounded D: kind ``reading``."""
+    d = lookup("liu2006", "gcw_D", "0.85/1.6/0.55").value
+    fb = _design("0.85/1.6/0.55")
+    rows = []
+    for i, r in enumerate((fb.r1, fb.r2, fb.r3), 1):
+        rec = lookup("liu2006", f"gcw_R{i}", "0.85/1.6/0.55")
+        rows.append(compare(rec, d * r, quantity=f"gcw_R{i}[D=6.6]", kind="reading",
+                            note=f"R_{i} = 6.6 r_{i} with the paper's rounded D: reproduces the printed "
+                                 "value, so the paper multiplied its rounded D"))
+    # eta_D of the scaled mechanism = D^2 x the non-dimensional GCW mean (GSI scales as L^2)
+    for which in ("max", "min"):
+        rec = lookup("liu2006", f"gcw_gsi_{which}_scaled", "0.85/1.6/0.55")
+        nondim = lookup("liu2006", f"gcw_gsi_{which}", "0.85/1.6/0.55")
+        half = 0.5 * 10.0 ** -nondim.digits
+        rows.append(compare(rec, d * d * nondim.value, tol_abs=d * d * half,
+                            quantity=f"gcw_gsi_{which}_scaled[D=6.6, paper's eta]", kind="reading",
+                            note=f"6.6^2 x the paper's non-dimensional {nondim.value} (its GCW mean, "
+                                 f"printed to {nondim.digits} decimals, so known to +-{d * d * half:.4f} "
+                                 "mm^2 after scaling): the printed value follows from D = 6.6 and the "
+                                 "paper's own GCW mean; ours differs because our GCW mean does"))
+    return pd.DataFrame([{"design": "0.85/1.6/0.55", "quadrature": "", **r} for r in rows])
+
+
+def _rim_singular_points(fb: FiveBar, n: int = 20000) -> int:
+    """Points where the MIC touches a singular locus: local minima of the LCI along the
+    rim (sampled just inside it) below 1e-3 (at a tangency the LCI is 0; between
+    samples 2 pi r / n apart it stays below ~1e-4)."""
+    m = mic(fb)
+    phi = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
+    r = m.radius * (1.0 - 1e-9)
+    L = fb.lci(r * np.cos(phi), m.center_y + r * np.sin(phi))
+    low = (L < np.roll(L, 1)) & (L <= np.roll(L, -1)) & (L < 1e-3)
+    return int(low.sum())
+
+
+def claim_rows(out) -> pd.DataFrame:
+    """Sec. 3's checkable sentences, each ``holds``/``fails`` with the evidence (uses the
+    atlas and regions written by :func:`liu2006_figures.draw_all` into ``out``)."""
+    from pathlib import Path
+
+    out = Path(out)
+    atlas = pd.read_csv(out / "atlas.csv")
+    regions = pd.read_csv(out / "regions.csv")
+    rows = []
+    band = (atlas["r2"] >= 1.56) & (atlas["r2"] <= 1.9)
+    good = atlas["gci"] > 0.6
+    frac_in = float(good[band].mean())
+    frac_good = float(band[good].mean())
+    rows.append(claim_row("claim:gci>0.6_for_r2_in_[1.56,1.9]", "Liu 2006 sec. 2.2, Fig. 2",
+                          bool(good[band].all()),
+                          f"literal reading (every design with r2 in [1.56, 1.9] has GCI > 0.6, polar "
+                          f"means, atlas.csv, {int(band.sum())} designs): {frac_in:.1%} of them do; the "
+                          f"converse (designs with GCI > 0.6 have r2 in the band) holds for "
+                          f"{frac_good:.1%} of the {int(good.sum())} designs with GCI > 0.6"))
+    near = atlas["mci"] > 0.995
+    rows.append(claim_row("claim:region_mci>0.995_exists", "Liu 2006 sec. 2.2, Fig. 3",
+                          bool(near.any()),
+                          f"{int(near.sum())} of {len(atlas)} atlas designs have MCI > 0.995 (r2 from "
+                          f"{atlas.loc[near, 'r2'].min():.2f} to {atlas.loc[near, 'r2'].max():.2f})"))
+    rows.append(claim_row("claim:no_design_isotropic_everywhere", "Liu 2006 sec. 2.2, Fig. 3",
+                          bool((atlas["gci"].dropna() < 1.0).all()),
+                          f"largest GCI (mean LCI over the MIW) in the atlas: {atlas['gci'].max():.4f} < 1"))
+    for rec in regions.dropna(subset=["example"]).itertuples():
+        if not isinstance(rec.example, str) or not rec.example:
+            continue
+        rows.append(claim_row(f"claim:example_{rec.example}_in_region_{rec.region}",
+                              "Liu 2006 sec. 3.1, Figs. 7-16", bool(rec.example_inside),
+                              f"our polar indices of {rec.example} against {rec.condition}"))
+    empty = gcw(_design("0.4/2.33/0.27"), 0.5).area
+    rows.append(claim_row("claim:no_gcw_for_0.4/2.33/0.27", "Liu 2006 sec. 3.2.1, Fig. 18(a)",
+                          empty == 0.0, f"GCW area at LCI >= 0.5: {empty:g} (usable area "
+                                         f"{usable_region(_design('0.4/2.33/0.27')).area:.4f})"))
+    n20 = _rim_singular_points(_design("1.1/1.65/0.25"))
+    rows.append(claim_row("claim:four_tangent_points_fig20", "Liu 2006 sec. 3.2.2, Fig. 20",
+                          n20 == 4, f"(1.1, 1.65, 0.25): {n20} points of the MIC rim touch a singular "
+                                    "locus (LCI minima < 1e-3 along 20 000 rim samples)"))
+    designs = ["1.1/1.65/0.25", "1.5/1.2/0.3", "0.7/1.7/0.6", "0.85/1.6/0.55", "1.17/1.45/0.38"]
+    rng = np.random.default_rng(20060)
+    for _ in range(15):
+        r3 = rng.uniform(0.0, 1.4)
+        r1 = rng.uniform(0.2, 2.8 - r3)
+        designs.append(f"{r1:.3f}/{3.0 - r1 - r3:.3f}/{r3:.3f}")
+    counts = {d: _rim_singular_points(_design(d)) for d in designs}
+    rows.append(claim_row("claim:at_most_four_singular_points_in_miw", "Liu 2006 sec. 3.2.2",
+                          max(counts.values()) <= 4,
+                          f"tangent points of the MIC on {len(designs)} designs (the examples and 15 "
+                          f"seeded random ones): counts {sorted(set(counts.values()))}, max "
+                          f"{max(counts.values())}"))
+    side = lookup("liu2006", "gcw_square_side", "0.85/1.6/0.55").value
+    rows.append(claim_row("claim:1.2321=1.11^2", "Liu 2006 sec. 3.2.3, Fig. 28",
+                          round(side * side, 4) == 1.2321, f"1.11^2 = {side * side:.6f}"))
+    fb = _design("0.85/1.6/0.55")
+    d = lookup("liu2006", "gcw_D", "0.85/1.6/0.55").value
+    g0 = region_indices(fb, gcw(fb, 0.5))["gci"]
+    g1 = region_indices(fb.scaled(d), gcw(fb.scaled(d), 0.5))["gci"]
+    rows.append(claim_row("claim:gci_unchanged_by_D", "Liu 2006 sec. 3.2.3 step 3",
+                          abs(g1 - g0) <= 1e-9 * g0,
+                          f"GCI over the GCW: {g0:.6f} non-dimensional, {g1:.6f} for D = {d:g} mm "
+                          "(the paper's 'still 0.6686': the invariance holds; the value 0.6686 itself "
+                          "is the gcw_gci row)"))
+    return pd.DataFrame([{"design": "", "quadrature": "", **r} for r in rows])
+
+
 def run(out, quick: bool = False) -> pd.DataFrame:
     """All of Liu 2006 section 3 (both quadratures) and its figures into ``out``."""
     from pathlib import Path
@@ -170,8 +276,9 @@ def run(out, quick: bool = False) -> pd.DataFrame:
     from mechopt.runner import optimize, parse_weights, sweep
 
     out = Path(out)
-    table = pd.concat([reproduce_section3(), dimension_rows()], ignore_index=True)
     figs.draw_all(out, quick=quick)
+    table = pd.concat([reproduce_section3(), dimension_rows(), paper_d_rows(), claim_rows(out)],
+                      ignore_index=True)
     # the (r_MIC, GCI) trade-off inside Omega_W-GCI: front and weighting sweep
     sizes = dict(pop=8, gen=3) if quick else {}
     optimize(get("liu2006-w-gci"), seed=1, out=out / "front", progress=False, **sizes)

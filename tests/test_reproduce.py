@@ -46,7 +46,7 @@ def results(tmp_path_factory):
 def test_table_schema_and_required_rows(results, paper):
     table = pd.read_csv(results / paper / "table.csv")
     assert list(table.columns[: len(TABLE_COLUMNS)]) == list(TABLE_COLUMNS)
-    assert set(table["status"]) <= {"match", "differs", "not-reported"}
+    assert set(table["status"]) <= {"match", "differs", "not-reported", "holds", "fails"}
     missing = set(REQUIRED[paper]) - set(table["quantity"])
     assert not missing, missing
     for f in FILES[paper]:
@@ -123,3 +123,33 @@ def test_mirror_angle_rows_have_the_same_status(results):
                  ("square_theta1_hi_deg", "square_theta2_lo_deg")):
         assert t.loc[a, "status"] == t.loc[b, "status"], (a, b)
         assert abs(t.loc[a, "reproduced"] + t.loc[b, "reproduced"] - 180.0) < 1e-6
+
+
+def test_liu_readings_and_claims(results):
+    """The D = 6.6 readings recomputed from the printed numbers; the claim rows carry
+    holds/fails with evidence; Fig. 20's four tangent points counted by an SVD of J."""
+    import numpy as np
+
+    from mechopt import FiveBar
+    from mechopt.workspace import mic
+
+    t = pd.read_csv(results / "liu2006" / "table.csv").set_index("quantity")
+    for i, (r, printed) in enumerate(((0.85, 5.61), (1.6, 10.56), (0.55, 3.63)), 1):
+        row = t.loc[f"gcw_R{i}[D=6.6]"]
+        assert row["kind"] == "reading" and row["reproduced"] == pytest.approx(6.6 * r, abs=1e-12)
+        assert row["status"] == "match" and row["paper"] == printed
+    assert t.loc["gcw_gsi_max_scaled[D=6.6, paper's eta]", "reproduced"] == pytest.approx(6.6 ** 2 * 0.7656)
+    claims = t[t["kind"] == "claim"]
+    assert len(claims) >= 10 and set(claims["status"]) <= {"holds", "fails"}
+    assert all(len(n) > 10 for n in claims["note"])
+    # Fig. 20: four points of the MIC rim are singular (smallest singular value of J -> 0)
+    fb = FiveBar(1.1, 1.65, 0.25)
+    m = mic(fb)
+    phi = np.linspace(0.0, 2 * np.pi, 20000, endpoint=False)
+    r = m.radius * (1 - 1e-9)
+    s = np.linalg.svd(fb.jacobian(r * np.cos(phi), m.center_y + r * np.sin(phi)), compute_uv=False)
+    k = s[:, 1] / s[:, 0]
+    minima = (k < np.roll(k, 1)) & (k <= np.roll(k, -1)) & (k < 1e-3)
+    assert minima.sum() == 4
+    assert t.loc["claim:four_tangent_points_fig20", "status"] == "holds"
+    assert t.loc["claim:no_gcw_for_0.4/2.33/0.27", "status"] == "holds"
