@@ -36,6 +36,7 @@ indices.
 from __future__ import annotations
 
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -226,16 +227,25 @@ DEFAULT_CHUNK_SIZE = 512
 
 
 class _ChunkStore:
-    """Finished chunks of an atlas saved as ``.npy`` files in a folder, so that a
-    killed run resumes by skipping them. The folder's ``settings.json`` must
-    match the run's settings, or the run refuses to mix them."""
+    """Finished chunks of an atlas saved in a folder, so that a killed run resumes by
+    skipping them; nothing in it is trusted blindly.
 
-    def __init__(self, folder, settings: dict):
+    ``settings.json`` holds the run's settings (step, quadrature, mode, chunk size,
+    design count, kernel path, mechopt version): a folder of other settings is
+    refused. Each chunk is an ``.npz`` with its values and a header: the settings,
+    the chunk index, a digest of the chunk's designs, the shape and a SHA-256 of the
+    values. On reuse every field is checked; a chunk that fails (edited, truncated,
+    empty, swapped, another shape or dtype, another kernel path) is recomputed with
+    one line saying why (``warn``). Files are fsynced before the rename (mechopt.io).
+    """
+
+    def __init__(self, folder, settings: dict, warn=None):
         import json
 
         from . import io as _io
 
-        self.folder = folder
+        self.folder, self.settings = folder, settings
+        self.warn = warn if warn is not None else (lambda msg: None)
         folder.mkdir(parents=True, exist_ok=True)
         meta = folder / "settings.json"
         if meta.exists():
@@ -244,30 +254,77 @@ class _ChunkStore:
             except (OSError, ValueError):
                 old = None
             if old != settings:
-                raise ValueError(f"{str(folder)!r} holds chunks of an atlas with other settings; "
-                                 "use another --out or delete that folder")
+                raise ValueError(f"{str(folder)!r} holds chunks of an atlas with other settings "
+                                 f"({_settings_diff(old, settings)}); use another --out or delete "
+                                 "that folder")
         else:
             _io.write_json(settings, meta)
 
     def path(self, i):
-        return self.folder / f"chunk_{i:06d}.npy"
+        return self.folder / f"chunk_{i:06d}.npz"
 
-    def load(self, i):
-        try:
-            return np.load(self.path(i))
-        except (OSError, ValueError):
+    @staticmethod
+    def _digest(values) -> str:
+        import hashlib
+
+        return hashlib.sha256(np.ascontiguousarray(values, dtype="<f8").tobytes()).hexdigest()
+
+    def _header(self, i, designs, values) -> dict:
+        return {"settings": self.settings, "chunk": int(i), "designs": self._digest(designs),
+                "shape": list(values.shape), "sha256": self._digest(values)}
+
+    def load(self, i, designs, n_cols):
+        """The saved values of chunk ``i`` (the designs ``designs``, an ``(n, 3)`` array),
+        or None when there is none or it fails a check (then it is recomputed)."""
+        import json
+
+        path = self.path(i)
+        if not path.exists():
             return None
+        try:
+            with np.load(path, allow_pickle=False) as z:
+                values = z["values"]
+                header = json.loads(str(z["header"][()]))
+        except Exception as exc:  # noqa: BLE001 - any corruption: zip, json, keys, dtype
+            self.warn(f"atlas chunk {path.name} unreadable ({type(exc).__name__}); recomputed")
+            return None
+        want = self._header(i, designs, np.empty((len(designs), n_cols)))
+        checks = (
+            (values.dtype == np.float64, f"dtype {values.dtype}"),
+            (list(values.shape) == want["shape"], f"shape {tuple(values.shape)}"),
+            (header.get("settings") == self.settings, "other settings or kernel path"),
+            (header.get("chunk") == i and header.get("designs") == want["designs"],
+             "it belongs to other designs"),
+            (values.dtype == np.float64 and header.get("sha256") == self._digest(values),
+             "its values do not match their checksum"),
+        )
+        for ok, why in checks:
+            if not ok:
+                self.warn(f"atlas chunk {path.name}: {why}; recomputed")
+                return None
+        return values
 
-    def save(self, i, values):
+    def save(self, i, designs, values):
+        import json
+
         from . import io as _io
 
+        header = json.dumps(self._header(i, designs, values), sort_keys=True)
         with _io.atomic_path(self.path(i)) as tmp, open(tmp, "wb") as fh:
-            np.save(fh, values)
+            np.savez(fh, values=np.asarray(values, dtype=np.float64), header=np.array(header))
+
+
+def _settings_diff(old, new) -> str:
+    if not isinstance(old, dict):
+        return "unreadable settings.json"
+    keys = sorted(set(old) | set(new))
+    return ", ".join(f"{k}: {old.get(k)!r} there, {new.get(k)!r} here" for k in keys
+                     if old.get(k) != new.get(k))
 
 
 def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", mode: str = "+-",
                   n_jobs: int = 2, client=None, chunk_size: int | None = None, progress=None,
-                  chunk_dir=None):
+                  chunk_dir=None, warn=None):
     """The atlas table: one row per design of :func:`design_grid`, columns
     ``r1, r2, r3, s, t`` and :func:`index_columns`.
 
@@ -290,7 +347,10 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
     progress : callable, optional
         ``progress(done, total)`` after each chunk.
     chunk_dir : path, optional
-        Save each finished chunk there and skip the chunks already saved (resume).
+        Save each finished chunk there and skip the chunks already saved (resume);
+        each saved chunk is checked before reuse (:class:`_ChunkStore`).
+    warn : callable, optional
+        ``warn(message)`` for each saved chunk that failed its checks and is recomputed.
     """
     import pandas as pd
 
@@ -322,17 +382,23 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
     if chunk_dir is not None:
         from pathlib import Path
 
+        from . import __version__
+        from .parallel import kernel_path
+
         store = _ChunkStore(Path(chunk_dir), {"step": float(step), "quadrature": quadrature,
                                               "mode": mode, "chunk_size": int(chunk_size),
-                                              "n_designs": int(n)})
-        done = [store.load(i) for i in range(len(tasks))]
+                                              "n_designs": int(n), "kernel": kernel_path(),
+                                              "mechopt": __version__}, warn=warn)
+        done = [store.load(i, np.column_stack(t[:3]), len(RESULT_COLUMNS))
+                for i, t in enumerate(tasks)]
     todo = [i for i, d in enumerate(done) if d is None]
     if client is None and todo:
         _warm_up(quadrature, mode)
 
     def _save(k, values):
         if store is not None:
-            store.save(todo[k], values)
+            i = todo[k]
+            store.save(i, np.column_stack(tasks[i][:3]), values)
 
     def _progress(k, total):
         if progress is not None:
@@ -496,8 +562,13 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
                 bar.update(done, f"{grid_n} designs")
 
         t1 = time.perf_counter()
+        def _warn(msg):
+            if verbose:
+                print(msg, file=sys.stderr, flush=True)
+
         table = compute_atlas(step, groups, quadrature, mode, n_jobs=n_jobs, client=client,
-                              chunk_size=chunk_size, progress=_tick, chunk_dir=out / CHUNK_DIR)
+                              chunk_size=chunk_size, progress=_tick, chunk_dir=out / CHUNK_DIR,
+                              warn=_warn)
         t_compute = time.perf_counter() - t1
         if bar is not None:
             bar.close()
@@ -538,6 +609,7 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
         "plane": "s = (r1 - r2)/sqrt(2), t = sqrt(3/2) r3 (isometric map of r1 + r2 + r3 = 3)",
         "backend": f"dask {dask}" if dask else f"joblib n_jobs={n_jobs}",
         "compiled": bool(_k.HAVE_NUMBA),
+        "kernel": "numba" if _k.HAVE_NUMBA else "numpy",
         "where": where,
         "n_region": None if region is None else int(region.sum()),
         "seconds": {"compute": round(t_compute, 3), "figures": round(t_draw, 3),

@@ -12,10 +12,52 @@ from typing import Callable, Iterable, Sequence
 
 from . import validation as _v
 
-__all__ = ["parallel_map", "chunks", "connect"]
+__all__ = ["parallel_map", "chunks", "connect", "check_cluster", "kernel_path", "DEFAULT_STALL_S"]
 
 #: most local worker processes (a typo such as --n-jobs 1e9 would overflow joblib)
 MAX_JOBS = 1024
+#: a Dask run that gets no result for this long ends (seconds), unless the client
+#: came from :func:`connect`, whose ``timeout`` is used instead
+DEFAULT_STALL_S = 300.0
+_STALL = {}  # id(client) -> stall timeout of clients made by connect()
+
+
+def kernel_path() -> str:
+    """``"numba"`` or ``"numpy"``: which implementation of the compiled kernels this
+    process runs (the two agree to ~1e-14, not bit for bit, so a cached or
+    distributed result records it and is never mixed with the other)."""
+    from . import kernels
+
+    return "numba" if kernels.HAVE_NUMBA else "numpy"
+
+
+def _worker_facts() -> dict:
+    """Run on each Dask worker: the mechopt version and kernel path it would use."""
+    from . import __version__
+
+    return {"mechopt": __version__, "kernel": kernel_path()}
+
+
+def check_cluster(client, timeout: float = 10.0) -> dict:
+    """Before the first chunk: the cluster has workers, and each imports the same
+    mechopt version and kernel path as this process. ValueError (one line) otherwise,
+    within ``timeout`` seconds. Returns the common facts."""
+    try:
+        client.wait_for_workers(1, timeout=timeout)
+    except Exception:  # noqa: BLE001 - distributed raises its own TimeoutError types
+        raise ValueError(f"the Dask cluster has no workers after {timeout:g} s") from None
+    try:
+        facts = client.run(_worker_facts)
+    except Exception as exc:  # noqa: BLE001 - e.g. ModuleNotFoundError on a worker
+        raise ValueError(f"a Dask worker cannot run mechopt: {type(exc).__name__}: "
+                         f"{str(exc).splitlines()[0] if str(exc) else ''}".rstrip(": ")) from None
+    mine = _worker_facts()
+    for addr, theirs in facts.items():
+        if theirs != mine:
+            raise ValueError(f"Dask worker {addr} runs mechopt {theirs['mechopt']} with "
+                             f"{theirs['kernel']} kernels, this process {mine['mechopt']} with "
+                             f"{mine['kernel']}: results would not be reproducible")
+    return mine
 
 
 def chunks(seq: Sequence, n_chunks: int) -> list:
@@ -43,7 +85,7 @@ def connect(address: str, timeout: float = 10.0):
     except ImportError:
         raise ValueError("--dask needs the 'dask' extra: pip install 'mechopt[dask]'") from None
     try:
-        return Client(address, timeout=timeout)
+        client = Client(address, timeout=timeout)
     except (OSError, TimeoutError) as exc:
         raise ValueError(f"cannot reach the Dask scheduler at {address!r}: {type(exc).__name__}") from None
     except ValueError as exc:  # a malformed address
@@ -51,6 +93,13 @@ def connect(address: str, timeout: float = 10.0):
     except Exception as exc:  # noqa: BLE001 - e.g. an AssertionError inside distributed
         raise ValueError(f"cannot reach the Dask scheduler at {address!r}: "
                          f"{type(exc).__name__} {exc}") from None
+    try:
+        check_cluster(client, timeout)
+    except ValueError:
+        client.close()
+        raise
+    _STALL[id(client)] = timeout
+    return client
 
 
 def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
@@ -85,17 +134,7 @@ def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
             on_result(len(out), total)
 
     if client is not None:
-        from dask.distributed import as_completed
-
-        futures = client.map(func, items, pure=False)
-        index = {f.key: i for i, f in enumerate(futures)}
-        results = [None] * total
-        for fut in as_completed(futures):
-            i = index[fut.key]
-            results[i] = fut.result()
-            out.append(None)
-            _tick(i, results[i])
-        return results
+        return _dask_map(func, items, client, _tick, out)
     n_jobs = _v.integer("n_jobs", n_jobs, 1, MAX_JOBS)
     if n_jobs == 1 or total <= 1:
         for i, item in enumerate(items):
@@ -111,3 +150,33 @@ def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
         out.append(res)
         _tick(i, res)
     return out
+
+
+def _dask_map(func, items, client, tick, out):
+    """Map on a Dask cluster; a run that gets no result for the stall timeout (or loses
+    its scheduler) ends with one line, after the finished results were handed to
+    ``tick`` (so that an atlas keeps its finished chunks)."""
+    from dask.distributed import wait
+
+    stall = _STALL.get(id(client), DEFAULT_STALL_S)
+    total = len(items)
+    try:
+        futures = client.map(func, items, pure=False)
+        index = {f.key: i for i, f in enumerate(futures)}
+        results = [None] * total
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, timeout=stall, return_when="FIRST_COMPLETED")
+            for fut in sorted(done, key=lambda f: index[f.key]):
+                i = index[fut.key]
+                results[i] = fut.result()
+                out.append(None)
+                tick(i, results[i])
+    except ValueError:
+        raise
+    except Exception as exc:  # noqa: BLE001 - TimeoutError, CommClosedError, CancelledError ...
+        name = type(exc).__name__
+        what = (f"no result for {stall:g} s" if "Timeout" in name
+                else f"the Dask cluster failed ({name})")
+        raise ValueError(f"{what}: {len(out)} of {total} work units finished") from None
+    return results

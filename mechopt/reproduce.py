@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from . import __version__
 from . import io as _io
 from . import validation as _v
 from .published import KINDS, STATUSES, TABLE_COLUMNS, counts
@@ -70,10 +71,15 @@ def reproduce(paper: str, out="results", quick: bool = False, force: bool = Fals
     for i, name in enumerate(papers, 1):
         folder = out / name
         table_csv = folder / "table.csv"
+        stamp = {"quick": bool(quick), "mechopt": __version__}
         if table_csv.exists() and not force:
-            log(f"[{i}/{len(papers)}] {name}: done before, skipped (use --force to redo)")
-            tables.append(pd.read_csv(table_csv).assign(paper=name))
-            continue
+            old = _read_stamp(folder)
+            if old == stamp:
+                log(f"[{i}/{len(papers)}] {name}: done before, skipped (use --force to redo)")
+                tables.append(pd.read_csv(table_csv).assign(paper=name))
+                continue
+            log(f"[{i}/{len(papers)}] {name}: the finished run was "
+                f"{_describe_stamp(old)}, this one is {_describe_stamp(stamp)}: recomputing")
         _io.prepare_out_dir(folder)
         log(f"[{i}/{len(papers)}] {name}: running{' (quick)' if quick else ''} ...")
         t0 = time.perf_counter()
@@ -83,6 +89,7 @@ def reproduce(paper: str, out="results", quick: bool = False, force: bool = Fals
         cols = list(TABLE_COLUMNS) + [c for c in df.columns if c not in TABLE_COLUMNS]
         df = df[cols]
         _io.write_text(folder / "table.md", f"# {TITLES[name]}\n\n" + markdown_table(df))
+        _io.write_json(stamp, folder / STAMP)
         _io.write_csv(df, table_csv)  # last: its presence marks the paper as finished
         log(f"[{i}/{len(papers)}] {name}: {counts_line(counts(df))} "
             f"({time.perf_counter() - t0:.1f} s)")
@@ -90,6 +97,26 @@ def reproduce(paper: str, out="results", quick: bool = False, force: bool = Fals
     table = pd.concat(tables, ignore_index=True)
     write_summary(out)
     return table
+
+
+#: how a paper's folder was produced (quick or full, mechopt version), written before
+#: table.csv; a finished paper is reused only by a run of the same kind
+STAMP = "reproduce.json"
+
+
+def _read_stamp(folder) -> dict | None:
+    import json
+
+    try:
+        return json.loads((folder / STAMP).read_text())
+    except (OSError, ValueError):
+        return None
+
+
+def _describe_stamp(stamp) -> str:
+    if not isinstance(stamp, dict):
+        return "of unknown kind (no reproduce.json)"
+    return f"{'quick' if stamp.get('quick') else 'full'} (mechopt {stamp.get('mechopt')})"
 
 
 def counts_line(c: dict) -> str:

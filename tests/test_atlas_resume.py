@@ -27,13 +27,13 @@ def test_killed_atlas_resumes_to_the_same_table(tmp_path):
     proc = _run(run, env)
     chunks = run / ".atlas_chunks"
     deadline = time.time() + 300
-    while len(list(chunks.glob("chunk_*.npy"))) < 3:
+    while len(list(chunks.glob("chunk_*.npz"))) < 3:
         assert proc.poll() is None, "the atlas finished before it could be killed"
         assert time.time() < deadline
         time.sleep(0.05)
     proc.send_signal(signal.SIGKILL)
     proc.wait()
-    saved = len(list(chunks.glob("chunk_*.npy")))
+    saved = len(list(chunks.glob("chunk_*.npz")))
     assert not (run / "atlas.csv").exists()
     assert _run(run, env).wait() == 0
     assert (run / "atlas.csv").read_bytes() == (ref / "atlas.csv").read_bytes()

@@ -153,3 +153,28 @@ def test_liu_readings_and_claims(results):
     assert minima.sum() == 4
     assert t.loc["claim:four_tangent_points_fig20", "status"] == "holds"
     assert t.loc["claim:no_gcw_for_0.4/2.33/0.27", "status"] == "holds"
+
+
+def test_a_quick_paper_is_recomputed_by_a_full_run(tmp_path, capsys, monkeypatch):
+    """reproduce --quick then reproduce: the second recomputes (the first was quick)."""
+    from mechopt import reproduce as rep
+
+    calls = []
+
+    def fake_run(out, quick):
+        calls.append(quick)
+        return pd.DataFrame([{"quantity": "q", "source": "s", "paper": 1.0, "reproduced": 1.0,
+                              "unit": "-", "rel_error": 0.0, "status": "match",
+                              "kind": "computed", "note": "tol 0.5"}])
+
+    import mechopt.experiments.wu2008 as wu
+
+    monkeypatch.setattr(wu, "run", fake_run)
+    out = tmp_path / "r"
+    rep.reproduce("wu2008", out=out, quick=True, log=lambda m: None)
+    rep.reproduce("wu2008", out=out, quick=True, log=lambda m: None)
+    assert calls == [True]  # same kind: skipped
+    log = []
+    rep.reproduce("wu2008", out=out, quick=False, log=log.append)
+    assert calls == [True, False]
+    assert any("was quick" in m and "recomputing" in m for m in log)
