@@ -20,6 +20,7 @@ __all__ = [
     "finite_number",
     "finite_numbers",
     "integer",
+    "real_array_dtype",
     "show",
 ]
 
@@ -36,7 +37,25 @@ def show(value, width: int = 80) -> str:
     return text if len(text) <= width else text[: width - 3] + "..."
 
 
+def _refuse_non_real(name: str, value):
+    """Booleans, complex numbers and other non-real objects are not numbers here:
+    ``True`` is no length of 1 and ``1+1j`` would lose its imaginary part."""
+    if isinstance(value, bool) or type(value).__name__ in ("bool", "bool_"):
+        raise ValueError(f"{name} must be a real number, got the boolean {show(value)}")
+    if isinstance(value, numbers.Complex) and not isinstance(value, numbers.Real):
+        raise ValueError(f"{name} must be a real number, got the complex {show(value)}")
+
+
+def real_array_dtype(name: str, array) -> None:
+    """Refuse arrays of booleans, complex numbers or objects (one line naming ``name``)."""
+    kind = getattr(getattr(array, "dtype", None), "kind", None)
+    if kind in ("b", "c"):
+        what = "booleans" if kind == "b" else "complex numbers"
+        raise ValueError(f"{name} must hold real numbers, got an array of {what}")
+
+
 def _as_float(name: str, value) -> float:
+    _refuse_non_real(name, value)
     try:
         out = float(value)
     except (TypeError, ValueError, OverflowError):
@@ -86,6 +105,7 @@ def coordinate(name: str, value) -> float:
 
 def integer(name: str, value, minimum: int | None = None, maximum: int | None = None) -> int:
     """A whole number (``3``, ``3.0`` or ``"3"``) within ``[minimum, maximum]``."""
+    _refuse_non_real(name, value)
     if isinstance(value, numbers.Integral):
         out = int(value)
     else:

@@ -35,6 +35,7 @@ POINT_MAX = 1e3 * _v.LENGTH_MAX
 
 
 def _coordinates(name, v):
+    _v.real_array_dtype(name, np.asarray(v) if not hasattr(v, "dtype") else v)
     try:
         v = np.asarray(v, dtype=float)
     except (TypeError, ValueError, OverflowError):
