@@ -168,7 +168,8 @@ def _cmd_optimize(args):
         client = _client(args)
         try:
             res = optimize(problem, args.algorithm, args.pop, args.gen, args.seed, args.n_jobs, client,
-                           args.out, progress=True, checkpoint_every=args.checkpoint_every)
+                           args.out, progress=True, checkpoint_every=args.checkpoint_every,
+                           **_run_settings(args))
         finally:
             if client is not None:
                 client.close()
@@ -188,7 +189,8 @@ def _cmd_sweep(args):
     weights = parse_weights(args.weights)
     client = _client(args)
     try:
-        table = sweep(problem, weights, args.pop, args.gen, args.seed, args.n_jobs, client, args.out)
+        table = sweep(problem, weights, args.pop, args.gen, args.seed, args.n_jobs, client, args.out,
+                      **_run_settings(args))
     finally:
         if client is not None:
             client.close()
@@ -203,18 +205,84 @@ def _cmd_sweep(args):
     return 0
 
 
+def _cmd_design(args):
+    """``mechopt design MECHANISM --task ... --out DIR``: size a mechanism for a task."""
+    import math
+
+    from . import design as _d
+    from . import validation as _v
+
+    def pair_list(text, what, n_allowed):
+        vals = [_v.finite_number(what, v) for v in str(text).split(",")]
+        if len(vals) not in n_allowed:
+            raise ValueError(f"{what} must be {' or '.join(str(k) for k in n_allowed)} comma-separated numbers, "
+                             f"got {text!r}")
+        return vals
+
+    task = _d.parse_task(args.task, unit=args.unit)
+    jl = None
+    if args.joint_limits is not None:
+        vals = [math.radians(v) for v in pair_list(args.joint_limits, "--joint-limits (deg)", (2, 4))]
+        jl = (vals[:2], vals[2:] if len(vals) == 4 else vals[:2])
+    la = None
+    if args.link_angle is not None:
+        la = tuple(math.radians(v) for v in pair_list(args.link_angle, "--link-angle (deg)", (2,)))
+    shape = pair_list(args.shape, "--shape", (1, 2, 3)) if args.shape is not None else None
+    req = _d.Requirements(min_lci=args.min_lci, joint_limits=jl, link_angle=la, max_stroke=args.max_stroke,
+                          min_speed=args.min_speed, min_force=args.min_force,
+                          actuator_speed=args.actuator_speed, actuator_torque=args.actuator_torque,
+                          payload=args.payload)
+    objectives = tuple(o.strip() for o in args.objectives.split(",") if o.strip())
+    client = _client(args)
+    try:
+        res = _d.design(args.mechanism, task, req, objectives, mode=args.mode, place=args.place,
+                        min_length=args.min_length, max_length=args.max_length, shape=shape,
+                        algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
+                        n_jobs=args.n_jobs, client=client, out=args.out, progress=True, pick=args.pick,
+                        polish=not args.no_polish)
+    finally:
+        if client is not None:
+            client.close()
+    chosen = json.loads((__import__("pathlib").Path(args.out) / "design.json").read_text())
+    obj = ", ".join(f"{k} {v:.5g} {chosen['objective_units'][k]}".rstrip(" -")
+                    for k, v in chosen["objectives"].items())
+    print(f"{len(res.front)} certified designs on the front; chosen ({res.info['chosen']['by']}): "
+          f"{chosen['repr']}; {obj}; wrote {args.out}/front.csv, design.json, run.json, design.png "
+          f"({res.info['wall_time_s']:.1f} s)")
+    return 0
+
+
 def _problem_options(args) -> dict:
     """Problem constructor options given on the command line (only those set)."""
     return {k: v for k, v in (("quadrature", args.quadrature),) if v is not None}
+
+
+def _run_settings(args) -> dict:
+    """The termination and operator options of a run (optimize, sweep)."""
+    return {"tol": args.tol, "crossover_prob": args.crossover_prob, "mutation_prob": args.mutation_prob,
+            "crossover_eta": args.crossover_eta, "mutation_eta": args.mutation_eta}
 
 
 def _add_run_options(p, resumable=False):
     p.add_argument("problem", nargs="?" if resumable else None,
                    help="a registered problem (see: mechopt problems)")
     p.add_argument("--pop", type=int, default=None, help="population size (default: the problem's)")
-    p.add_argument("--gen", type=int, default=None, help="generations (default: the problem's)")
+    p.add_argument("--gen", type=int, default=None,
+                   help="generations (default: the problem's); with --tol their maximum (default 1000)")
+    p.add_argument("--tol", type=float, default=None, metavar="FTOL",
+                   help="stop when the objectives settle: pymoo's default termination with this ftol")
+    p.add_argument("--crossover-prob", type=float, default=None, metavar="P",
+                   help="probability that a mating is crossed (SBX; CR for de); default: the algorithm's")
+    p.add_argument("--crossover-eta", type=float, default=None, metavar="ETA",
+                   help="distribution index of the SBX crossover (default: the algorithm's)")
+    p.add_argument("--mutation-prob", type=float, default=None, metavar="P",
+                   help="probability that an offspring is mutated (polynomial mutation); default: the algorithm's")
+    p.add_argument("--mutation-eta", type=float, default=None, metavar="ETA",
+                   help="distribution index of the polynomial mutation (default: the algorithm's)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
-    p.add_argument("--n-jobs", type=int, default=2, help="joblib worker processes (default 2)")
+    p.add_argument("--n-jobs", type=int, default=None,
+                   help="joblib worker processes (default: auto, 1 if a generation evaluates in under "
+                        "0.2 s, else 2; recorded in run.json)")
     p.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None,
                    help="evaluate on a Dask cluster instead of joblib")
     p.add_argument("--out", required=not resumable, default=None, help="output folder")
@@ -252,7 +320,8 @@ def _remove_if_we_made_it_empty(out_before):
         import shutil
         from pathlib import Path
 
-        if any(Path(out_before).rglob("table.csv")):
+        if any(Path(out_before).rglob("table.csv")) or any(Path(out_before).rglob("checkpoint.pkl")) \
+                or any(Path(out_before).rglob(".atlas_chunks")):
             return
         shutil.rmtree(out_before, ignore_errors=True)
 
@@ -328,6 +397,42 @@ def build_parser() -> argparse.ArgumentParser:
     sw.add_argument("--weights", default="0:1:0.1", help="start:stop:step or a comma list, in [0, 1]")
     sw.set_defaults(func=_cmd_sweep)
 
+    ds = sub.add_parser("design", help="size a mechanism for a task region (requirements over the whole task)")
+    ds.add_argument("mechanism", help="five-bar, biglide, bipod or gantry")
+    ds.add_argument("--task", required=True,
+                    help="rect:W,H@X,Y | circle:R@X,Y | polygon:x1,y1;x2,y2;... | points:FILE.csv (base frame)")
+    ds.add_argument("--unit", default="mm", help="length unit of the task and of every length (default mm)")
+    ds.add_argument("--min-lci", type=float, default=None, help="LCI >= this everywhere on the task")
+    ds.add_argument("--mode", default=None, help="working mode (five-bar: +-, -+, ++, --; bipod: up, down) or any")
+    ds.add_argument("--place", default="fixed", help="fixed (default), free-y or free: task placement")
+    ds.add_argument("--objectives", default="size,min-lci",
+                    help="comma list of size, footprint, min-lci, mean-lci, speed, force, torque")
+    ds.add_argument("--max-length", type=float, default=None, help="longest link [unit] (default 4 x task extent)")
+    ds.add_argument("--min-length", type=float, default=None, help="shortest link [unit]")
+    ds.add_argument("--joint-limits", default=None, metavar="LO,HI[,LO2,HI2]", help="crank angle limits [deg]")
+    ds.add_argument("--link-angle", default=None, metavar="LO,HI",
+                    help="|link angle from the slider axis| limits [deg] (gantry, biglide; Wu: 15,75)")
+    ds.add_argument("--max-stroke", type=float, default=None, help="longest actuator stroke [unit] (sliders)")
+    ds.add_argument("--shape", default=None, metavar="R1,R2,R3",
+                    help="fix the link ratios; the design variable is the scale D (Liu 2006 sec. 3.2.3)")
+    ds.add_argument("--actuator-speed", type=float, default=None, help="actuator speed limit [rad/s or unit/s]")
+    ds.add_argument("--actuator-torque", type=float, default=None, help="actuator torque limit [N m or N]")
+    ds.add_argument("--min-speed", type=float, default=None, help="guaranteed speed in every direction [unit/s]")
+    ds.add_argument("--min-force", type=float, default=None, help="guaranteed force in every direction [N]")
+    ds.add_argument("--payload", type=float, default=None, help="payload force [N] for the torque objective")
+    ds.add_argument("--pick", default=None, metavar="NAME=W,...",
+                    help="choose design.json by weights of the normalised objectives (default: the knee)")
+    ds.add_argument("--algorithm", default=None, help="ga, nsga2 or nsga3 (default: ga for one objective, else nsga2)")
+    ds.add_argument("--pop", type=int, default=None, help="population size (default 40)")
+    ds.add_argument("--gen", type=int, default=None, help="generations (default 50)")
+    ds.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    ds.add_argument("--n-jobs", type=int, default=2, help="joblib worker processes (default 2)")
+    ds.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None, help="evaluate on a Dask cluster")
+    ds.add_argument("--no-polish", action="store_true",
+                    help="skip the local polish of each objective's best design (COBYLA + direct search)")
+    ds.add_argument("--out", required=True, help="output folder")
+    ds.set_defaults(func=_cmd_design)
+
     # sub-commands that live with their own module register themselves here
     for module in _COMMAND_MODULES:
         import importlib
@@ -336,22 +441,83 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+class _Terminated(BaseException):
+    """SIGTERM, raised in the main thread like KeyboardInterrupt for SIGINT."""
+
+
+def _on_sigterm(signum, frame):
+    raise _Terminated()
+
+
+#: exit statuses of a run stopped by SIGINT and SIGTERM (128 + signal number)
+EXIT_SIGINT, EXIT_SIGTERM = 130, 143
+
+
+def _resume_hint(out) -> str:
+    if out is None:
+        return ""
+    from pathlib import Path
+
+    out = Path(out)
+    if (out / "checkpoint.pkl").exists():
+        return f"; resume with `mechopt optimize --resume {out}`"
+    if (out / ".atlas_chunks").is_dir():
+        return "; run the same command again to resume (finished chunks are kept)"
+    if any(out.glob("*/table.csv")):
+        return "; run the same command again to go on (finished papers are kept)"
+    return ""
+
+
+def _run_locked(args, out):
+    """Run the command holding its output folder's lock (mechopt.io.out_lock)."""
+    if out is None:
+        return args.func(args)
+    from .io import out_lock
+
+    with out_lock(out):
+        return args.func(args)
+
+
 def main(argv=None) -> int:
+    import signal
+    import threading
+
     parser = build_parser()
-    out_before = None
+    out_before = out = None
+    previous = None
+    if threading.current_thread() is threading.main_thread():
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
     try:
         try:
             args = parser.parse_args(argv)
         except SystemExit as exc:  # --help and --version have printed; no exception escapes
             return exc.code if isinstance(exc.code, int) else 0
-        out = getattr(args, "out", None)
+        out = getattr(args, "out", None) or getattr(args, "resume", None)
         out_before = _first_missing(out) if out else None
-        return args.func(args)
+        return _run_locked(args, out)
     except (_UsageError, ValueError) as exc:
         _remove_if_we_made_it_empty(out_before)
         msg = " ".join(str(exc).split())
         print(f"mechopt: error: {msg}", file=sys.stderr)
         return EXIT_USAGE
+    except (KeyboardInterrupt, _Terminated) as exc:
+        from .parallel import stop_workers
+
+        stop_workers()
+        _remove_if_we_made_it_empty(out_before)
+        print(f"mechopt: interrupted{_resume_hint(out)}", file=sys.stderr)
+        return EXIT_SIGINT if isinstance(exc, KeyboardInterrupt) else EXIT_SIGTERM
+    except OSError as exc:  # the disk, not the input: no space, quota, permission, name too long
+        from .parallel import stop_workers
+
+        stop_workers()
+        _remove_if_we_made_it_empty(out_before)
+        where = f" {exc.filename}" if exc.filename else ""
+        print(f"mechopt: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
+        return EXIT_USAGE
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
 
 
 if __name__ == "__main__":  # pragma: no cover

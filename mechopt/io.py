@@ -12,7 +12,11 @@ import os
 import tempfile
 from pathlib import Path
 
-__all__ = ["atomic_path", "write_text", "write_csv", "write_json", "save_figure", "prepare_out_dir"]
+__all__ = ["atomic_path", "write_text", "write_csv", "write_json", "save_figure", "prepare_out_dir",
+           "out_lock", "sweep_temporaries", "LOCK_NAME"]
+
+#: the lock file a run keeps in its output folder (holds the owner's pid)
+LOCK_NAME = ".mechopt.lock"
 
 
 def _umask() -> int:
@@ -111,3 +115,65 @@ def prepare_out_dir(path) -> Path:
                 p.rmdir()
         raise ValueError(f"--out {str(path)!r} is not writable: {exc.strerror}") from None
     return path
+
+
+def sweep_temporaries(folder) -> int:
+    """Remove the temporary files :func:`atomic_path` left in ``folder`` (and below) when
+    a run was killed (``.<name>.<random>.tmp``); returns how many. Only runs holding
+    the folder's lock call it, so no live writer's file is removed."""
+    n = 0
+    folder = Path(folder)
+    if folder.is_dir():
+        for p in folder.rglob(".*.tmp"):
+            if p.is_file():
+                with contextlib.suppress(OSError):
+                    p.unlink()
+                    n += 1
+    return n
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # alive, another user's
+        return True
+    return True
+
+
+@contextlib.contextmanager
+def out_lock(folder):
+    """Hold the output folder for one run: a second run on the same folder fails at
+    once with one line (ValueError). The lock file holds the owner's pid; a lock
+    whose owner is dead (a killed run) is stale and taken over. Temporary files of
+    killed runs are swept when the lock is taken and on every exit."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    lock = folder / LOCK_NAME
+    for _ in range(2):
+        try:
+            fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+        except FileExistsError:
+            try:
+                pid = int(lock.read_text().strip() or "0")
+            except (OSError, ValueError):
+                pid = 0
+            if pid and pid != os.getpid() and _pid_alive(pid):
+                raise ValueError(f"--out {str(folder)!r} is in use by another mechopt run (pid "
+                                 f"{pid}); wait for it or choose another folder") from None
+            with contextlib.suppress(FileNotFoundError):
+                lock.unlink()  # stale: its owner is gone
+            continue
+        with os.fdopen(fd, "w") as fh:
+            fh.write(f"{os.getpid()}\n")
+        break
+    else:  # pragma: no cover - a race with another run taking over the same stale lock
+        raise ValueError(f"--out {str(folder)!r} is in use by another mechopt run")
+    sweep_temporaries(folder)
+    try:
+        yield folder
+    finally:
+        sweep_temporaries(folder)
+        with contextlib.suppress(FileNotFoundError):
+            lock.unlink()

@@ -12,7 +12,8 @@ from typing import Callable, Iterable, Sequence
 
 from . import validation as _v
 
-__all__ = ["parallel_map", "chunks", "connect", "check_cluster", "kernel_path", "DEFAULT_STALL_S"]
+__all__ = ["parallel_map", "chunks", "connect", "check_cluster", "kernel_path", "stop_workers",
+           "DEFAULT_STALL_S"]
 
 #: most local worker processes (a typo such as --n-jobs 1e9 would overflow joblib)
 MAX_JOBS = 1024
@@ -141,15 +142,56 @@ def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
             out.append(func(item))
             _tick(i, out[-1])
         return out
-    from joblib import Parallel, delayed
+    from joblib.externals.loky import get_reusable_executor
 
-    gen = Parallel(n_jobs=n_jobs, backend="loky", return_as="generator")(
-        delayed(func)(item) for item in items
-    )
-    for i, res in enumerate(gen):
-        out.append(res)
-        _tick(i, res)
+    executor = get_reusable_executor(max_workers=n_jobs, initializer=_die_with_parent)
+    try:
+        futures = [executor.submit(func, item) for item in items]
+        for i, fut in enumerate(futures):  # in input order, as they finish
+            out.append(fut.result())
+            _tick(i, out[-1])
+    except BaseException:  # an error, Ctrl-C or SIGTERM: no worker outlives the run
+        stop_workers()
+        raise
     return out
+
+
+def stop_workers():
+    """End every local worker process now (after an interrupt or a fatal error)."""
+    from joblib.externals.loky import reusable_executor
+
+    ex = reusable_executor._executor
+    if ex is not None:
+        ex.shutdown(wait=False, kill_workers=True)
+
+
+def _die_with_parent():
+    """Worker initializer: the worker ends when the process that started it dies, even
+    by SIGKILL (which runs no cleanup): PR_SET_PDEATHSIG on Linux, and everywhere a
+    daemon thread that exits once the parent pid changes."""
+    import os
+    import signal
+    import threading
+    import time
+
+    parent = os.getppid()
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL("libc.so.6", use_errno=True)
+        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+        if os.getppid() != parent:  # the parent died before prctl took effect
+            os._exit(1)
+    except (OSError, AttributeError):
+        pass
+
+    def watch():
+        while True:
+            if os.getppid() != parent:
+                os._exit(1)
+            time.sleep(0.5)
+
+    threading.Thread(target=watch, daemon=True, name="mechopt-parent-watch").start()
 
 
 def _dask_map(func, items, client, tick, out):

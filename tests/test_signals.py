@@ -1,0 +1,161 @@
+"""Runs end cleanly under every signal: SIGINT/SIGTERM stop with one line and exit
+130/143, no worker process outlives the run (SIGKILL included), no temporary file is
+left, and the resumed run equals an uninterrupted one. A second run on a locked
+folder fails at once.
+
+Workers are found by an environment tag the test gives the run (inherited by every
+process it starts), so the check sees the loky workers and their resource tracker."""
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+import uuid
+
+import pytest
+
+psutil = pytest.importorskip("psutil")
+
+pytestmark = pytest.mark.skipif(sys.platform != "linux", reason="signals and /proc")
+
+OPT = ["optimize", "liu2006-w-gci", "--pop", "40", "--gen", "30", "--seed", "3", "--n-jobs", "2",
+       "--checkpoint-every", "1"]
+ATLAS = ["atlas", "five-bar", "--step", "0.05", "--n-jobs", "2", "--chunk-size", "64", "--no-figures"]
+
+
+def _tagged(tag):
+    found = []
+    for p in psutil.process_iter(["pid"]):
+        try:
+            if p.environ().get("MECHOPT_TEST_TAG") == tag:
+                found.append(p)
+        except (psutil.NoSuchProcess, psutil.AccessDenied, psutil.ZombieProcess):
+            continue
+    return found
+
+
+def _start(argv, out, tag, extra_env=None):
+    env = {**os.environ, "MECHOPT_TEST_TAG": tag, **(extra_env or {})}
+    return subprocess.Popen([sys.executable, "-m", "mechopt.cli", *argv, "--out", str(out)],
+                            env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def _wait_for_workers(proc, tag, deadline=60.0):
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < deadline:
+        if proc.poll() is not None:
+            return False
+        if len(_tagged(tag)) >= 2:  # the run and at least one worker
+            return True
+        time.sleep(0.05)
+    return False
+
+
+def _no_survivors(tag, within=5.0):
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < within:
+        alive = [p for p in _tagged(tag) if p.status() != psutil.STATUS_ZOMBIE]
+        if not alive:
+            return True
+        time.sleep(0.1)
+    return False
+
+
+def _kill_and_check(argv, out, sig, rng, extra_env=None):
+    tag = uuid.uuid4().hex
+    proc = _start(argv, out, tag, extra_env)
+    assert _wait_for_workers(proc, tag), "the run ended before its workers started"
+    time.sleep(rng.uniform(0.0, 1.5))
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=60)
+    assert _no_survivors(tag), [p.cmdline() for p in _tagged(tag)]
+    assert not list(out.rglob(".*.tmp")) if out.exists() else True
+    if sig == signal.SIGKILL:
+        return proc.returncode
+    if proc.returncode in (0,):  # finished before the signal landed
+        return 0
+    lines = [l for l in err.strip().splitlines() if l.strip()]
+    assert len(lines) == 1 and "interrupted" in lines[0], err
+    assert proc.returncode == {signal.SIGINT: 130, signal.SIGTERM: 143}[sig]
+    return proc.returncode
+
+
+def _run_to_end(argv, out, extra_env=None):
+    tag = uuid.uuid4().hex
+    proc = _start(argv, out, tag, extra_env)
+    _, err = proc.communicate(timeout=600)
+    assert proc.returncode == 0, err
+    assert _no_survivors(tag)
+
+
+def _resume(argv, out, extra_env=None):
+    if argv[0] == "optimize" and (out / "checkpoint.pkl").exists():
+        tag = uuid.uuid4().hex
+        env = {**os.environ, "MECHOPT_TEST_TAG": tag, **(extra_env or {})}
+        r = subprocess.run([sys.executable, "-m", "mechopt.cli", "optimize", "--resume", str(out),
+                            "--n-jobs", "2"], env=env, capture_output=True, text=True, timeout=600)
+        assert r.returncode == 0, r.stderr
+    else:
+        import shutil
+
+        if argv[0] == "optimize":
+            shutil.rmtree(out, ignore_errors=True)
+        _run_to_end(argv, out, extra_env)
+
+
+def _case(tmp_path, argv, sig, seed, reference, file, extra_env=None):
+    rng = random.Random(seed)
+    out = tmp_path / f"{argv[0]}-{sig.name}-{seed}"
+    _kill_and_check(argv, out, sig, rng, extra_env)
+    _resume(argv, out, extra_env)
+    assert (out / file).read_bytes() == reference.read_bytes()
+    assert not list(out.rglob(".*.tmp"))
+
+
+@pytest.fixture(scope="module")
+def references(tmp_path_factory):
+    base = tmp_path_factory.mktemp("ref")
+    _run_to_end(OPT, base / "opt")
+    _run_to_end(ATLAS, base / "atlas", {"MECHOPT_NO_NUMBA": "1"})
+    return {"optimize": base / "opt" / "front.csv", "atlas": base / "atlas" / "atlas.csv"}
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGKILL], ids=lambda s: s.name)
+def test_optimize_under_a_signal(tmp_path, references, sig):
+    _case(tmp_path, OPT, sig, 1, references["optimize"], "front.csv")
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGKILL], ids=lambda s: s.name)
+def test_atlas_under_a_signal(tmp_path, references, sig):
+    # the NumPy kernels are slow enough to be caught mid-way
+    _case(tmp_path, ATLAS, sig, 1, references["atlas"], "atlas.csv", {"MECHOPT_NO_NUMBA": "1"})
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(2, 7))
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGKILL], ids=lambda s: s.name)
+@pytest.mark.parametrize("what", ["optimize", "atlas"])
+def test_random_moments(tmp_path, references, what, sig, seed):
+    argv, file, env = ((OPT, "front.csv", None) if what == "optimize"
+                       else (ATLAS, "atlas.csv", {"MECHOPT_NO_NUMBA": "1"}))
+    _case(tmp_path, argv, sig, seed, references[what], file, env)
+
+
+def test_a_second_run_on_the_same_folder_fails_at_once(tmp_path):
+    out = tmp_path / "shared"
+    tag = uuid.uuid4().hex
+    first = _start(OPT, out, tag)
+    assert _wait_for_workers(first, tag)
+    t0 = time.monotonic()
+    second = subprocess.run([sys.executable, "-m", "mechopt.cli", *OPT, "--seed", "4", "--out", str(out)],
+                            capture_output=True, text=True, timeout=120)
+    assert time.monotonic() - t0 < 20
+    assert second.returncode == 2
+    lines = second.stderr.strip().splitlines()
+    assert len(lines) == 1 and "in use by another mechopt run" in lines[0]
+    _, err = first.communicate(timeout=600)
+    assert first.returncode == 0, err
+    lone = tmp_path / "lone"
+    _run_to_end(OPT, lone)
+    assert (out / "front.csv").read_bytes() == (lone / "front.csv").read_bytes()
