@@ -121,12 +121,18 @@ def references(tmp_path_factory):
     return {"optimize": base / "opt" / "front.csv", "atlas": base / "atlas" / "atlas.csv"}
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGKILL], ids=lambda s: s.name)
+#: in CI one signal per command and SIGKILL on both; every (command, signal) pair at
+#: five seeded moments runs behind the ``slow`` marker (test_random_moments)
+CI_CASES = [("optimize", signal.SIGINT), ("optimize", signal.SIGKILL), ("atlas", signal.SIGTERM),
+            ("atlas", signal.SIGKILL)]
+
+
+@pytest.mark.parametrize("sig", [s for w, s in CI_CASES if w == "optimize"], ids=lambda s: s.name)
 def test_optimize_under_a_signal(tmp_path, references, sig):
     _case(tmp_path, OPT, sig, 1, references["optimize"], "front.csv")
 
 
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGKILL], ids=lambda s: s.name)
+@pytest.mark.parametrize("sig", [s for w, s in CI_CASES if w == "atlas"], ids=lambda s: s.name)
 def test_atlas_under_a_signal(tmp_path, references, sig):
     # the NumPy kernels are slow enough to be caught mid-way
     _case(tmp_path, ATLAS, sig, 1, references["atlas"], "atlas.csv", {"MECHOPT_NO_NUMBA": "1"})
