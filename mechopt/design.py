@@ -1,0 +1,1783 @@
+"""Size a mechanism for a task: task-driven, multi-objective dimensional synthesis.
+
+A designer starts from a task ("cover this 100 x 60 mm rectangle 180 mm in front
+of the base with LCI >= 0.4 everywhere, links at most 250 mm"), not from a
+non-dimensional atlas. This module states such a problem and solves it on the
+shared evaluators and the seeded runner:
+
+* :class:`Task` - the region to cover (:meth:`Task.rect`, :meth:`Task.circle`,
+  :meth:`Task.polygon`, :meth:`Task.points`), in the user's length unit, in the
+  base frame (base midpoint at the origin, y away from the base). Its placement is
+  ``"fixed"``, ``"free-y"`` (moved along y) or ``"free"`` (moved in x and y).
+* :class:`Requirements` - inequality constraints that must hold over the WHOLE task.
+* objectives (:data:`OBJECTIVES`) - any non-empty subset.
+* :func:`design` - builds :class:`mechopt.problems.design.DesignProblem`, runs it
+  through :func:`mechopt.runner.optimize`, certifies every front design with a finer
+  sampling (:func:`certify`) and returns a :class:`DesignResult` (front as a
+  DataFrame, :meth:`DesignResult.pick`, :meth:`DesignResult.knee`).
+
+Mechanisms (:data:`MECHANISMS`) and their design variables, in the task's unit:
+
+==========  ====================================  ===========================================
+name        variables                             derived
+==========  ====================================  ===========================================
+five-bar    r1, r2, r3 (or D with ``shape``),     crank ranges
+            mode with ``mode="any"``
+biglide     l1, l2 (mode ``"--"`` ... ``"-+"``)   strokes: the q range over the task
+bipod       b (branch ``"up"``/``"down"``)        strut strokes: the q range over the task
+gantry      d1, l (mode ``"--"`` ...)             q_min, stroke: the q range over the task
+==========  ====================================  ===========================================
+
+For the slider/strut mechanisms the strokes are not searched: the smallest stroke
+that covers the task is the range of each actuator coordinate over the task, and
+that range is attained on the task's boundary (below).
+
+Requirements and how "over the whole task" is certified
+--------------------------------------------------------
+The task ``T`` is a compact, simply connected region (rectangle, disk, simple
+polygon) or a finite point set. Samples: ``n_boundary`` points along ``dT`` at
+uniform arc length (every polygon vertex included; largest gap ``h_b``) and an
+``n_interior`` x ``n_interior`` grid over its box, kept inside ``T``.
+
+reach
+    ``T`` lies in the reachable set ``R`` of one working mode. Certified, not
+    sampled: ``serial_clearance`` is the exact distance to ``dR`` inside ``R``
+    (1-Lipschitz), so ``clearance >= c`` at boundary samples gives ``>= c - h_b/2`` on
+    all of ``dT``. Inside ``T`` the distance to ``dR`` has no local minimum (moving
+    toward the nearest boundary point of ``R`` lowers it), so once ``dT`` is in ``R``
+    a point of ``T`` outside ``R`` can only belong to a bounded component (a hole) of
+    the complement of ``R``; for every mechanism here each hole contains a base
+    joint (five-bar, bipod: the disks ``|P - A_i| < |r1 - r2|`` or ``< q_min``; the
+    biglide's and gantry's leg regions are simply connected, their complements
+    unbounded), so "no base joint in ``T``" closes the argument. Margin: ``c - h_b/2``
+    [L] > 0. A point task is checked at its points exactly.
+singular
+    No type-II singularity in ``T``: ``s0 * type2_function`` (``s0`` its sign at the
+    task's reference point; the sine of the angle between the legs) stays above
+    ``singularity_margin``. ``T`` is connected, so one sign means one connected
+    singularity-free piece, one assembly mode. Implied by ``LCI >= gamma > 0``.
+lci, speed, force
+    ``min_T LCI >= gamma``; guaranteed platform speed ``w / max_T s_max(J)`` and
+    force ``t * min_T s_min(J)`` (below). The minimum of a continuous function over
+    ``T`` is attained on ``dT`` or at an interior critical point: both are located on
+    the samples and refined by zooming (boundary: 4 levels of 17 points around the 3
+    lowest boundary samples, interior: 3 levels of 9 x 9 points around the 3 lowest
+    grid samples, each level 4x (interior) or 8x (boundary) finer), which places the
+    minimiser to ``h/64`` (interior) and ``h_b/2048`` (boundary). Stated tolerance:
+    the grid resolves the basins of the minimum (no dip narrower than a grid cell);
+    the value is then exact to the zoom resolution (about 1e-5 relative for LCI on
+    the examples; the tests check every front design on a 200 x 200 grid).
+joints, link_angle, stroke
+    Actuator coordinates have no critical point inside a singularity-free region
+    (``grad q_i`` is row ``i`` of ``J``, never zero), and the link angles of the
+    biglide/gantry depend on x alone (``d/dy = 0``, no interior extremum of x), so
+    their extremes lie on ``dT``: boundary samples plus the boundary zoom.
+lengths
+    Variables have bounds ``[min_length, max_length]`` (``r3``, the five-bar half
+    base, from 0); derived lengths (bipod strut at full extension) are constrained
+    to ``max_length``; ``l2 > l1`` (biglide) and ``l > d1`` (gantry) are constraints.
+
+Constraints are ``G <= 0`` and normalised (lengths by the task diameter, angles by
+pi, LCI by gamma, speed and force by their required values); an infeasible design
+has finite objectives and ``G > 0`` telling how far it is from feasible.
+
+Speed and force (Liu 2006 eq. 10 and 13, with units)
+-----------------------------------------------------
+With ``q_dot = J p_dot`` (``J`` in rad/L for revolute, 1 for prismatic actuators):
+moving the platform at speed ``v`` in the unit direction ``u`` needs
+``q_dot = v J u``; with the actuator rates bounded by ``|q_dot|_2 <= w`` (rad/s or
+L/s) the speed reachable in EVERY direction is ``v = w / max_u |J u| = w / s_max(J)``
+[L/s] (Liu eq. 10, ``|V|min = 1/s_max`` per unit rate). By virtual work
+``tau . q_dot = F . p_dot``, i.e. ``F = J^T tau``: resisting a force ``f u`` needs
+``tau = f J^-T u``, so with ``|tau|_2 <= t`` (N m or N) the force guaranteed in every
+direction is ``f = t / s_max(J^-T) = t s_min(J)`` [N] (Liu eq. 13, ``|tau|min = s_min``
+per unit effort), and holding a payload of ``f`` newtons in the worst direction
+needs ``|tau|_2 = f / s_min(J)`` (the ``torque`` objective). Bounding each actuator
+separately (``|q_dot_i| <= w``) allows at least these values (``|.|_inf <= |.|_2``):
+they are safe guarantees. Inputs: ``actuator_speed`` in rad/s (revolute) or the
+task's unit per second (prismatic); ``actuator_torque`` in N m (revolute) or N;
+``payload`` in N; outputs: speed in [unit]/s, force in N, torque in N m or N.
+"""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from . import indices as _ix
+from . import validation as _v
+
+__all__ = ["Task", "Requirements", "OBJECTIVES", "MECHANISMS", "PLACEMENTS", "DesignEvaluator",
+           "design", "DesignResult", "NoFeasibleDesign", "certify", "parse_task", "knee_index",
+           "plot_design"]
+
+#: length units a task may be given in, and their value in metres
+UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
+PLACEMENTS = ("fixed", "free-y", "free")
+
+#: name -> (sense, unit template, description); sense -1 maximised
+OBJECTIVES = {
+    "size": (1, "{L}", "sum of the link lengths (mechanism docstring of each spec)"),
+    "footprint": (1, "{L}", "radius about the base midpoint of every joint over the task"),
+    "min-lci": (-1, "-", "minimum LCI over the task"),
+    "mean-lci": (-1, "-", "mean LCI over the task (interior grid)"),
+    "speed": (-1, "{L}/s", "guaranteed platform speed in every direction, w / max s_max(J)"),
+    "force": (-1, "N", "guaranteed platform force in every direction, t * min s_min(J)"),
+    "torque": (1, "{T}", "actuator torque (force) to hold the payload in the worst direction"),
+}
+
+
+class NoFeasibleDesign(ValueError):
+    """No design satisfies the requirements; ``info`` holds the least-violating one."""
+
+    def __init__(self, message, info=None):
+        super().__init__(message)
+        self.info = info or {}
+
+
+# --------------------------------------------------------------------------- task
+def _polygon_simple(v):
+    """True when the closed polygon ``v`` (n, 2) has no two non-adjacent edges that
+    meet and no two adjacent edges that fold back on each other."""
+    n = len(v)
+    a, b = v, np.roll(v, -1, axis=0)
+
+    def orient(p, q, r):
+        return np.sign((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1])
+                       - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
+
+    for i in range(n):
+        for j in range(i + 1, n):
+            adjacent = j == i + 1 or (i == 0 and j == n - 1)
+            p1, p2, p3, p4 = a[i], b[i], a[j], b[j]
+            if adjacent:
+                # the shared vertex is allowed; collinear overlap (a fold) is not
+                shared = p2 if j == i + 1 else p1
+                other_i = p1 if j == i + 1 else p2
+                other_j = p4 if j == i + 1 else p3
+                d1, d2 = other_i - shared, other_j - shared
+                cross = d1[0] * d2[1] - d1[1] * d2[0]
+                if abs(cross) <= 1e-12 * (np.hypot(*d1) * np.hypot(*d2)) and np.dot(d1, d2) > 0:
+                    return False
+                continue
+            o1, o2 = orient(p1, p2, p3), orient(p1, p2, p4)
+            o3, o4 = orient(p3, p4, p1), orient(p3, p4, p2)
+            if o1 != o2 and o3 != o4:
+                return False
+
+            def on(p, q, r):  # r on segment pq (collinear case)
+                return (min(p[0], q[0]) <= r[0] <= max(p[0], q[0])
+                        and min(p[1], q[1]) <= r[1] <= max(p[1], q[1]))
+
+            if (o1 == 0 and on(p1, p2, p3)) or (o2 == 0 and on(p1, p2, p4)) or \
+               (o3 == 0 and on(p3, p4, p1)) or (o4 == 0 and on(p3, p4, p2)):
+                return False
+    return True
+
+
+def _as_xy(name, values, minimum):
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a list of (x, y) points, got {_v.show(values)}") from None
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{name} must be a list of (x, y) points, got an array of shape {arr.shape}")
+    if len(arr) < minimum:
+        raise ValueError(f"{name} needs at least {minimum} points, got {len(arr)}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite (no NaN or inf), got {_v.show(values)}")
+    if np.abs(arr).max() > _v.LENGTH_MAX:
+        raise ValueError(f"{name} coordinates must lie within +-{_v.LENGTH_MAX:g}")
+    return arr
+
+
+@dataclass(frozen=True, eq=False)
+class Task:
+    """A region (or point set) to cover, in the base frame, lengths in ``unit``.
+
+    Build it with :meth:`rect`, :meth:`circle`, :meth:`polygon` or :meth:`points`
+    (or :func:`parse_task` from the CLI syntax). ``reference`` is the centre of its
+    bounding box; :meth:`moved_to` translates the task so that it sits there.
+    """
+
+    kind: str
+    vertices: np.ndarray | None = None   # rect, polygon (counter-clockwise)
+    center: tuple | None = None          # circle
+    radius: float | None = None          # circle
+    pts: np.ndarray | None = None        # points
+    unit: str = "mm"
+    label: str = ""
+
+    # --- constructors ---------------------------------------------------------------
+    @classmethod
+    def rect(cls, width, height, center=(0.0, 0.0), unit="mm"):
+        """Axis-aligned ``width x height`` rectangle centred at ``center`` [unit]."""
+        w = _v.positive_length("task width", width)
+        h = _v.positive_length("task height", height)
+        cx, cy = (_v.coordinate("task center", c) for c in _v.finite_numbers("task center", center, 2, "a point (x, y)"))
+        v = np.array([[cx - w / 2, cy - h / 2], [cx + w / 2, cy - h / 2], [cx + w / 2, cy + h / 2],
+                      [cx - w / 2, cy + h / 2]])
+        return cls("rect", vertices=v, unit=_v.choice("unit", unit, tuple(UNITS)),
+                   label=f"rect {w:g} x {h:g} {unit} at ({cx:g}, {cy:g})")
+
+    @classmethod
+    def circle(cls, radius, center=(0.0, 0.0), unit="mm"):
+        """Disk of ``radius`` about ``center`` [unit]."""
+        r = _v.positive_length("task radius", radius)
+        cx, cy = (_v.coordinate("task center", c) for c in _v.finite_numbers("task center", center, 2, "a point (x, y)"))
+        return cls("circle", center=(cx, cy), radius=r, unit=_v.choice("unit", unit, tuple(UNITS)),
+                   label=f"circle r {r:g} {unit} at ({cx:g}, {cy:g})")
+
+    @classmethod
+    def polygon(cls, vertices, unit="mm"):
+        """Simple polygon (no self-intersection, positive area), vertices in order."""
+        v = _as_xy("polygon vertices", vertices, 3)
+        if len(v) > 3 and np.allclose(v[0], v[-1]):
+            v = v[:-1]  # closed explicitly
+        keep = np.r_[True, np.any(np.diff(v, axis=0) != 0, axis=1)]
+        v = v[keep]
+        if len(v) < 3:
+            raise ValueError("polygon needs at least 3 distinct vertices")
+        area2 = float(np.sum(v[:, 0] * np.roll(v[:, 1], -1) - np.roll(v[:, 0], -1) * v[:, 1]))
+        scale = float(np.ptp(v, axis=0).max())
+        collinear = bool(np.all(np.abs((v[:, 0] - v[0, 0]) * (v[1:2, 1] - v[0, 1]) - (v[:, 1] - v[0, 1]) * (v[1:2, 0] - v[0, 0]))
+                                <= 1e-12 * scale * scale))
+        if collinear or not scale > 0:
+            raise ValueError("polygon is empty (zero area: collinear vertices)")
+        if not _polygon_simple(v):
+            raise ValueError("polygon is self-intersecting (edges cross); give the vertices in boundary order")
+        if not abs(area2) > 1e-12 * scale * scale:
+            raise ValueError("polygon is empty (zero area)")
+        if area2 < 0:
+            v = v[::-1].copy()
+        return cls("polygon", vertices=v, unit=_v.choice("unit", unit, tuple(UNITS)),
+                   label=f"polygon of {len(v)} vertices [{unit}]")
+
+    @classmethod
+    def points(cls, array, unit="mm"):
+        """A finite set of poses (a trajectory's way-points or a point cloud)."""
+        p = _as_xy("task points", array, 1)
+        return cls("points", pts=p, unit=_v.choice("unit", unit, tuple(UNITS)),
+                   label=f"{len(p)} points [{unit}]")
+
+    # --- geometry --------------------------------------------------------------------
+    @property
+    def is_region(self) -> bool:
+        return self.kind != "points"
+
+    @property
+    def bbox(self):
+        if self.kind == "circle":
+            (cx, cy), r = self.center, self.radius
+            return (cx - r, cx + r, cy - r, cy + r)
+        p = self.vertices if self.vertices is not None else self.pts
+        return (float(p[:, 0].min()), float(p[:, 0].max()), float(p[:, 1].min()), float(p[:, 1].max()))
+
+    @property
+    def reference(self):
+        x0, x1, y0, y1 = self.bbox
+        return (0.5 * (x0 + x1), 0.5 * (y0 + y1))
+
+    @property
+    def diameter(self) -> float:
+        """Largest distance between two points of the task (a length scale, > 0)."""
+        if self.kind == "circle":
+            return 2.0 * self.radius
+        p = self.vertices if self.vertices is not None else self.pts
+        if len(p) > 2000:
+            p = p[np.linspace(0, len(p) - 1, 2000).astype(int)]
+        d = float(np.sqrt(((p[:, None, :] - p[None, :, :]) ** 2).sum(-1)).max())
+        return d if d > 0 else 1.0
+
+    @property
+    def area(self) -> float:
+        if self.kind == "circle":
+            return math.pi * self.radius ** 2
+        if self.kind == "points":
+            return 0.0
+        v = self.vertices
+        return 0.5 * abs(float(np.sum(v[:, 0] * np.roll(v[:, 1], -1) - np.roll(v[:, 0], -1) * v[:, 1])))
+
+    @property
+    def perimeter(self) -> float:
+        if self.kind == "circle":
+            return 2 * math.pi * self.radius
+        if self.kind == "points":
+            return 0.0
+        return float(np.hypot(*(np.roll(self.vertices, -1, 0) - self.vertices).T).sum())
+
+    def moved_to(self, x, y) -> "Task":
+        """The same task translated so that its :attr:`reference` is ``(x, y)``."""
+        rx, ry = self.reference
+        d = np.array([x - rx, y - ry], float)
+        if not np.any(d):
+            return self
+        if self.kind == "circle":
+            return replace(self, center=(self.center[0] + d[0], self.center[1] + d[1]))
+        if self.kind == "points":
+            return replace(self, pts=self.pts + d)
+        return replace(self, vertices=self.vertices + d)
+
+    def outline(self):
+        """Closed outline ``(x, y)`` for plots (the points themselves for a point task)."""
+        if self.kind == "circle":
+            t = np.linspace(0, 2 * np.pi, 361)
+            return self.center[0] + self.radius * np.cos(t), self.center[1] + self.radius * np.sin(t)
+        if self.kind == "points":
+            return self.pts[:, 0], self.pts[:, 1]
+        v = np.vstack([self.vertices, self.vertices[:1]])
+        return v[:, 0], v[:, 1]
+
+    def boundary_at(self, t):
+        """Point at arc-length fraction ``t`` (mod 1) of the boundary, counter-clockwise."""
+        t = np.mod(np.asarray(t, float), 1.0)
+        if self.kind == "circle":
+            a = 2 * np.pi * t
+            return self.center[0] + self.radius * np.cos(a), self.center[1] + self.radius * np.sin(a)
+        v = self.vertices
+        e = np.roll(v, -1, 0) - v
+        L = np.hypot(e[:, 0], e[:, 1])
+        cum = np.r_[0.0, np.cumsum(L)] / L.sum()
+        k = np.clip(np.searchsorted(cum, t, side="right") - 1, 0, len(v) - 1)
+        s = (t - cum[k]) / np.where(L[k] > 0, (cum[k + 1] - cum[k]), 1.0)
+        return v[k, 0] + s * e[k, 0], v[k, 1] + s * e[k, 1]
+
+    def boundary_params(self, n):
+        """Arc-length fractions of about ``n`` boundary samples, every vertex included;
+        returns ``(t, gap)`` with ``gap`` the largest distance between neighbours [unit]."""
+        n = max(int(n), 8)
+        if self.kind == "circle":
+            t = np.arange(n) / n
+            return t, 2 * self.radius * math.sin(math.pi / n)
+        v = self.vertices
+        L = np.hypot(*(np.roll(v, -1, 0) - v).T)
+        total = L.sum()
+        cum = np.r_[0.0, np.cumsum(L)] / total
+        ts, gap = [], 0.0
+        for i, li in enumerate(L):
+            m = max(1, int(math.ceil(n * li / total)))
+            ts.append(cum[i] + (cum[i + 1] - cum[i]) * np.arange(m) / m)
+            gap = max(gap, li / m)
+        return np.concatenate(ts), gap
+
+    def contains(self, x, y):
+        """Points inside or on the boundary (to rounding)."""
+        x, y = np.asarray(x, float), np.asarray(y, float)
+        if self.kind == "circle":
+            return np.hypot(x - self.center[0], y - self.center[1]) <= self.radius * (1 + 1e-12)
+        if self.kind == "points":
+            return np.zeros(np.broadcast(x, y).shape, bool)
+        return self.signed_distance(x, y) >= -1e-12 * self.diameter
+
+    def signed_distance(self, x, y):
+        """Distance to the boundary, positive inside, negative outside [unit]."""
+        x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
+        if self.kind == "circle":
+            return self.radius - np.hypot(x - self.center[0], y - self.center[1])
+        if self.kind == "points":
+            raise ValueError("a point task has no inside")
+        v = self.vertices
+        w = np.roll(v, -1, 0)
+        px, py = x[..., None], y[..., None]
+        ex, ey = w[:, 0] - v[:, 0], w[:, 1] - v[:, 1]
+        L2 = ex * ex + ey * ey
+        s = np.clip(((px - v[:, 0]) * ex + (py - v[:, 1]) * ey) / L2, 0, 1)
+        d = np.hypot(px - v[:, 0] - s * ex, py - v[:, 1] - s * ey).min(-1)
+        # even-odd rule (the polygon is simple)
+        yi, yj = v[:, 1], w[:, 1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cross = ((yi > py) != (yj > py)) & (px < (w[:, 0] - v[:, 0]) * (py - yi) / (yj - yi) + v[:, 0])
+        inside = np.count_nonzero(cross, axis=-1) % 2 == 1
+        return np.where(inside, d, -d)
+
+    def grid(self, n):
+        """``n x n`` grid over the bounding box (edges included), kept inside: ``(x, y, step)``."""
+        if self.kind == "points":
+            return self.pts[:, 0].copy(), self.pts[:, 1].copy(), 0.0
+        x0, x1, y0, y1 = self.bbox
+        gx, gy = np.meshgrid(np.linspace(x0, x1, n), np.linspace(y0, y1, n))
+        keep = self.contains(gx, gy)
+        return gx[keep], gy[keep], max(x1 - x0, y1 - y0) / (n - 1)
+
+    def to_dict(self) -> dict:
+        d = {"kind": self.kind, "unit": self.unit, "label": self.label}
+        if self.kind == "circle":
+            d.update(center=list(self.center), radius=self.radius)
+        elif self.kind == "points":
+            d["points"] = self.pts.tolist()
+        else:
+            d["vertices"] = self.vertices.tolist()
+        return d
+
+
+def _floats(text, what):
+    try:
+        vals = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise ValueError(f"{what}: expected comma-separated numbers, got {text!r}") from None
+    if not all(math.isfinite(v) for v in vals):
+        raise ValueError(f"{what} must be finite numbers, got {text!r}")
+    return vals
+
+
+def parse_task(text: str, unit: str = "mm") -> Task:
+    """A task from the CLI syntax: ``rect:W,H@X,Y``, ``circle:R@X,Y``,
+    ``polygon:x1,y1;x2,y2;...`` or ``points:FILE.csv`` (two columns x, y; a header
+    line is skipped). ``@X,Y`` (the centre) defaults to the origin."""
+    if not isinstance(text, str) or ":" not in text:
+        raise ValueError(f"--task must be rect:W,H@X,Y, circle:R@X,Y, polygon:x1,y1;x2,y2;... or "
+                         f"points:FILE.csv, got {_v.show(text)}")
+    kind, _, body = text.partition(":")
+    kind = kind.strip().lower()
+    if kind in ("rect", "circle"):
+        size, _, at = body.partition("@")
+        center = _floats(at, f"--task {kind} centre") if at.strip() else [0.0, 0.0]
+        if len(center) != 2:
+            raise ValueError(f"--task {kind} centre must be X,Y, got {at!r}")
+        s = _floats(size, f"--task {kind} size")
+        if kind == "rect":
+            if len(s) != 2:
+                raise ValueError(f"--task rect needs W,H, got {size!r}")
+            return Task.rect(s[0], s[1], center, unit)
+        if len(s) != 1:
+            raise ValueError(f"--task circle needs one radius R, got {size!r}")
+        return Task.circle(s[0], center, unit)
+    if kind == "polygon":
+        if not body.strip():
+            raise ValueError("--task polygon is empty: give x1,y1;x2,y2;x3,y3;...")
+        pts = [_floats(p, "--task polygon vertex") for p in body.split(";") if p.strip()]
+        if any(len(p) != 2 for p in pts):
+            raise ValueError(f"--task polygon vertices must be x,y pairs separated by ';', got {body!r}")
+        return Task.polygon(pts, unit)
+    if kind == "points":
+        path = Path(body.strip())
+        try:
+            raw = path.read_text()
+        except OSError as exc:
+            raise ValueError(f"--task points: cannot read {str(path)!r} ({exc.strerror})") from None
+        rows = []
+        for k, line in enumerate(raw.splitlines()):
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            parts = [p for p in line.replace(";", ",").replace("\t", ",").split(",") if p.strip()]
+            try:
+                rows.append([float(parts[0]), float(parts[1])])
+            except (ValueError, IndexError):
+                if rows or k > 0:
+                    raise ValueError(f"--task points: line {k + 1} of {str(path)!r} is not x,y: {line!r}") from None
+        if not rows:
+            raise ValueError(f"--task points: {str(path)!r} holds no x,y rows")
+        return Task.points(rows, unit)
+    raise ValueError(f"--task kind must be rect, circle, polygon or points, got {kind!r}")
+
+
+# ------------------------------------------------------------------- requirements
+@dataclass(frozen=True)
+class Requirements:
+    """What must hold over the whole task (module docstring: how it is certified).
+
+    Angles in rad, lengths in the task's unit. ``None`` switches a requirement off;
+    reachability in one working mode without crossing a type-II singularity is
+    always required.
+
+    min_lci : LCI >= gamma over the task, in (0, 1).
+    joint_limits : ``((lo1, hi1), (lo2, hi2))`` (or one ``(lo, hi)`` for both) crank
+        angles [rad] of the five-bar, as :meth:`FiveBar.ik` returns them (unwrapped).
+    link_angle : ``(lo, hi)`` [rad]: ``lo <= |theta_i| <= hi`` for the angle of each
+        link from the slider direction (biglide, gantry; Wu 2008 eq. 1, 13).
+    max_stroke : largest actuator stroke [L] (biglide, bipod, gantry).
+    min_speed : guaranteed platform speed in every direction [L/s]; needs
+        ``actuator_speed`` (rad/s or L/s).
+    min_force : guaranteed platform force in every direction [N]; needs
+        ``actuator_torque`` (N m or N).
+    payload : force [N] to hold in the worst direction (the ``torque`` objective).
+    singularity_margin : smallest |sine of the angle between the legs| allowed.
+    """
+
+    min_lci: float | None = None
+    joint_limits: tuple | None = None
+    link_angle: tuple | None = None
+    max_stroke: float | None = None
+    min_speed: float | None = None
+    min_force: float | None = None
+    actuator_speed: float | None = None
+    actuator_torque: float | None = None
+    payload: float | None = None
+    singularity_margin: float = 1e-3
+
+    def checked(self, spec: "_Spec") -> "Requirements":
+        kw = {}
+        if self.min_lci is not None:
+            kw["min_lci"] = _v.open_unit_interval("min_lci", self.min_lci)
+        if self.joint_limits is not None:
+            if not spec.angular:
+                raise ValueError(f"joint_limits (crank angles) apply to the five-bar; the {spec.name} "
+                                 f"has sliders: use max_stroke")
+            jl = np.asarray(self.joint_limits, float)
+            if jl.shape == (2,):
+                jl = np.vstack([jl, jl])
+            if jl.shape != (2, 2) or not np.all(np.isfinite(jl)) or not np.all(jl[:, 1] > jl[:, 0]):
+                raise ValueError(f"joint_limits must be (lo, hi) or ((lo1, hi1), (lo2, hi2)) with lo < hi, "
+                                 f"got {_v.show(self.joint_limits)}")
+            kw["joint_limits"] = tuple(map(tuple, jl.tolist()))
+        if self.link_angle is not None:
+            if spec.name not in ("gantry", "biglide"):
+                raise ValueError(f"link_angle applies to the gantry and the biglide, not the {spec.name}")
+            lo, hi = _v.finite_numbers("link_angle", self.link_angle, 2, "(lo, hi) in rad")
+            if not 0 <= lo < hi <= math.pi / 2:
+                raise ValueError(f"link_angle must satisfy 0 <= lo < hi <= 90 deg, got {_v.show(self.link_angle)}")
+            kw["link_angle"] = (lo, hi)
+        if self.max_stroke is not None:
+            if spec.angular:
+                raise ValueError("max_stroke applies to slider mechanisms; the five-bar has cranks: use joint_limits")
+            kw["max_stroke"] = _v.positive_length("max_stroke", self.max_stroke)
+        for name, needs in (("min_speed", "actuator_speed"), ("min_force", "actuator_torque")):
+            if getattr(self, name) is not None:
+                kw[name] = _v.positive_length(name, getattr(self, name))
+                if getattr(self, needs) is None:
+                    raise ValueError(f"{name} needs {needs} (the actuators' limit)")
+        for name in ("actuator_speed", "actuator_torque", "payload"):
+            if getattr(self, name) is not None:
+                kw[name] = _v.positive_length(name, getattr(self, name))
+        m = _v.finite_number("singularity_margin", self.singularity_margin)
+        if not 0 <= m < 1:
+            raise ValueError(f"singularity_margin must lie in [0, 1), got {m!r}")
+        kw["singularity_margin"] = m
+        return replace(self, **kw)
+
+    def names(self, spec) -> tuple[str, ...]:
+        out = ["reach", "singular"]
+        if self.min_lci is not None:
+            out.append("lci")
+        if self.joint_limits is not None:
+            out.append("joints")
+        if self.link_angle is not None:
+            out.append("link_angle")
+        if self.max_stroke is not None:
+            out.append("stroke")
+        if spec.length_constraint:
+            out.append("lengths")
+        if self.min_speed is not None:
+            out.append("speed")
+        if self.min_force is not None:
+            out.append("force")
+        return tuple(out)
+
+    def describe(self, name, unit) -> str:
+        """Human wording of one requirement (for messages)."""
+        deg = math.degrees
+        return {
+            "reach": "reachability of the whole task in one working mode",
+            "singular": "no type-II singularity over the task (one assembly mode)",
+            "lci": f"LCI >= {self.min_lci} over the task",
+            "joints": "the joint limits " + (", ".join(f"[{deg(a):g}, {deg(b):g}] deg" for a, b in self.joint_limits)
+                                             if self.joint_limits else ""),
+            "link_angle": (f"link angles within [{deg(self.link_angle[0]):g}, {deg(self.link_angle[1]):g}] deg"
+                           if self.link_angle else ""),
+            "stroke": f"stroke <= {self.max_stroke} {unit}",
+            "lengths": "the link-length bounds",
+            "speed": f"guaranteed speed >= {self.min_speed} {unit}/s",
+            "force": f"guaranteed force >= {self.min_force} N",
+        }[name]
+
+
+# -------------------------------------------------------------- mechanism specs
+class _Spec:
+    """How one mechanism of the protocol is sized: variables, construction in the
+    task frame, size, joints, holes of its reachable set."""
+
+    name = ""
+    lengths: tuple[str, ...] = ()
+    modes: tuple[str, ...] = ()
+    default_mode = ""
+    angular = False
+    length_constraint = False
+    derived_strokes = False
+
+    def lower_bounds(self, lmin):
+        return [lmin] * len(self.lengths)
+
+    def to_mech(self, mech, x, y):
+        return x, y
+
+    def validity(self, v, lmax) -> float:
+        """<= 0 when the variables describe a mechanism (normalised)."""
+        return -1.0
+
+    def placement_scale(self, v, lmax) -> float:
+        """Length over which a free task placement is searched (the design's reach)."""
+        return lmax
+
+    def reach_radius(self, lmax) -> float:
+        """No design within the length bounds reaches a point farther than this from
+        the base midpoint (a necessary condition, checked before any run)."""
+        return math.inf
+
+    def x_reach(self, lmax) -> float:
+        return math.inf
+
+
+class _FiveBarSpec(_Spec):
+    name = "five-bar"
+    lengths = ("r1", "r2", "r3")
+    angular = True
+
+    def __init__(self):
+        from .mechanisms.five_bar import MODES
+
+        self.modes, self.default_mode = MODES, "+-"
+
+    def lower_bounds(self, lmin):
+        return [lmin, lmin, 0.0]
+
+    def build(self, v, mode, _samples=None, **_):
+        from .mechanisms.five_bar import FiveBar
+
+        return FiveBar(v["r1"], v["r2"], v["r3"], mode)
+
+    def size(self, mech, derived):
+        """``2 (r1 + r2 + r3)``: two cranks, two distal links, the base distance."""
+        return 2.0 * (mech.r1 + mech.r2 + mech.r3)
+
+    def joints(self, mech, x, y):
+        b1x, b1y, b2x, b2y, _ = mech.elbows(x, y)
+        return [(b1x, b1y), (b2x, b2y), (x, y), (np.full_like(x, mech.r3), np.zeros_like(x))]
+
+    def holes(self, mech):
+        return [(-mech.r3, 0.0), (mech.r3, 0.0)]
+
+    def reach_radius(self, lmax):
+        return 2.0 * lmax
+
+    def placement_scale(self, v, lmax):
+        return v["r1"] + v["r2"]
+
+
+class _SliderSpec(_Spec):
+    derived_strokes = True
+
+    def strokes_for(self, positions):
+        """``((q1_lo, q1_hi), (q2_lo, q2_hi))`` from the task's actuator extremes."""
+        return positions
+
+
+class _BiglideSpec(_SliderSpec):
+    name = "biglide"
+    lengths = ("l1", "l2")
+
+    def __init__(self):
+        from .mechanisms.biglide import MODES
+
+        self.modes, self.default_mode = MODES, "--"
+
+    def validity(self, v, lmax):
+        return (v["l1"] - v["l2"]) / lmax + 1e-9
+
+    def raw(self, v, mode):
+        from .mechanisms.biglide import Biglide
+
+        return Biglide(v["l1"], v["l2"], -1.0, 1.0, mode=mode)
+
+    def positions(self, v, mode, x, y):
+        return self.raw(v, mode).slider_positions(x, y)
+
+    def build(self, v, mode, strokes=None, pad=0.0):
+        from .mechanisms.biglide import Biglide
+
+        (a1, b1), (a2, b2) = strokes
+        return Biglide(v["l1"], v["l2"], a1 - pad, b1 + pad, a2 - pad, b2 + pad, mode=mode)
+
+    def size(self, mech, derived):
+        """``2 l1 + 2 l2``: the guide distance and the two links (strokes reported apart)."""
+        return 2.0 * (mech.l1 + mech.l2)
+
+    def joints(self, mech, x, y):
+        q1, q2 = mech.slider_positions(x, y)
+        return [(np.full_like(x, mech.l1), q1), (np.full_like(x, -mech.l1), q2), (x, y)]
+
+    def link_angles(self, mech, x, y):
+        g = mech.guides
+        with np.errstate(invalid="ignore"):
+            return (np.arcsin(np.clip(np.abs(x - g[0]) / mech.l2, 0, 1)),
+                    np.arcsin(np.clip(np.abs(x - g[1]) / mech.l2, 0, 1)))
+
+    def holes(self, mech):
+        return []
+
+    def x_reach(self, lmax):
+        return lmax
+
+    def placement_scale(self, v, lmax):
+        return v["l2"]
+
+
+class _GantrySpec(_SliderSpec):
+    name = "gantry"
+    lengths = ("d1", "l")
+
+    def __init__(self):
+        from .mechanisms.gantry import MODES
+
+        self.modes, self.default_mode = MODES, "--"
+
+    def validity(self, v, lmax):
+        return (v["d1"] - v["l"]) / lmax + 1e-9
+
+    def positions(self, v, mode, x, y):
+        s1, s2 = (1.0 if c == "+" else -1.0 for c in mode)
+        l, d1 = v["l"], v["d1"]
+        with np.errstate(invalid="ignore"):
+            w1 = np.sqrt(l * l - (x + d1) ** 2)
+            w2 = np.sqrt(l * l - (x - d1) ** 2)
+        # q_i = y - l2/2 - c_i, c_i = -s_i w_i (Gantry._offsets, l2 = 0)
+        return y + s1 * w1, y + s2 * w2
+
+    def build(self, v, mode, strokes=None, pad=0.0):
+        from .mechanisms.gantry import Gantry
+
+        (a1, b1), (a2, b2) = strokes
+        lo, hi = min(a1, a2) - pad, max(b1, b2) + pad
+        return Gantry(v["d1"], v["l"], hi - lo, q_min=lo, mode=mode)
+
+    def size(self, mech, derived):
+        """``2 d1 + 3 l``: the column distance and the three equal links (Wu Fig. 1)."""
+        return 2.0 * mech.d1 + 3.0 * mech.l
+
+    def joints(self, mech, x, y):
+        c1, c2 = mech._offsets(x)
+        return [(np.full_like(x, -mech.d1), y - c1), (np.full_like(x, mech.d1), y - c2), (x, y)]
+
+    def link_angles(self, mech, x, y):
+        return (np.arcsin(np.clip(np.abs(x + mech.d1) / mech.l, 0, 1)),
+                np.arcsin(np.clip(np.abs(x - mech.d1) / mech.l, 0, 1)))
+
+    def holes(self, mech):
+        return []
+
+    def x_reach(self, lmax):
+        return lmax
+
+    def placement_scale(self, v, lmax):
+        return v["l"]
+
+
+class _BipodSpec(_SliderSpec):
+    name = "bipod"
+    lengths = ("b",)
+    length_constraint = True  # the struts at full extension are links too
+
+    def __init__(self):
+        self.modes, self.default_mode = ("up", "down"), "up"
+
+    def to_mech(self, mech, x, y):
+        return x + 0.5 * mech.b, y
+
+    def positions(self, v, mode, x, y):
+        b = v["b"]
+        return np.hypot(x + 0.5 * b, y), np.hypot(x - 0.5 * b, y)
+
+    def build(self, v, mode, strokes=None, pad=0.0):
+        from .mechanisms.bipod import Bipod
+
+        (a1, b1), (a2, b2) = strokes
+        lo = lambda a: max(a - pad, 1e-9 * v["b"])  # noqa: E731
+        return Bipod(v["b"], lo(a1), b1 + pad, lo(a2), b2 + pad, branch=mode)
+
+    def size(self, mech, derived):
+        """``b + q1_max + q2_max``: the base and both struts at full extension."""
+        return mech.b + mech.q1_max + mech.q2_max
+
+    def joints(self, mech, x, y):
+        return [(np.full_like(x, -0.5 * mech.b), np.zeros_like(x)),
+                (np.full_like(x, 0.5 * mech.b), np.zeros_like(x)), (x, y)]
+
+    def holes(self, mech):
+        return [(-0.5 * mech.b, 0.0), (0.5 * mech.b, 0.0)]
+
+    def reach_radius(self, lmax):
+        return lmax
+
+
+_SPECS = {"five-bar": _FiveBarSpec, "biglide": _BiglideSpec, "bipod": _BipodSpec, "gantry": _GantrySpec}
+MECHANISMS = tuple(_SPECS)
+
+
+def get_spec(name) -> _Spec:
+    return _SPECS[_v.choice("mechanism", name, MECHANISMS)]()
+
+
+# ------------------------------------------------------------------ evaluation
+@dataclass(frozen=True)
+class Sampling:
+    """Sample counts of one evaluation: boundary points, interior grid per side."""
+
+    n_boundary: int = 192
+    n_interior: int = 13
+    refine: bool = True
+
+    @classmethod
+    def fine(cls):
+        """The certification of :func:`certify` (front designs, design.json)."""
+        return cls(2048, 61, True)
+
+
+def _bad(v, bad):
+    """NaN (unreachable) replaced by ``bad``."""
+    return np.where(np.isfinite(v), v, bad)
+
+
+class DesignEvaluator:
+    """Evaluates one design (a dict of variables) against a task: every requirement's
+    margin, every objective, the derived strokes. Picklable (travels to workers)."""
+
+    def __init__(self, mechanism, task: Task, requirements: Requirements, objectives, mode=None,
+                 place="fixed", min_length=None, max_length=None, shape=None):
+        self.spec = get_spec(mechanism)
+        if not isinstance(task, Task):
+            raise ValueError(f"task must be a mechopt.design.Task, got {type(task).__name__}")
+        self.task = task
+        self.unit = task.unit
+        self.req = (requirements or Requirements()).checked(self.spec)
+        objectives = (objectives,) if isinstance(objectives, str) else tuple(objectives)
+        if not objectives:
+            raise ValueError(f"objectives must name at least one of {', '.join(OBJECTIVES)}")
+        for ob in objectives:
+            _v.choice("objective", ob, tuple(OBJECTIVES))
+        if len(set(objectives)) != len(objectives):
+            raise ValueError(f"objectives must not repeat, got {', '.join(objectives)}")
+        if "speed" in objectives and self.req.actuator_speed is None:
+            raise ValueError("objective speed needs actuator_speed (--actuator-speed)")
+        if "force" in objectives and self.req.actuator_torque is None:
+            raise ValueError("objective force needs actuator_torque (--actuator-torque)")
+        if "torque" in objectives and self.req.payload is None:
+            raise ValueError("objective torque needs payload (--payload, N)")
+        self.objectives = objectives
+        self.place = _v.choice("place", place, PLACEMENTS)
+        if mode in (None, ""):
+            mode = self.spec.default_mode
+        self.mode_any = mode == "any"
+        self.mode = None if self.mode_any else _v.choice("mode", mode, self.spec.modes)
+        D = task.diameter
+        self.max_length = (_v.positive_length("max_length", max_length) if max_length is not None
+                           else 4.0 * max(D, float(np.abs(task.bbox).max())))
+        self.min_length = (_v.positive_length("min_length", min_length) if min_length is not None
+                           else self.max_length / 1000.0)
+        if not self.min_length < self.max_length:
+            raise ValueError(f"min_length ({self.min_length:g}) must be below max_length ({self.max_length:g})")
+        self.shape = None
+        if shape is not None:
+            s = _v.finite_numbers("shape", shape, len(self.spec.lengths),
+                                  f"{len(self.spec.lengths)} ratios ({', '.join(self.spec.lengths)})")
+            if not all(x >= 0 for x in s) or max(s) <= 0:
+                raise ValueError(f"shape ratios must be >= 0 and not all 0, got {_v.show(shape)}")
+            self.shape = s
+        self._precheck()
+        self._build_vars()
+
+    # --- variables -------------------------------------------------------------------
+    def _build_vars(self):
+        """pymoo variables: each length ``L`` as ``ln_L = ln(L + c)`` with ``c = min_length``
+        (a log scale: the optimiser resolves small and large designs alike, and a
+        length may reach 0, e.g. the five-bar's half base), the mode index with
+        ``mode="any"``, the task placement ``task_x``/``task_y`` when free."""
+        lo = self.spec.lower_bounds(self.min_length)
+        c = self._c = self.min_length
+        names, xl, xu = [], [], []
+        if self.shape is None:
+            names += [f"ln_{n}" for n in self.spec.lengths]
+            xl += [math.log(v + c) for v in lo]
+            xu += [math.log(self.max_length + c)] * len(lo)
+        else:
+            names.append("ln_D")
+            pos = [s for s in self.shape if s > 0]
+            xl.append(math.log(self.min_length / min(pos) + c))
+            xu.append(math.log(self.max_length / max(self.shape) + c))
+        if self.mode_any:
+            names.append("mode")
+            xl.append(0.0)
+            xu.append(len(self.spec.modes) - 1e-9)
+        # the placement relative to the design's own reach (spec.placement_scale):
+        # task_y = y_lo + task_y_rel * scale, task_x = task_x_rel * scale
+        x0, x1, y0, y1 = self.task.bbox
+        self._y_lo = 0.5 * (y1 - y0) if self.spec.name in ("five-bar", "bipod") and self.mode != "down" \
+            else None
+        if self.place == "free":
+            names.append("task_x_rel")
+            xl.append(-1.0)
+            xu.append(1.0)
+        if self.place in ("free", "free-y"):
+            names.append("task_y_rel")
+            xl.append(0.0)
+            xu.append(1.0)
+        self.var_names = tuple(names)
+        self.xl, self.xu = np.array(xl, float), np.array(xu, float)
+
+    def _precheck(self):
+        """A task no design within the length bounds can reach is an input error."""
+        R = self.spec.reach_radius(self.max_length)
+        Xr = self.spec.x_reach(self.max_length)
+        t, D = self.task, self.task.diameter
+        x0, x1, y0, y1 = t.bbox
+        far = float(np.abs([x0, x1, y0, y1]).max())
+        u = self.unit
+        if self.place == "fixed":
+            if t.kind == "circle":
+                dmax = math.hypot(*t.center) + t.radius
+            else:
+                p = t.vertices if t.vertices is not None else t.pts
+                dmax = float(np.hypot(p[:, 0], p[:, 1]).max())
+            if dmax > R:
+                raise ValueError(f"the task reaches {dmax:g} {u} from the base midpoint; no {self.spec.name} "
+                                 f"with links <= {self.max_length:g} {u} reaches beyond {R:g} {u} "
+                                 f"(raise --max-length or move the task)")
+            if max(abs(x0), abs(x1)) > Xr:
+                raise ValueError(f"the task spans x in [{x0:g}, {x1:g}] {u}; no {self.spec.name} with links "
+                                 f"<= {self.max_length:g} {u} reaches |x| > {Xr:g} {u}")
+        elif self.place == "free-y":
+            if max(abs(x0), abs(x1)) > min(R, Xr):
+                raise ValueError(f"the task spans x in [{x0:g}, {x1:g}] {u}; no {self.spec.name} with links "
+                                 f"<= {self.max_length:g} {u} reaches |x| > {min(R, Xr):g} {u}")
+        if D > 2 * min(R, Xr) and (D > 2 * R or (x1 - x0) > 2 * Xr):
+            raise ValueError(f"the task is {D:g} {u} across; no {self.spec.name} with links <= "
+                             f"{self.max_length:g} {u} has a workspace that wide (raise --max-length)")
+        del far
+
+    def decode(self, x) -> dict:
+        """Variables of one row of X as a dict (lengths, ``mode`` string, placement)."""
+        x = np.asarray(x, float)
+        d = dict(zip(self.var_names, x))
+        out = {}
+        c = self._c
+        if self.shape is None:
+            for n in self.spec.lengths:
+                out[n] = max(float(math.exp(d[f"ln_{n}"]) - c), 0.0)
+        else:
+            D = max(float(math.exp(d["ln_D"]) - c), 0.0)
+            for n, s in zip(self.spec.lengths, self.shape):
+                out[n] = D * s
+            out["D"] = D
+        if self.mode_any:
+            k = int(np.clip(np.floor(d["mode"]), 0, len(self.spec.modes) - 1))
+            out["mode"] = self.spec.modes[k]
+        else:
+            out["mode"] = self.mode
+        rx, ry = self.task.reference
+        scale = self.spec.placement_scale(out, self.max_length)
+        out["task_x"] = float(d["task_x_rel"] * scale) if "task_x_rel" in d else float(rx)
+        if "task_y_rel" in d:
+            lo = self._y_lo if self._y_lo is not None else ry - scale
+            span = scale if self._y_lo is not None else 2.0 * scale
+            out["task_y"] = float(lo + d["task_y_rel"] * span)
+        else:
+            out["task_y"] = float(ry)
+        return out
+
+    def encode(self, v: dict) -> np.ndarray:
+        row = []
+        for n in self.var_names:
+            if n == "mode":
+                row.append(self.spec.modes.index(v["mode"]) + 0.5)
+            elif n.startswith("ln_"):
+                row.append(math.log(float(v[n[3:]]) + self._c))
+            elif n in ("task_x_rel", "task_y_rel"):
+                scale = self.spec.placement_scale(v, self.max_length)
+                if n == "task_x_rel":
+                    row.append(v["task_x"] / scale)
+                else:
+                    ry = self.task.reference[1]
+                    lo = self._y_lo if self._y_lo is not None else ry - scale
+                    span = scale if self._y_lo is not None else 2.0 * scale
+                    row.append((v["task_y"] - lo) / span)
+            else:
+                row.append(float(v[n]))
+        return np.array(row)
+
+    # --- one design -------------------------------------------------------------------
+    def mechanism(self, v: dict, sampling: Sampling | None = None):
+        """The mechanism of the decoded design ``v`` (strokes derived from its task)."""
+        return self._setup(v, sampling or Sampling.fine())[0]
+
+    def _setup(self, v, s: Sampling):
+        task = self.task.moved_to(v["task_x"], v["task_y"])
+        lengths = {n: v[n] for n in self.spec.lengths}
+        if task.is_region:
+            tb, gap = task.boundary_params(s.n_boundary)
+            bx, by = task.boundary_at(tb)
+            ix, iy, step = task.grid(s.n_interior)
+        else:
+            tb, gap = np.zeros(0), 0.0
+            bx, by = task.pts[:, 0], task.pts[:, 1]
+            ix, iy, step = np.zeros(0), np.zeros(0), 0.0
+        ctx = dict(task=task, tb=tb, gap=gap, bx=bx, by=by, ix=ix, iy=iy, step=step)
+        derived = {}
+        if self.spec.derived_strokes:
+            strokes = []
+            for leg in (0, 1):
+                def qf(x, y, leg=leg):
+                    return self.spec.positions(lengths, v["mode"], x, y)[leg]
+                lo = self._boundary_min(ctx, lambda x, y: _bad(qf(x, y), np.inf), s.refine)
+                hi = -self._boundary_min(ctx, lambda x, y: _bad(-qf(x, y), np.inf), s.refine)
+                if not (math.isfinite(lo) and math.isfinite(hi)):
+                    lo, hi = -1.0, 1.0  # some task point out of reach of the link: reach fails
+                strokes.append((lo, max(hi, lo + 1e-9 * self.task.diameter)))
+            derived["strokes"] = strokes
+            mech = self.spec.build(lengths, v["mode"], strokes=strokes)
+            # the clearance to the type-I loci alone (the strokes cover the task by construction)
+            check = self.spec.build(lengths, v["mode"], strokes=strokes, pad=10.0 * self.task.diameter)
+        else:
+            mech = self.spec.build(lengths, v["mode"])
+            check = mech
+        return mech, check, ctx, derived
+
+    def _boundary_min(self, ctx, f, refine, k=3, levels=4, n=17):
+        """Minimum of ``f`` over the boundary samples, refined by zooming (module doc)."""
+        vals = f(ctx["bx"], ctx["by"])
+        if vals.size == 0:
+            return math.inf
+        best = float(np.min(vals))
+        if not refine or ctx["tb"].size == 0:
+            return best
+        order = np.argsort(vals)[:k]
+        t = ctx["tb"][order]
+        dt = 1.0 / ctx["tb"].size * 1.5
+        task = ctx["task"]
+        for _ in range(levels):
+            ts = t[:, None] + np.linspace(-dt, dt, n)[None, :]
+            vv = f(*task.boundary_at(ts.ravel())).reshape(ts.shape)
+            j = np.argmin(vv, axis=1)
+            t = ts[np.arange(len(t)), j]
+            best = min(best, float(vv.min()))
+            dt = 2.0 * dt / (n - 1)
+        return best
+
+    def _interior_min(self, ctx, f, refine, k=3, levels=3, n=9):
+        if ctx["ix"].size == 0:
+            return math.inf
+        vals = f(ctx["ix"], ctx["iy"])
+        best = float(np.min(vals))
+        if not refine:
+            return best
+        order = np.argsort(vals)[:k]
+        px, py = ctx["ix"][order], ctx["iy"][order]
+        h = ctx["step"]
+        task = ctx["task"]
+        g = np.linspace(-1.0, 1.0, n)
+        GX, GY = (a.ravel() for a in np.meshgrid(g, g))
+        for _ in range(levels):
+            X = px[:, None] + h * GX[None, :]
+            Y = py[:, None] + h * GY[None, :]
+            inside = task.contains(X, Y)
+            vv = np.where(inside, f(X, Y), np.inf)
+            j = np.argmin(vv, axis=1)
+            px, py = X[np.arange(len(px)), j], Y[np.arange(len(py)), j]
+            best = min(best, float(vv.min()))
+            h = 2.0 * h / (n - 1)
+        return best
+
+    def _region_min(self, ctx, f, refine):
+        return min(self._boundary_min(ctx, f, refine), self._interior_min(ctx, f, refine))
+
+    def evaluate(self, v: dict, sampling: Sampling | None = None) -> dict:
+        """Every requirement's ``g`` (<= 0 feasible), margin, objective and derived value."""
+        s = sampling or Sampling()
+        D = self.task.diameter
+        lengths = {n: v[n] for n in self.spec.lengths}
+        names = self.req.names(self.spec)
+        out = {"g": {}, "margin": {}, "values": {}, "derived": {}}
+        validity = self.spec.validity(lengths, self.max_length)
+        if validity > 0:
+            return self._invalid(v, names, validity)
+        mech, check, ctx, derived = self._setup(v, s)
+        spec, req = self.spec, self.req
+        allx = np.concatenate([ctx["bx"], ctx["ix"]])
+        ally = np.concatenate([ctx["by"], ctx["iy"]])
+
+        def tm(x, y):
+            return spec.to_mech(mech, x, y)
+
+        # reach (certified: 1-Lipschitz clearance on the boundary + holes)
+        clr = _bad(check.serial_clearance(*spec.to_mech(check, allx, ally)), -D)
+        if self.task.is_region:
+            nb = ctx["bx"].size
+            c_b = float(clr[:nb].min())
+            reach_margin = c_b - 0.5 * ctx["gap"]
+            reach_margin = min(reach_margin, float(clr.min()))
+            task = ctx["task"]
+            for hx, hy in spec.holes(mech):
+                depth = float(task.signed_distance(hx, hy))
+                if depth >= -1e-12 * D:
+                    reach_margin = min(reach_margin, -max(depth, 1e-9 * D))
+        else:
+            reach_margin = float(clr.min())
+        out["margin"]["reach"] = reach_margin
+        out["g"]["reach"] = -reach_margin / D if reach_margin > 0 else -reach_margin / D + 1e-9
+
+        # type II sign
+        rx, ry = ctx["task"].reference if self.task.is_region else (allx.mean(), ally.mean())
+        f_all = mech.type2_function(*tm(allx, ally))
+        s0 = np.sign(mech.type2_function(*tm(np.float64(rx), np.float64(ry))))
+        if not s0:
+            med = np.nanmedian(f_all) if np.any(np.isfinite(f_all)) else 1.0
+            s0 = np.sign(med) or 1.0
+
+        def t2(x, y):
+            return _bad(s0 * mech.type2_function(*tm(x, y)), -1.0)
+
+        def lci(x, y):
+            return _bad(_ix.lci(mech.jacobian(*tm(x, y))), 0.0)
+
+        def svals(x, y):
+            return _ix.singular_values(mech.jacobian(*tm(x, y)))
+
+        lci_s = lci(allx, ally)
+        t2_s = t2(allx, ally)
+        smax_s, smin_s = (_bad(a, np.nan) for a in svals(allx, ally))
+        sample_vals = dict(t2=float(t2_s.min()), lci=float(lci_s.min()))
+        # decide whether to refine: only designs that are feasible or nearly so
+        near = reach_margin > -0.05 * D and sample_vals["t2"] > -0.05 and \
+            (req.min_lci is None or sample_vals["lci"] >= 0.9 * req.min_lci)
+        refine = s.refine and near
+        t2_min = self._region_min(ctx, t2, refine) if self.task.is_region else sample_vals["t2"]
+        out["values"]["type2_min"] = t2_min
+        out["margin"]["singular"] = t2_min - req.singularity_margin
+        out["g"]["singular"] = req.singularity_margin - t2_min if t2_min < req.singularity_margin \
+            else -(t2_min - req.singularity_margin)
+        need_lci = req.min_lci is not None or {"min-lci"} & set(self.objectives)
+        lci_min = (self._region_min(ctx, lci, refine) if self.task.is_region else float(lci_s.min())) \
+            if need_lci else float(lci_s.min())
+        out["values"]["lci_min"] = lci_min
+        out["values"]["lci_mean"] = float(np.mean(lci(*(self._mean_points(ctx)))))
+        if req.min_lci is not None:
+            out["margin"]["lci"] = lci_min - req.min_lci
+            out["g"]["lci"] = (req.min_lci - lci_min) / req.min_lci
+
+        # joint / stroke / link angle (boundary extremes)
+        if self.task.is_region:
+            bmin = lambda f: self._boundary_min(ctx, f, refine)  # noqa: E731
+        else:
+            bmin = lambda f: float(np.min(f(allx, ally)))  # noqa: E731
+        if spec.angular:
+            rng = []
+            for leg in (0, 1):
+                def q(x, y, leg=leg):
+                    return mech.ik(*tm(x, y))[leg]
+                lo = bmin(lambda x, y: _bad(q(x, y), np.inf))
+                hi = -bmin(lambda x, y: _bad(-q(x, y), np.inf))
+                rng.append((lo, hi))
+            derived["joint_ranges"] = rng
+            if req.joint_limits is not None:
+                m = min(min(q_lo - lim_lo, lim_hi - q_hi)
+                        for (q_lo, q_hi), (lim_lo, lim_hi) in zip(rng, req.joint_limits))
+                m = m if math.isfinite(m) else -math.pi
+                out["margin"]["joints"] = m
+                out["g"]["joints"] = -m / math.pi
+        else:
+            st = derived["strokes"]
+            strokes = [hi - lo for lo, hi in st]
+            derived["stroke"] = max(strokes)
+            if req.max_stroke is not None:
+                m = req.max_stroke - max(strokes)
+                out["margin"]["stroke"] = m
+                out["g"]["stroke"] = -m / req.max_stroke
+        if req.link_angle is not None:
+            lo_req, hi_req = req.link_angle
+            m = math.inf
+            for leg in (0, 1):
+                def a(x, y, leg=leg):
+                    return spec.link_angles(mech, x, y)[leg]
+                lo = bmin(lambda x, y: _bad(a(x, y), 0.0))
+                hi = -bmin(lambda x, y: _bad(-a(x, y), -math.pi / 2))
+                derived[f"link_angle{leg + 1}"] = (lo, hi)
+                m = min(m, lo - lo_req, hi_req - hi)
+            out["margin"]["link_angle"] = m
+            out["g"]["link_angle"] = -m / (math.pi / 2)
+        if spec.length_constraint:  # bipod struts
+            qmax = max(mech.q1_max, mech.q2_max)
+            out["margin"]["lengths"] = self.max_length - qmax
+            out["g"]["lengths"] = (qmax - self.max_length) / self.max_length
+
+        # speed and force (Liu eq. 10, 13) in the user's units
+        u_m = UNITS[self.unit]
+        need_sv = any(n in names for n in ("speed", "force")) or {"speed", "force", "torque"} & set(self.objectives)
+        if need_sv:
+            def neg_smax(x, y):
+                return _bad(-svals(x, y)[0], -np.inf)
+
+            def smin(x, y):
+                return _bad(svals(x, y)[1], 0.0)
+
+            if self.task.is_region:
+                smax_max = -self._region_min(ctx, neg_smax, refine)
+                smin_min = self._region_min(ctx, smin, refine)
+            else:
+                smax_max = -float(neg_smax(allx, ally).min())
+                smin_min = float(smin(allx, ally).min())
+            # J in rad/[unit] (revolute) or 1 (prismatic); torque N m -> N [unit] for revolute
+            t_factor = 1.0 / u_m if spec.angular else 1.0
+            if req.actuator_speed is not None:
+                sp = req.actuator_speed / smax_max if smax_max > 0 and math.isfinite(smax_max) else 0.0
+                out["values"]["speed"] = sp
+            if req.actuator_torque is not None:
+                out["values"]["force"] = req.actuator_torque * t_factor * smin_min
+            if req.payload is not None:
+                tq = req.payload / smin_min / t_factor if smin_min > 0 else 1e3 * req.payload * D / t_factor
+                out["values"]["torque"] = min(tq, 1e3 * req.payload * D / t_factor)
+            if "speed" in names:
+                out["margin"]["speed"] = out["values"]["speed"] - req.min_speed
+                out["g"]["speed"] = (req.min_speed - out["values"]["speed"]) / req.min_speed
+            if "force" in names:
+                out["margin"]["force"] = out["values"]["force"] - req.min_force
+                out["g"]["force"] = (req.min_force - out["values"]["force"]) / req.min_force
+
+        # size and footprint
+        out["values"]["size"] = float(spec.size(mech, derived))
+        if "footprint" in self.objectives:
+            fp = 0.0
+            mx, my = tm(allx, ally)
+            for jx, jy in spec.joints(mech, mx, my):
+                jx, jy = np.asarray(jx), np.asarray(jy)
+                ox = jx - (mx - allx)  # back to the task frame
+                r = np.hypot(ox, jy)
+                fp = max(fp, float(np.nanmax(r)) if np.any(np.isfinite(r)) else 0.0)
+            out["values"]["footprint"] = max(fp, float(np.hypot(allx, ally).max()))
+        out["derived"] = derived
+        out["mechanism"] = mech
+        out["names"] = names
+        return out
+
+    def _mean_points(self, ctx):
+        if ctx["ix"].size:
+            return ctx["ix"], ctx["iy"]
+        return ctx["bx"], ctx["by"]
+
+    def _invalid(self, v, names, validity):
+        """A design whose variables describe no mechanism: finite objectives, every
+        constraint violated, the length one by how much."""
+        lengths = {n: v[n] for n in self.spec.lengths}
+        size = 2.0 * sum(lengths.values())
+        out = {"g": {n: 1.0 for n in names}, "margin": {n: math.nan for n in names},
+               "values": {"size": size, "footprint": size, "lci_min": 0.0, "lci_mean": 0.0,
+                          "type2_min": -1.0, "speed": 0.0, "force": 0.0,
+                          "torque": 1e3 * (self.req.payload or 1.0) * self.task.diameter},
+               "derived": {}, "mechanism": None, "names": names}
+        out["g"]["reach"] = 1.0 + validity
+        return out
+
+    # --- pymoo rows -------------------------------------------------------------------
+    def objective_values(self, res) -> list[float]:
+        key = {"size": "size", "footprint": "footprint", "min-lci": "lci_min", "mean-lci": "lci_mean",
+               "speed": "speed", "force": "force", "torque": "torque"}
+        return [float(res["values"][key[o]]) for o in self.objectives]
+
+    def units(self):
+        t = "N m" if self.spec.angular else "N"
+        return {o: OBJECTIVES[o][1].format(L=self.unit, T=t) for o in self.objectives}
+
+    def row(self, v, res) -> dict:
+        """One front.csv row: variables (mode as a string), placement, objectives,
+        margins (``margin_<requirement>``, natural units), derived values."""
+        r = {n: v[n] for n in self.spec.lengths}
+        if "D" in v:
+            r["D"] = v["D"]
+        r["mode"] = v["mode"]
+        r["task_x"], r["task_y"] = v["task_x"], v["task_y"]
+        for o, val in zip(self.objectives, self.objective_values(res)):
+            r[o] = val
+        for n in res["names"]:
+            r[f"margin_{n}"] = res["margin"][n]
+        d = res["derived"]
+        if "joint_ranges" in d:
+            for i, (lo, hi) in enumerate(d["joint_ranges"], 1):
+                r[f"theta{i}_min_deg"], r[f"theta{i}_max_deg"] = math.degrees(lo), math.degrees(hi)
+        if "strokes" in d:
+            for i, (lo, hi) in enumerate(d["strokes"], 1):
+                r[f"q{i}_min"], r[f"q{i}_max"] = lo, hi
+            r["stroke"] = d["stroke"]
+        for leg in (1, 2):
+            if f"link_angle{leg}" in d:
+                lo, hi = d[f"link_angle{leg}"]
+                r[f"link{leg}_angle_min_deg"], r[f"link{leg}_angle_max_deg"] = math.degrees(lo), math.degrees(hi)
+        r["size"] = res["values"]["size"]
+        r["lci_min"] = res["values"]["lci_min"]
+        return r
+
+    def settings(self) -> dict:
+        req = {k: v for k, v in asdict(self.req).items() if v is not None}
+        return {"mechanism": self.spec.name, "task": self.task.to_dict(), "requirements": req,
+                "objectives": list(self.objectives), "mode": "any" if self.mode_any else self.mode,
+                "place": self.place, "min_length": self.min_length, "max_length": self.max_length,
+                "shape": list(self.shape) if self.shape else None, "unit": self.unit}
+
+
+# ------------------------------------------------------------------ certification
+def certify(evaluator: DesignEvaluator, v: dict, sampling: Sampling | None = None) -> dict:
+    """Re-check one design with the fine sampling (:meth:`Sampling.fine`: 2048 boundary
+    points, a 61 x 61 interior grid, zoom refinement); returns the evaluation with
+    ``feasible`` (every ``g <= 0``) and ``tolerance`` (what the margins rest on)."""
+    s = sampling or Sampling.fine()
+    res = evaluator.evaluate(v, s)
+    res["feasible"] = bool(all(g <= 0 for g in res["g"].values()))
+    task = evaluator.task
+    if task.is_region:
+        _, gap = task.boundary_params(s.n_boundary)
+        res["tolerance"] = {
+            "boundary_gap": gap,
+            "interior_step": max(np.ptp(task.bbox[:2]), np.ptp(task.bbox[2:])) / (s.n_interior - 1),
+            "reach": "certified: clearance >= sampled minimum - boundary_gap/2 (1-Lipschitz), no base joint in the task",
+            "minima": "boundary and interior critical points located on the samples, refined to "
+                      "boundary_gap/2048 (boundary) and interior_step/64 (interior)",
+        }
+    else:
+        res["tolerance"] = {"points": "exact at the task's points"}
+    return res
+
+
+# ------------------------------------------------------------------ choosing
+def knee_index(F: np.ndarray) -> int:
+    """Knee of a front (minimisation form ``F``, rows = designs): with two objectives
+    the design farthest from the line through the two extremes (normalised), with
+    one the best, otherwise the design nearest the normalised ideal point."""
+    F = np.asarray(F, float)
+    if len(F) == 1 or F.shape[1] == 1:
+        return int(np.argmin(F[:, 0]))
+    lo, hi = F.min(0), F.max(0)
+    Z = (F - lo) / np.where(hi > lo, hi - lo, 1.0)
+    if F.shape[1] == 2:
+        a, b = Z[np.argmin(Z[:, 0])], Z[np.argmin(Z[:, 1])]
+        d = b - a
+        n = np.hypot(*d)
+        if n == 0:
+            return int(np.argmin(Z.sum(1)))
+        dist = np.abs(d[0] * (Z[:, 1] - a[1]) - d[1] * (Z[:, 0] - a[0])) / n
+        return int(np.argmax(dist - 1e-12 * Z.sum(1)))  # ties: the better sum
+    return int(np.argmin(np.sqrt((Z ** 2).sum(1))))
+
+
+def _parse_weights(weights, objectives):
+    if isinstance(weights, str):
+        d = {}
+        for part in weights.split(","):
+            if not part.strip():
+                continue
+            k, sep, val = part.partition("=")
+            if not sep:
+                raise ValueError(f"--pick must be name=weight,... (e.g. size=1,min-lci=2), got {weights!r}")
+            d[k.strip()] = val
+        weights = d
+    out = {}
+    for k, val in dict(weights).items():
+        _v.choice("pick objective", k, objectives)
+        w = _v.finite_number(f"weight of {k}", val)
+        if w < 0:
+            raise ValueError(f"weight of {k} must be >= 0, got {w!r}")
+        out[k] = w
+    if not out or not any(out.values()):
+        raise ValueError("--pick needs at least one positive weight")
+    return out
+
+
+@dataclass
+class DesignResult:
+    """The outcome of :func:`design`: ``front`` (one row per certified Pareto design),
+    ``info`` (run.json), ``evaluator`` (re-evaluates any design), ``run`` (the
+    runner's :class:`~mechopt.runner.RunResult`)."""
+
+    front: pd.DataFrame
+    info: dict
+    evaluator: DesignEvaluator
+    run: object = None
+    chosen_index: int = 0
+
+    def _F(self):
+        ev = self.evaluator
+        return np.column_stack([OBJECTIVES[o][0] * self.front[o].to_numpy(float) for o in ev.objectives])
+
+    def knee(self) -> int:
+        return knee_index(self._F())
+
+    def pick(self, weights=None) -> dict:
+        """The chosen design as a dict (variables, objectives, margins, mechanism):
+        the knee without ``weights``; otherwise the design minimising the weighted
+        sum of the normalised objectives (``{"size": 1, "min-lci": 2}`` or
+        ``"size=1,min-lci=2"``)."""
+        if weights is None:
+            i = self.knee()
+        else:
+            w = _parse_weights(weights, self.evaluator.objectives)
+            F = self._F()
+            lo, hi = F.min(0), F.max(0)
+            Z = (F - lo) / np.where(hi > lo, hi - lo, 1.0)
+            wv = np.array([w.get(o, 0.0) for o in self.evaluator.objectives])
+            i = int(np.argmin(Z @ wv))
+        return self.design_at(i)
+
+    def design_at(self, i) -> dict:
+        row = self.front.iloc[int(i)].to_dict()
+        v = {k: row[k] for k in (*self.evaluator.spec.lengths, "mode", "task_x", "task_y")}
+        if "D" in row:
+            v["D"] = row["D"]
+        res = certify(self.evaluator, v)
+        return _design_record(self.evaluator, v, res, int(i))
+
+    def mechanism(self, weights=None):
+        return self.pick(weights)["mechanism"]
+
+
+def _design_record(ev, v, res, index) -> dict:
+    rec = {"index": index, "mechanism_name": ev.spec.name, "unit": ev.unit,
+           "variables": {k: v[k] for k in (*ev.spec.lengths, "mode")},
+           "task_placement": {"task_x": v["task_x"], "task_y": v["task_y"]},
+           "objectives": dict(zip(ev.objectives, ev.objective_values(res))),
+           "objective_units": ev.units(),
+           "margins": dict(res["margin"]), "constraints_g": dict(res["g"]),
+           "feasible": res.get("feasible", all(g <= 0 for g in res["g"].values())),
+           "values": dict(res["values"]), "tolerance": res.get("tolerance", {}),
+           "mechanism": res["mechanism"], "repr": repr(res["mechanism"])}
+    if "D" in v:
+        rec["variables"]["D"] = v["D"]
+    d = res["derived"]
+    if "joint_ranges" in d:
+        rec["joint_ranges_deg"] = [[math.degrees(a), math.degrees(b)] for a, b in d["joint_ranges"]]
+    if "strokes" in d:
+        rec["strokes"] = [list(s) for s in d["strokes"]]
+        rec["stroke"] = d["stroke"]
+    for leg in (1, 2):
+        if f"link_angle{leg}" in d:
+            rec[f"link{leg}_angle_deg"] = [math.degrees(a) for a in d[f"link_angle{leg}"]]
+    return rec
+
+
+def _json_record(rec) -> dict:
+    out = {k: val for k, val in rec.items() if k != "mechanism"}
+
+    def clean(x):
+        if isinstance(x, dict):
+            return {k: clean(val) for k, val in x.items()}
+        if isinstance(x, (list, tuple)):
+            return [clean(val) for val in x]
+        if isinstance(x, (float, np.floating)):
+            return float(x) if math.isfinite(x) else None
+        if isinstance(x, (np.integer,)):
+            return int(x)
+        if isinstance(x, np.bool_):
+            return bool(x)
+        return x
+
+    return clean(out)
+
+
+# ------------------------------------------------------------------ polishing
+def _polish(problem, x0, j, iters=40, seed=0):
+    """Local improvement of objective ``j`` from the feasible design ``x0``: COBYLA
+    (linear models of the constraints, so it walks along an active constraint), then a
+    seeded direct search with extreme barrier (only feasible, better designs are accepted;
+    coordinate and 8 random directions per step, the step doubled on success and
+    halved on failure, from 5 % of each variable's range down to 1e-7). Active
+    constraints make the optimum a corner the genetic search only approaches; this
+    walks into it. The result is re-checked with the fine sampling of :func:`certify`
+    and pulled back toward ``x0`` until it passes. Returns the new X row or None."""
+    span = np.where(problem.xu > problem.xl, problem.xu - problem.xl, 1.0)
+    ev = problem.evaluator
+    cont = np.array([i for i, n in enumerate(problem.var_names) if n != "mode"])
+    if cont.size == 0:
+        return None
+    rng = np.random.default_rng(seed)
+
+    def full(z):
+        x = np.array(x0, float)
+        x[cont] = problem.xl[cont] + np.clip(z, 0.0, 1.0) * span[cont]
+        return x
+
+    def batch(Z):
+        r = problem.evaluate_designs(np.array([full(z) for z in Z]))
+        return r["F"][:, j], np.all(r["G"] <= 0, axis=1)
+
+    z = (np.asarray(x0, float)[cont] - problem.xl[cont]) / span[cont]
+    f, ok = batch([z])
+    if not ok[0]:
+        return None
+    f, f0, z0 = f[0], f[0], z.copy()
+    # COBYLA (linear models of the constraints: walks along an active constraint)
+    from scipy.optimize import minimize
+
+    cache = {}
+
+    def one(zz):
+        key = tuple(np.round(zz, 15))
+        if key not in cache:
+            r = problem.evaluate_designs(full(zz)[None, :])
+            cache[key] = (float(r["F"][0, j]), r["G"][0])
+        return cache[key]
+
+    cons = [{"type": "ineq", "fun": (lambda zz, k=k: -one(zz)[1][k] - 1e-9)} for k in range(problem.n_ieq_constr)]
+    try:
+        import warnings
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            res = minimize(lambda zz: one(zz)[0] / max(abs(f0), 1e-300), z, method="COBYLA",
+                           constraints=cons, bounds=[(0.0, 1.0)] * len(z),
+                           options={"rhobeg": 0.01, "maxiter": 200, "tol": 1e-9})
+        zc = np.clip(res.x, 0.0, 1.0)
+        fc, okc = batch([zc])
+        if okc[0] and fc[0] < f:
+            z, f = zc, fc[0]
+    except (ValueError, ArithmeticError):
+        pass
+    n = cont.size
+    step = 0.01
+    for _ in range(iters):
+        dirs = np.vstack([np.eye(n), -np.eye(n), rng.normal(size=(8, n))])
+        dirs /= np.linalg.norm(dirs, axis=1, keepdims=True)
+        cand = np.clip(z + step * dirs, 0.0, 1.0)
+        fc, okc = batch(cand)
+        fc = np.where(okc, fc, np.inf)
+        k = int(np.argmin(fc))
+        if fc[k] < f - 1e-12 * max(abs(f), 1.0):
+            z, f = cand[k], fc[k]
+            step = min(2.0 * step, 0.2)
+        else:
+            step *= 0.5
+            if step < 1e-7:
+                break
+    if not f < f0:
+        return None
+    for _ in range(40):  # the fine check; pull back toward x0 until it passes
+        x = full(z)
+        if certify(ev, ev.decode(x))["feasible"]:
+            return x
+        z = z0 + 0.5 * (z - z0) if _ % 2 else z0 + 0.9 * (z - z0)
+    return None
+
+
+# ------------------------------------------------------------------ design
+def design(mechanism, task, requirements: Requirements | None = None, objectives=("size", "min-lci"),
+           *, mode=None, place="fixed", min_length=None, max_length=None, shape=None,
+           algorithm=None, pop=None, gen=None, seed=1, n_jobs=1, client=None, out=None,
+           progress=False, polish=True, pick=None, checkpoint_every=None, plot=True) -> DesignResult:
+    """Size ``mechanism`` (one of :data:`MECHANISMS`) for ``task``.
+
+    Builds :class:`mechopt.problems.design.DesignProblem`, runs it with
+    :func:`mechopt.runner.optimize` (seeded; ``n_jobs``/``client`` as there), polishes
+    the best design of each objective locally (``polish``), certifies every front
+    design with :func:`certify` (designs that fail the fine check are dropped and
+    counted in ``info["dropped_by_certification"]``) and returns a
+    :class:`DesignResult`. With ``out``, writes ``front.csv``, ``design.json`` (the
+    knee, or ``pick`` weights), ``run.json``, ``history.csv``, ``front.png`` and
+    ``design.png``; they appear only once all are computed (a staging folder inside
+    ``out`` is renamed file by file), so a failed run leaves nothing half-written.
+
+    Raises :class:`NoFeasibleDesign` (a ValueError) naming the requirement that
+    fails most when no design is feasible.
+    """
+    from .problems.design import DesignProblem
+    from . import io as _io
+    from .runner import optimize
+
+    problem = DesignProblem(mechanism, task, requirements, objectives, mode=mode, place=place,
+                            min_length=min_length, max_length=max_length, shape=shape)
+    ev = problem.evaluator
+    if pick is not None:
+        _parse_weights(pick, ev.objectives)
+    staging = None
+    if out is not None:
+        out = _io.prepare_out_dir(out)
+        import tempfile
+
+        staging = Path(tempfile.mkdtemp(prefix=".design-", dir=out))
+    try:
+        run = optimize(problem, algorithm, pop, gen, seed, n_jobs, client, staging, progress=progress,
+                       plot=False, checkpoint_every=checkpoint_every)
+        info = dict(run.info)
+        if not len(run.front):
+            raise _no_design(problem, run)
+        X = run.front[list(problem.var_names)].to_numpy(float)
+        polished = []
+        if polish:
+            for j in range(problem.n_obj):
+                k = int(np.argmin(OBJECTIVES[ev.objectives[j]][0] * run.front[ev.objectives[j]].to_numpy(float)))
+                x = _polish(problem, X[k], j)
+                if x is not None:
+                    X = np.vstack([X, x])
+                    polished.append(ev.objectives[j])
+        rows, kept, dropped = [], [], 0
+        for x in X:
+            v = ev.decode(x)
+            res = certify(ev, v)
+            if not res["feasible"]:
+                dropped += 1
+                continue
+            rows.append(ev.row(v, res))
+            kept.append(ev.objective_values(res))
+        if not rows:
+            raise _no_design(problem, run, certified=True)
+        F = np.array(kept) * np.array([OBJECTIVES[o][0] for o in ev.objectives])
+        nd = _non_dominated(F)
+        front = pd.DataFrame([rows[i] for i in nd])
+        keys = list(ev.objectives)
+        front = front.sort_values(keys, kind="mergesort").drop_duplicates(
+            subset=[c for c in front.columns if c in (*ev.spec.lengths, "mode", "task_x", "task_y")]
+        ).reset_index(drop=True)
+        info.update(design=ev.settings(), polished=polished, dropped_by_certification=dropped,
+                    front_size=int(len(front)), problem="design", certification=asdict(Sampling.fine()))
+        result = DesignResult(front, info, ev, run)
+        chosen = result.pick(pick)
+        result.chosen_index = chosen["index"]
+        info["chosen"] = {"index": chosen["index"], "by": "knee" if pick is None else f"weights {pick}"}
+        if out is not None:
+            from .plotting import plot_front
+
+            fig_front = plot_front(problem, front, run.history, run.population, info)
+            fig_design = plot_design(ev, chosen)
+            _io.write_csv(front, staging / "front.csv")
+            _io.write_json(_json_record(chosen), staging / "design.json")
+            _io.write_json(info, staging / "run.json")
+            _io.save_figure(fig_front, staging / "front.png")
+            _io.save_figure(fig_design, staging / "design.png")
+            import os
+
+            for name in ("history.csv", "front.png", "design.png", "design.json", "run.json", "front.csv"):
+                if (staging / name).exists():
+                    os.replace(staging / name, out / name)
+        return result
+    finally:
+        if staging is not None:
+            import shutil
+
+            shutil.rmtree(staging, ignore_errors=True)
+
+
+def _non_dominated(F):
+    keep = []
+    for i in range(len(F)):
+        dom = np.all(F <= F[i], axis=1) & np.any(F < F[i], axis=1)
+        if not dom.any():
+            keep.append(i)
+    return keep
+
+
+def _no_design(problem, run, certified=False) -> NoFeasibleDesign:
+    """``no design satisfies <requirement>`` from the least-violating design."""
+    ev = problem.evaluator
+    info = dict(run.info)
+    if certified or "constraint_violations" not in info:
+        names = problem.constr_names
+        G = run.population[[f"g_{n}" for n in names]].to_numpy(float)
+        k = int(np.argmin(np.maximum(G, 0).sum(1)))
+        per = {n: max(0.0, float(G[k, i])) for i, n in enumerate(names)}
+    else:
+        per = {k[2:]: v for k, v in info["constraint_violations"].items()}
+    # without reach (or across a singularity) the other margins mean nothing: name those first
+    worst = next((n for n in ("reach", "singular") if per.get(n, 0.0) > 0), None) or max(per, key=per.get)
+    # how many designs of the final population fail each requirement
+    fails = {n: int((run.population[f"g_{n}"] > 0).sum()) for n in problem.constr_names}
+    unit = ev.unit
+    msg = (f"no design satisfies {ev.req.describe(worst, unit)} (of {len(run.population)} designs in the final "
+           f"population, {fails[worst]} fail it; least-violating design misses it by {per[worst]:.3g} "
+           f"normalised){' after certification' if certified else ''}; relax it or raise --max-length")
+    return NoFeasibleDesign(msg, {"violations": per, "fails": fails})
+
+
+# ------------------------------------------------------------------ figure
+def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
+    """The chosen mechanism at the task's reference pose, the task, the good-conditioning
+    workspace ``{LCI >= gamma}`` of its singularity-free piece, the type-II locus, the
+    reachable boundary and the joint ranges, with units."""
+    from matplotlib.figure import Figure
+
+    mech = rec["mechanism"]
+    spec = ev.spec
+    v = {**rec["variables"], **rec["task_placement"]}
+    task = ev.task.moved_to(v["task_x"], v["task_y"])
+    unit = ev.unit
+    gamma = ev.req.min_lci if ev.req.min_lci is not None else 0.5
+    x0, x1, y0, y1 = task.bbox
+    bb = mech.bounding_box()
+    off = spec.to_mech(mech, 0.0, 0.0)[0]
+    bx0, bx1, by0, by1 = bb[0] - off, bb[1] - off, bb[2], bb[3]
+    X0, X1 = min(bx0, x0), max(bx1, x1)
+    Y0, Y1 = min(by0, y0, 0.0), max(by1, y1)
+    pad = 0.05 * max(X1 - X0, Y1 - Y0)
+    gx, gy = np.meshgrid(np.linspace(X0 - pad, X1 + pad, n), np.linspace(Y0 - pad, Y1 + pad, n))
+    mx, my = spec.to_mech(mech, gx, gy)
+    f = mech.type2_function(mx, my)
+    rx, ry = task.reference if task.is_region else (task.pts[:, 0].mean(), task.pts[:, 1].mean())
+    s0 = np.sign(mech.type2_function(*spec.to_mech(mech, np.float64(rx), np.float64(ry)))) or 1.0
+    lci = _ix.lci(mech.jacobian(mx, my))
+    good = (np.sign(f) == s0) & (lci >= gamma)
+    from scipy import ndimage
+
+    labels, _ = ndimage.label(np.sign(f) == s0)  # the singularity-free piece holding the task
+    i = int(np.clip(np.searchsorted(gy[:, 0], ry), 0, n - 1))
+    k = int(np.clip(np.searchsorted(gx[0], rx), 0, n - 1))
+    if labels[i, k]:
+        good &= labels == labels[i, k]
+    fig = Figure(figsize=(7.5, 6.5))
+    ax = fig.add_subplot()
+    ax.contourf(gx, gy, good.astype(float), levels=[0.5, 1.5], colors=["#cfe8cf"])
+    ax.contour(gx, gy, np.where(np.isfinite(f), f, np.nan), levels=[0.0], colors="tab:red", linewidths=1.0)
+    clr = mech.serial_clearance(mx, my)
+    ax.contour(gx, gy, clr, levels=[0.0], colors="0.4", linewidths=0.8, linestyles="--")
+    ox, oy = task.outline()
+    if task.is_region:
+        ax.plot(ox, oy, color="tab:blue", lw=2)
+    else:
+        ax.plot(ox, oy, ".", color="tab:blue", ms=3)
+    # the mechanism at the reference pose
+    px, py = float(rx), float(ry)
+    pmx, pmy = spec.to_mech(mech, np.float64(px), np.float64(py))
+    if spec.name == "five-bar":
+        b1x, b1y, b2x, b2y, _ = mech.elbows(px, py)
+        chain = [[(-mech.r3, 0), (float(b1x), float(b1y)), (px, py)],
+                 [(mech.r3, 0), (float(b2x), float(b2y)), (px, py)]]
+        bases = [(-mech.r3, 0), (mech.r3, 0)]
+    elif spec.name == "bipod":
+        chain = [[(-mech.b / 2, 0), (px, py)], [(mech.b / 2, 0), (px, py)]]
+        bases = [(-mech.b / 2, 0), (mech.b / 2, 0)]
+    else:
+        q1, q2, _ = mech.ik(pmx, pmy)
+        gxs = mech.guides if spec.name == "biglide" else mech.column_x
+        chain = [[(gxs[0], float(q1)), (px, py)], [(gxs[1], float(q2)), (px, py)]]
+        bases = [(gxs[0], float(q1)), (gxs[1], float(q2))]
+        for (gxx, (lo, hi)) in zip(gxs, rec.get("strokes", [])):
+            ax.plot([gxx, gxx], [lo, hi], color="k", lw=4, alpha=0.3, solid_capstyle="butt")
+    for c in chain:
+        c = np.array(c)
+        ax.plot(c[:, 0], c[:, 1], "-o", color="k", lw=2, ms=4)
+    ax.plot(*np.array(bases).T, "s", color="k", ms=7)
+    lines = [f"{spec.name} ({rec['variables']['mode']}): " + ", ".join(
+        f"{k} = {rec['variables'][k]:.4g} {unit}" for k in spec.lengths)]
+    if "joint_ranges_deg" in rec:
+        for i, (a, b) in enumerate(rec["joint_ranges_deg"], 1):
+            lines.append(f"theta{i} in [{a:.1f}, {b:.1f}] deg over the task")
+            if spec.name == "five-bar":
+                base = bases[i - 1]
+                t = np.radians(np.linspace(a, b, 60))
+                rr = 0.35 * mech.r1
+                ax.plot(base[0] + rr * np.cos(t), base[1] + rr * np.sin(t), color="tab:purple", lw=1.5)
+    if "strokes" in rec:
+        for i, (lo, hi) in enumerate(rec["strokes"], 1):
+            lines.append(f"q{i} in [{lo:.4g}, {hi:.4g}] {unit} (stroke {hi - lo:.4g} {unit})")
+    for k, val in rec["objectives"].items():
+        lines.append(f"{k} = {val:.5g} {rec['objective_units'][k]}")
+    ax.text(0.01, 0.99, "\n".join(lines), transform=ax.transAxes, va="top", fontsize=7,
+            bbox=dict(boxstyle="round", fc="white", alpha=0.8))
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    ax.legend(handles=[Line2D([], [], color="tab:blue", lw=2, label="task"),
+                       Patch(color="#cfe8cf", label=f"GCW: LCI >= {gamma:g}, same type-II sign"),
+                       Line2D([], [], color="tab:red", lw=1, label="type-II singularity"),
+                       Line2D([], [], color="0.4", lw=0.8, ls="--", label="reachable boundary"),
+                       Line2D([], [], color="tab:purple", lw=1.5, label="crank ranges")],
+              loc="lower right", fontsize=7)
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"x [{unit}]")
+    ax.set_ylabel(f"y [{unit}]")
+    ax.set_title(f"{spec.name} sized for {ev.task.label}")
+    return fig

@@ -1,0 +1,87 @@
+"""Task-driven dimensional synthesis as a pymoo Problem (``mechopt design``).
+
+:class:`DesignProblem` is built from (mechanism, task, requirements, objectives);
+the kinematics, the requirements and their certification live in
+:mod:`mechopt.design` (:class:`~mechopt.design.DesignEvaluator`). Variables (pymoo's
+``X``): each length ``L`` of the mechanism as ``ln_L = ln(L + min_length)`` (or the
+scale ``ln_D`` of a fixed ``shape``), ``mode`` (an index into the mechanism's working
+modes) with ``mode="any"``, and the task placement relative to the design's reach,
+``task_x_rel`` in [-1, 1] and ``task_y_rel`` in [0, 1], when it is free; front.csv
+(written by :func:`mechopt.design.design`) has the lengths and ``task_x, task_y`` in
+the task's unit.
+Constraints are ``G <= 0``, one per requirement, normalised (see
+:mod:`mechopt.design`); an infeasible design has finite objectives and ``G > 0``.
+
+Without arguments the problem is the issue's example: a five-bar for the
+100 x 60 mm rectangle centred at (0, 180) mm with LCI >= 0.4, links <= 250 mm,
+minimising size and maximising the minimum LCI.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from mechopt.design import OBJECTIVES, DesignEvaluator, Requirements, Sampling, Task
+
+from .base import MechoptProblem, Objective
+
+__all__ = ["DesignProblem", "EXAMPLE"]
+
+#: the issue's example (``mechopt design five-bar --task rect:100,60@0,180 --min-lci 0.4``)
+EXAMPLE = dict(mechanism="five-bar", task="rect:100,60@0,180", min_lci=0.4, max_length=250.0)
+
+
+class DesignProblem(MechoptProblem):
+    """``DesignProblem(mechanism, task, requirements, objectives, mode=None,
+    place="fixed", min_length=None, max_length=None, shape=None, sampling=None)``."""
+
+    name = "design"
+    summary = "task-driven sizing (mechopt design): any mechanism, a task region, requirements over the whole task"
+    default_algorithm = "nsga2"
+    default_pop = 40
+    default_gen = 50
+
+    def __init__(self, mechanism="five-bar", task=None, requirements=None, objectives=("size", "min-lci"),
+                 mode=None, place="fixed", min_length=None, max_length=None, shape=None, sampling=None,
+                 **kwargs):
+        from mechopt.design import parse_task
+
+        if task is None:
+            task = EXAMPLE["task"]
+            requirements = requirements or Requirements(min_lci=EXAMPLE["min_lci"])
+            max_length = EXAMPLE["max_length"] if max_length is None else max_length
+        if isinstance(task, str):
+            task = parse_task(task)
+        self.evaluator = ev = DesignEvaluator(mechanism, task, requirements, objectives, mode, place,
+                                              min_length, max_length, shape)
+        self.sampling = sampling or Sampling()
+        self.var_names = ev.var_names
+        units = ev.units()
+        self.objectives = tuple(Objective(o, OBJECTIVES[o][0], units[o]) for o in ev.objectives)
+        self.constr_names = ev.req.names(ev.spec)
+        if len(self.objectives) == 1:
+            self.default_algorithm = "ga"
+        self.summary = f"design {ev.spec.name} for {task.label}"
+        self.settings = ev.settings()
+        super().__init__(ev.xl, ev.xu, **kwargs)
+
+    def evaluate_designs(self, X):
+        X = np.atleast_2d(np.asarray(X, float))
+        ev = self.evaluator
+        F = np.empty((len(X), self.n_obj))
+        G = np.empty((len(X), len(self.constr_names)))
+        extra = {k: np.empty(len(X)) for k in ("size", "lci_min", "reach_margin", "mode_index")}
+        for i, x in enumerate(X):
+            v = ev.decode(x)
+            res = ev.evaluate(v, self.sampling)
+            vals = ev.objective_values(res)
+            F[i] = [ob.sense * val for ob, val in zip(self.objectives, vals)]
+            G[i] = [res["g"][n] for n in self.constr_names]
+            extra["size"][i] = res["values"]["size"]
+            extra["lci_min"][i] = res["values"]["lci_min"]
+            extra["reach_margin"][i] = res["margin"]["reach"]
+            extra["mode_index"][i] = ev.spec.modes.index(v["mode"])
+        if not (np.all(np.isfinite(F)) and np.all(np.isfinite(G))):
+            # never expected; a non-finite value would stall the algorithm's sorting
+            F = np.where(np.isfinite(F), F, 1e12)
+            G = np.where(np.isfinite(G), G, 1e3)
+        return {"F": F, "G": G, "extra": extra}
