@@ -1,17 +1,40 @@
-"""mechopt: dimensional synthesis of 2-DOF planar parallel manipulators."""
-from .mechanisms.five_bar import FiveBar
+"""mechopt: dimensional synthesis of 2-DOF planar parallel manipulators.
+
+The public API is importable from here; each name is loaded on first use (PEP 562),
+so that ``import mechopt`` and a command that needs one mechanism load only what
+they use (scipy, numba and matplotlib stay unloaded until needed).
+"""
+from __future__ import annotations
+
+import importlib
 
 __version__ = "0.1.0"
-__all__ = ["FiveBar", "__version__"]
 
-# Wu 2008 gantry and its dynamics
-from .mechanisms.gantry import Gantry, dimensional_synthesis  # noqa: E402
-from .dynamics import GantryDynamics, GantryInertia  # noqa: E402
+#: public name -> module that defines it
+_PUBLIC = {
+    "PlanarMechanism": "mechopt.mechanisms.base",
+    "FiveBar": "mechopt.mechanisms.five_bar",
+    "Bipod": "mechopt.mechanisms.bipod",
+    "Biglide": "mechopt.mechanisms.biglide",
+    "Gantry": "mechopt.mechanisms.gantry",
+    "dimensional_synthesis": "mechopt.mechanisms.gantry",
+    "GantryDynamics": "mechopt.dynamics",
+    "GantryInertia": "mechopt.dynamics",
+    "mic": "mechopt.workspace",
+    "global_indices": "mechopt.performance",
+}
 
-__all__ += ["Gantry", "dimensional_synthesis", "GantryDynamics", "GantryInertia"]
+__all__ = ["__version__", *_PUBLIC]
 
-# Stan 2008 Bipod (RPRPR) and Biglide (PRRRP)
-from .mechanisms.biglide import Biglide  # noqa: E402
-from .mechanisms.bipod import Bipod  # noqa: E402
 
-__all__ += ["Bipod", "Biglide"]
+def __getattr__(name):
+    module = _PUBLIC.get(name)
+    if module is None:
+        raise AttributeError(f"module 'mechopt' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # later look-ups skip this function
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_PUBLIC))

@@ -77,7 +77,6 @@ from __future__ import annotations
 from functools import lru_cache
 
 import numpy as np
-from scipy import integrate
 
 from .. import geometry as _g
 from .. import validation as _v
@@ -465,6 +464,8 @@ class Biglide(PlanarMechanism):
         for x0, x1 in zip(pts[:-1], pts[1:]):
             if x1 <= x0:
                 continue
+            from scipy import integrate  # only the adaptive rule needs scipy
+
             v, e = integrate.quad(f, x0, x1, epsabs=epsabs, epsrel=_QUAD_EPSREL, limit=200)
             total += v
             err += e
