@@ -15,6 +15,7 @@ $(STAMP): pyproject.toml
 
 run: $(STAMP)
 	$(BIN)/mechopt reproduce all
+	$(BIN)/mechopt report results --out results/report.html
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

@@ -118,6 +118,16 @@ def _cmd_reproduce(args):
     return 0
 
 
+def _cmd_report(args):
+    from pathlib import Path
+
+    from .report import write_report
+
+    path = write_report(args.results, out=args.html)
+    print(f"report: {Path(path).resolve()}")
+    return 0
+
+
 def _cmd_run(args):
     import pandas as pd
 
@@ -379,6 +389,13 @@ def build_parser() -> argparse.ArgumentParser:
     rp.add_argument("--quick", action="store_true", help="small runs (about 2 minutes for all)")
     rp.add_argument("--force", action="store_true", help="redo papers already finished")
     rp.set_defaults(func=_cmd_reproduce)
+
+    rr = sub.add_parser("report", help="one self-contained HTML page of a reproduction (tables, figures, fronts)")
+    rr.add_argument("results", nargs="?", default="results", metavar="RESULTS_DIR",
+                    help="folder written by `mechopt reproduce` (default results)")
+    rr.add_argument("--out", dest="html", default=None, metavar="FILE",
+                    help="HTML file to write (default RESULTS_DIR/report.html)")
+    rr.set_defaults(func=_cmd_report)
 
     pr = sub.add_parser("problems", help="list every registered problem, one line each")
     pr.set_defaults(func=_cmd_problems)

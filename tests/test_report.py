@@ -1,0 +1,302 @@
+"""``mechopt report``: the HTML page of a reproduction, read as text and in a real browser.
+
+The browser tests drive the system Chromium with selenium and the system chromedriver
+(nothing is downloaded); they skip, saying why, only where no browser, driver or
+selenium is installed (``.ci/run`` installs them). The screenshots go to the folder in
+``$CI_ARTIFACTS`` when it is set (a CI artefact), else to the test's tmp folder.
+"""
+from __future__ import annotations
+
+import base64
+import os
+import re
+import shutil
+from html import escape
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from mechopt.cli import main
+from mechopt.report import build_report, figure_caption, write_report
+from mechopt.reproduce import reproduce, summary_table
+
+
+@pytest.fixture(scope="module")
+def results(tmp_path_factory):
+    """A quick reproduction of the fastest paper (about 5 s)."""
+    out = tmp_path_factory.mktemp("results")
+    reproduce("wu2008", out=out, quick=True, log=lambda msg: None)
+    return out
+
+
+@pytest.fixture(scope="module")
+def report(results):
+    path = write_report(results, out=results / "report.html")
+    return path, path.read_text()
+
+
+class _Tables(HTMLParser):
+    """The text of every cell of every ``<table id=...>``: {id: [[cell, ...], ...]}."""
+
+    def __init__(self):
+        super().__init__()
+        self.tables, self._id, self._row, self._cell = {}, None, None, None
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "table":
+            self._id = a.get("id")
+            self.tables[self._id] = []
+        elif tag == "tr" and self._id is not None:
+            self._row = []
+        elif tag in ("td", "th") and self._row is not None:
+            self._cell = []
+
+    def handle_endtag(self, tag):
+        if tag in ("td", "th") and self._cell is not None:
+            self._row.append(" ".join("".join(self._cell).split()))
+            self._cell = None
+        elif tag == "tr" and self._row is not None:
+            self.tables[self._id].append(self._row)
+            self._row = None
+        elif tag == "table":
+            self._id = None
+
+    def handle_data(self, data):
+        if self._cell is not None:
+            self._cell.append(data)
+
+
+def _tables(html):
+    p = _Tables()
+    p.feed(html)
+    return p.tables
+
+
+# --------------------------------------------------------------------------- the HTML as text
+
+def test_self_contained(report):
+    _, html = report
+    assert not re.search(r"""(?:src|href|action)\s*=\s*["']?\s*(?:https?:)?//""", html, re.I)
+    assert not re.search(r"url\(\s*['\"]?(?:https?:)?//", html, re.I)  # no CSS fetch
+    assert not re.search(r"<script[^>]*\bsrc=", html, re.I)
+    assert not re.search(r"<link[^>]*stylesheet", html, re.I)
+    assert html.count("<script") == 1  # the sorter, inline
+    srcs = re.findall(r'<img src="([^"]*)"', html)
+    assert srcs and all(s.startswith("data:image/png;base64,") for s in srcs)
+    html.encode("ascii")  # pure ASCII whatever the locale
+
+
+def test_every_figure_embedded_with_caption(results, report):
+    _, html = report
+    pngs = sorted(results.rglob("*.png"))
+    srcs = re.findall(r'<img src="data:image/png;base64,([^"]*)"', html)
+    assert len(srcs) == len(pngs)
+    embedded = {base64.b64decode(s) for s in srcs}
+    assert all(p.read_bytes() in embedded for p in pngs)
+    for p in (results / "wu2008").glob("*.png"):
+        ref, desc = figure_caption("wu2008", p.name)
+        title = f"{ref} redrawn" if ref else "mechopt figure (not a figure of the paper)"
+        assert f"<strong>{escape(title)}</strong>: {escape(desc)}." in html
+    assert "<strong>Wu 2008 Fig. 2 redrawn</strong>" in html
+    assert "Pareto front of problem wu2008-dynamic" in html
+    assert "Weighted-sum sweep of problem wu2008" in html
+
+
+def test_counts_present(results, report):
+    _, html = report
+    summary = summary_table(Path(results))
+    rows = _tables(html)["summary"]
+    assert rows[0] == list(summary.columns)
+    assert len(rows) == len(summary) + 1
+    for row, (_, rec) in zip(rows[1:], summary.iterrows()):
+        assert row[0].endswith(rec["paper"])  # "Wu 2008" and the paper's title
+        assert row[1:] == [str(int(rec[c])) for c in summary.columns[1:]]
+
+
+def test_paper_table_and_status_colours(results, report):
+    _, html = report
+    df = pd.read_csv(results / "wu2008" / "table.csv")
+    rows = _tables(html)["table-wu2008"]
+    assert set(rows[0]) == set(df.columns) and rows[0][-1] == "note"
+    assert len(rows) == len(df) + 1
+    colour = {"match": "good", "holds": "good", "differs": "bad", "fails": "bad", "not-reported": "none"}
+    for status in set(df["status"]):
+        assert f'<td class="status st-{colour[status]}" data-sort="{status}">{status}</td>' in html
+
+
+def test_differs_rows_have_their_reason(results, report):
+    _, html = report
+    df = pd.read_csv(results / "wu2008" / "table.csv")
+    differs = df[df["status"] == "differs"]
+    assert len(differs)  # the quick wu2008 run has one (k_av[table1]); else this test shows nothing
+    section = html.split('id="wu2008-differs"')[1].split("</ol>")[0]
+    for rec in differs.itertuples():
+        assert escape(rec.quantity) in section
+        assert f'<p class="why">{escape(rec.note)}</p>' in section
+
+
+def test_text_is_escaped(results, tmp_path):
+    copy = tmp_path / "results"
+    shutil.copytree(results / "wu2008", copy / "wu2008")
+    df = pd.read_csv(copy / "wu2008" / "table.csv")
+    evil = '<script>alert("x")</script> & <b>bold</b> \u2264 1'
+    df.loc[0, "note"] = evil
+    df.loc[0, "status"] = "differs"
+    df.loc[1, "quantity"] = "<img src=x onerror=alert(1)>"
+    df.to_csv(copy / "wu2008" / "table.csv", index=False)
+    html = build_report(copy)
+    assert "<script>alert" not in html and "<b>bold</b>" not in html and "<img src=x" not in html
+    assert escape(evil).replace("\u2264", "&#8804;") in html
+    assert html.count("<script") == 1
+
+
+def test_figure_captions_from_file_names():
+    assert figure_caption("le2013", "fig5_a_max.png")[0] == "Le 2013 Fig. 5"
+    assert figure_caption("liu2006", "fig04a_atlas_gvi_max.png")[0] == "Liu 2006 Fig. 4(a)"
+    assert figure_caption("liu2006", "fig02_atlas_gci.png")[0] == "Liu 2006 Fig. 2"
+    assert figure_caption("liu2006", "figs08-16_examples.png")[0] == "Liu 2006 Figs. 8-16"
+    assert figure_caption("liu2006", "fig17_23_lci_usable.png")[0] == "Liu 2006 Figs. 17 and 23"
+    assert figure_caption("liu2006", "ref19_fig19_atlas_r_mic.png")[0] == "Fig. 19 of Liu 2006's Ref. [19]"
+    assert "GVI max" in figure_caption("liu2006", "fig04a_atlas_gvi_max.png")[1]
+    assert "W-GCI-GSI" in figure_caption("liu2006", "fig13_region_w-gci-gsi.png")[1]
+    ref, desc = figure_caption("stan2008", "tradeoff_bipod.png")
+    assert ref is None and "Table 2" in desc
+    assert figure_caption("wu2008", "some_new_plot.png") == (None, "some new plot")
+
+
+def test_missing_or_empty_results_dir(tmp_path, capsys):
+    for d in (tmp_path / "absent", tmp_path):
+        with pytest.raises(ValueError) as exc:
+            build_report(d)
+        assert "\n" not in str(exc.value) and "mechopt reproduce" in str(exc.value)
+        assert main(["report", str(d), "--out", str(tmp_path / "r.html")]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith("mechopt: error: RESULTS_DIR") and err.count("\n") == 1
+    assert not (tmp_path / "r.html").exists() and not (tmp_path / "absent").exists()
+
+
+def test_cli(results, tmp_path, capsys):
+    out = tmp_path / "sub" / "r.html"
+    assert main(["report", str(results), "--out", str(out)]) == 0
+    assert capsys.readouterr().out.strip() == f"report: {out.resolve()}"
+    assert out.read_text().startswith("<!DOCTYPE html>")
+    assert [p.name for p in out.parent.iterdir()] == ["r.html"]  # atomic: no temporary left
+    assert main(["report", str(results)]) == 0  # default: RESULTS_DIR/report.html
+    assert capsys.readouterr().out.strip() == f"report: {(results / 'report.html').resolve()}"
+    assert main(["report", str(results), "--out", str(tmp_path)]) == 2  # a folder is not a file
+    assert "--out must name an HTML file" in capsys.readouterr().err
+
+
+# --------------------------------------------------------------------------- in a real browser
+
+def _browser():
+    """(chromium binary, chromedriver) or skip saying what is missing."""
+    try:
+        import selenium  # noqa: F401
+    except ImportError:
+        pytest.skip("selenium is not installed (pip install -e '.[test]')")
+    binary = os.environ.get("CHROME_BIN") or next(
+        (shutil.which(b) for b in ("chromium", "chromium-browser", "google-chrome") if shutil.which(b)), None)
+    if not binary:
+        pytest.skip("no Chromium browser installed (apt-get install chromium chromium-driver; .ci/run does)")
+    driver = os.environ.get("CHROMEDRIVER") or shutil.which("chromedriver")
+    if not driver:
+        pytest.skip("no chromedriver installed (apt-get install chromium-driver; .ci/run does)")
+    return binary, driver
+
+
+@pytest.fixture(scope="module")
+def browser():
+    binary, driver_path = _browser()
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = binary
+    for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--disable-gpu",
+                "--window-size=1400,1000", "--disable-extensions", "--no-first-run"):
+        opts.add_argument(arg)
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    drv = webdriver.Chrome(service=Service(executable_path=driver_path), options=opts)
+    try:
+        yield drv
+    finally:
+        drv.quit()
+
+
+@pytest.fixture
+def artifacts(tmp_path):
+    folder = Path(os.environ["CI_ARTIFACTS"]) if os.environ.get("CI_ARTIFACTS") else tmp_path
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder
+
+
+def _column(browser, table_id, col):
+    """The sort keys of column ``col`` of a table, top to bottom (data-sort, else the text)."""
+    return browser.execute_script(
+        "var t = document.getElementById(arguments[0]), col = arguments[1];"
+        "return Array.prototype.map.call(t.tBodies[0].rows, function (r) {"
+        "  var c = r.cells[col], v = c.getAttribute('data-sort');"
+        "  return v === null ? c.textContent.trim() : v; });", table_id, col)
+
+
+def _click_header(browser, table_id, name):
+    from selenium.webdriver.common.by import By
+
+    headers = browser.find_elements(By.CSS_SELECTOR, f"#{table_id} thead th")
+    names = [h.text.strip() for h in headers]
+    col = names.index(name)
+    browser.execute_script("arguments[0].scrollIntoView({block: 'center'});", headers[col])
+    headers[col].click()  # a real click (fails if something covers the header)
+    return col
+
+
+def test_in_browser(browser, report, artifacts):
+    path, _ = report
+    browser.get(path.resolve().as_uri())
+    assert browser.title.startswith("mechopt reproduction report")
+
+    # every image decodes
+    widths = browser.execute_async_script(
+        "var done = arguments[arguments.length - 1];"
+        "Promise.all(Array.prototype.map.call(document.images, function (i) {"
+        "  return i.decode().then(function () { return i.naturalWidth; }, function () { return 0; });"
+        "})).then(done);")
+    assert widths and all(w > 0 for w in widths), widths
+    assert len(widths) == len(list(path.parent.rglob("*.png")))
+
+    # the tables sort: numbers numerically (empty cells last), text alphabetically, twice reverses
+    tid = "table-wu2008"
+    col = _click_header(browser, tid, "rel_error")
+    vals = _column(browser, tid, col)
+    nums = [float(v) for v in vals if v != ""]
+    assert nums == sorted(nums) and vals[len(nums):] == [""] * (len(vals) - len(nums))
+    assert browser.find_elements("css selector", f"#{tid} thead th")[col].get_attribute("aria-sort") == "ascending"
+    _click_header(browser, tid, "rel_error")
+    nums = [float(v) for v in _column(browser, tid, col) if v != ""]
+    assert nums == sorted(nums, reverse=True)
+    col = _click_header(browser, tid, "status")
+    status = _column(browser, tid, col)
+    assert status == sorted(status) and len(set(status)) > 1
+
+    # no console error (read after the clicks: the sorter ran too)
+    severe = [e for e in browser.get_log("browser") if e.get("level") == "SEVERE"]
+    assert severe == []
+
+    # screenshots, as CI artefacts: the top of the page and the whole page
+    browser.execute_script("window.scrollTo(0, 0);")
+    top = artifacts / "report-top.png"
+    assert browser.save_screenshot(str(top)) and top.stat().st_size > 10_000
+    metrics = browser.execute_cdp_cmd("Page.getLayoutMetrics", {})
+    size = metrics.get("cssContentSize") or metrics["contentSize"]
+    shot = browser.execute_cdp_cmd("Page.captureScreenshot", {
+        "format": "png", "captureBeyondViewport": True,
+        "clip": {"x": 0, "y": 0, "width": size["width"], "height": min(size["height"], 16000), "scale": 1}})
+    full = artifacts / "report-full.png"
+    full.write_bytes(base64.b64decode(shot["data"]))
+    assert full.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    shutil.copy(path, artifacts / "report.html")
+    print(f"screenshots: {top}, {full}")
