@@ -60,11 +60,30 @@ Disk means and the MCI (:func:`disk_stats_batch`)
 -------------------------------------------------
 GCI is the mean LCI over the MIC disk, GVI/GPI/GSI the means of the extremes
 over the concentric half-radius disk (Liu 2006 eq. 4, 11, 14, 19), with the
-nodes and weights of :func:`mechopt.quadrature.disk_rule`. The MCI starts at the
-best quadrature node; a compass search (as :func:`mechopt.performance.max_lci`),
-a golden-section search along the rim, and Newton iterations on the isotropy
-conditions (``LCI = 1`` exactly where J is a scaled rotation or reflection, a
-cone apex that direct search approaches slowly) refine it.
+nodes and weights of :func:`mechopt.quadrature.disk_rule`. The MCI
+(:func:`_mci_nb`) works on the isotropy residual ``r = (G11 - G22, 2 G12) / tr G``
+of ``G = J^T J`` (``r = 0`` exactly where ``LCI = 1``; ``|r|^2`` is smooth where
+LCI has a cone apex), as :func:`mechopt.performance.max_lci`:
+
+1. isotropic points. For the mirror-symmetric modes (``"+-"``, ``"-+"``) ``r_2 =
+   0`` exactly on the y axis, so an isotropic point there is a sign change of
+   ``r_1`` along the diameter: 64 samples, then the Illinois method. Isotropic
+   points need not lie on the axis (off it they come in mirror pairs, e.g. inside
+   the MIC of (0.9085, 1.5937, 0.4978)), so otherwise, and for every mode, plain
+   Newton on ``r = 0`` from a 16 x 32 polar grid of starts (its half ``x > 0`` for
+   the symmetric modes, whose iteration commutes with the mirror), no descent
+   test, the worse half dropped every 4 iterations: it crosses the long curved
+   valleys of near-isotropy of the designs with nearly coincident base joints,
+   where a damped Newton stalls. The first isotropic point (``|r|^2 < 1e-26``)
+   ends the search.
+2. otherwise interior maxima: from the best quadrature node and two more
+   (mutually farther apart than R/3) a compass search, then the trust-region
+   Newton of ``max_lci`` on ``|r|^2`` and damped Newton on the isotropy
+   conditions;
+3. the rim: golden section in the angle around the best of ``n_theta`` samples.
+
+On 1500 random designs of Liu's space it equals ``global_indices(...)["mci"]``
+to 1e-6 on both paths (``tests/test_mci.py``); the two paths agree to rounding.
 """
 from __future__ import annotations
 
@@ -99,13 +118,24 @@ _REACH_TOL = 1e-12
 #: coarse centres, dense refinement factor, centres seeding the refinement,
 #: golden-section iterations, local maxima refined
 MIC_SIZES = dict(n_crank=128, n_y=128, n_sub=16, n_seed_y=9, n_golden=42, n_cand=2)
-#: compass search of the MCI (as mechopt.performance.max_lci)
+#: iterations of the compass search and of the trust-region polish of the MCI
 _MCI_ITERS = 40
 #: starting nodes of the MCI search (mutually farther apart than R/3)
 _MCI_STARTS = 3
 _DIRS = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0],
                   [1.0, 1.0], [1.0, -1.0], [-1.0, 1.0], [-1.0, -1.0]])
 _GOLD = (math.sqrt(5.0) - 1.0) / 2.0
+#: isotropy search of the MCI (as mechopt.performance.max_lci): ``g = |r|^2`` below
+#: which a point counts as isotropic, most Newton iterations, the polar grid of
+#: its starts (a quarter of max_lci's 64 x 128 grid in each direction)
+_G_ISO = 1e-26
+_ISO_ITERS = 16
+_ISO_N_R = 16
+_ISO_N_THETA = 32
+#: intervals of the sign-change scan of the isotropy residual along the y axis
+#: (mirror-symmetric modes), most iterations of its bracketed root search
+_AXIS_N = 64
+_AXIS_ITERS = 100
 
 #: columns of :func:`disk_stats_batch`
 DISK_STAT_NAMES = ("gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min", "gsi_max", "gsi_min")
@@ -905,6 +935,113 @@ def _newton_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, which, n_iter):
 
 
 @_njit
+def _tr_step_nb(gx, gy, hxx, hxy, hyy, delta):
+    """Minimiser of the model ``grad.d + d.H.d/2`` over ``|d| <= delta`` (the exact
+    2x2 trust-region subproblem of :func:`mechopt.performance._trust_region_step`):
+    ``(dx, dy, predicted decrease)``."""
+    disc = math.hypot(0.5 * (hxx - hyy), hxy)
+    l1 = 0.5 * (hxx + hyy) - disc  # smaller eigenvalue
+    l2 = 0.5 * (hxx + hyy) + disc
+    if hxx >= hyy:  # eigenvector e of l2 from the better-conditioned row
+        ax = l2 - hyy
+        ay = hxy
+    else:
+        ax = hxy
+        ay = l2 - hxx
+    n = math.hypot(ax, ay)
+    ex = ax / n if n > 0.0 else 1.0
+    ey = ay / n if n > 0.0 else 0.0
+    ge = gx * ex + gy * ey  # gradient in the eigenbasis (e, f = e turned by +90 deg)
+    gf = gy * ex - gx * ey
+    newton = l1 > 0.0 and math.hypot(ge / l2, gf / l1) <= delta
+    mu_lo = -l1 if -l1 > 0.0 else 0.0
+    mu = mu_lo + 1e-12 * (abs(l1) + abs(l2)) + 1e-300
+    for _ in range(12):  # More-Sorensen: Newton on 1/|d(mu)| - 1/delta
+        de = -ge / (l2 + mu)
+        df = -gf / (l1 + mu)
+        nrm = math.hypot(de, df)
+        q = de * de / (l2 + mu) + df * df / (l1 + mu)
+        new = mu + (nrm * nrm / q) * (nrm - delta) / delta
+        lo = mu_lo + 0.5 * (mu - mu_lo)  # stays right of the pole
+        mu = new if new > lo else lo
+    if newton:
+        mu = 0.0
+    de = -ge / (l2 + mu)
+    df = -gf / (l1 + mu)
+    nrm = math.hypot(de, df)
+    if (not newton) and nrm < delta:  # hard case: reach the boundary along f
+        d2 = delta * delta - nrm * nrm
+        tau = math.sqrt(d2) if d2 > 0.0 else 0.0
+        df = df - tau if gf > 0.0 else df + tau
+        nrm = math.hypot(de, df)
+    if nrm > delta:
+        sc = delta / nrm
+        de = de * sc
+        df = df * sc
+    pred = -(ge * de + gf * df + 0.5 * (l2 * de * de + l1 * df * df))
+    return de * ex - df * ey, de * ey + df * ex, pred
+
+
+@_njit
+def _tr_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, delta, n_iter):
+    """Trust-region Newton minimising ``g = |r|^2`` (maximising LCI) from ``(px,
+    py)``, as :func:`mechopt.performance._trust_region`: gradient and Hessian from
+    central differences of ``r`` (6-point stencil), trial points projected into
+    the disk, a step kept only if it lowers ``g``. Returns the LCI at the end."""
+    h = max(1e-5 * R, 1e-12 * (abs(cy) + R))
+    h2 = h * h
+    for _ in range(n_iter):
+        a1, a2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px, cy + py)
+        g0 = a1 * a1 + a2 * a2
+        if not (math.isfinite(g0) and g0 > _G_ISO):
+            break
+        u1, u2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px + h, cy + py)
+        v1, v2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px - h, cy + py)
+        w1, w2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px, cy + (py + h))
+        z1, z2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px, cy + (py - h))
+        c1, c2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px + h, cy + (py + h))
+        r1x = (u1 - v1) / (2.0 * h)
+        r1y = (w1 - z1) / (2.0 * h)
+        r2x = (u2 - v2) / (2.0 * h)
+        r2y = (w2 - z2) / (2.0 * h)
+        r1xx = (u1 - 2.0 * a1 + v1) / h2
+        r2xx = (u2 - 2.0 * a2 + v2) / h2
+        r1yy = (w1 - 2.0 * a1 + z1) / h2
+        r2yy = (w2 - 2.0 * a2 + z2) / h2
+        r1xy = (c1 - u1 - w1 + a1) / h2
+        r2xy = (c2 - u2 - w2 + a2) / h2
+        gx = 2.0 * (r1x * a1 + r2x * a2)
+        gy = 2.0 * (r1y * a1 + r2y * a2)
+        hxx = 2.0 * (r1x * r1x + r2x * r2x + a1 * r1xx + a2 * r2xx)
+        hyy = 2.0 * (r1y * r1y + r2y * r2y + a1 * r1yy + a2 * r2yy)
+        hxy = 2.0 * (r1x * r1y + r2x * r2y + a1 * r1xy + a2 * r2xy)
+        dx, dy, pred = _tr_step_nb(gx, gy, hxx, hxy, hyy, delta)
+        step = math.hypot(dx, dy)
+        tx = px + dx
+        ty = py + dy
+        rad = math.hypot(tx, ty)
+        if rad > R:
+            sc = R / rad
+            tx = tx * sc
+            ty = ty * sc
+        q1, q2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, tx, cy + ty)
+        gt = q1 * q1 + q2 * q2
+        rho = (g0 - gt) / pred
+        if gt < g0:
+            px = tx
+            py = ty
+        if rho > 0.25:
+            if rho > 0.75 and step > 0.99 * delta:
+                delta = 2.0 * delta if 2.0 * delta < R else R
+        else:
+            delta = 0.25 * step
+        # converged: nothing left to gain above rounding, or the region has collapsed
+        if not (math.isfinite(delta) and delta > 1e-12 * R) or pred <= 1e-15 * g0:
+            break
+    return _lci_point_nb(r1sq, half_d, r3, s1, s2, px, cy + py)
+
+
+@_njit
 def _rim_nb(r1sq, half_d, r3, s1, s2, cy, R, n_rim):
     """Best LCI on the rim: best of ``n_rim`` samples, then golden section in the angle."""
     kb = 0
@@ -938,20 +1075,192 @@ def _rim_nb(r1sq, half_d, r3, s1, s2, cy, R, n_rim):
     return max(vk, f1, f2)
 
 
+@_njit_inline
+def _iso_r_nb(r1sq, half_d, r3, s1, s2, x, y):
+    """Isotropy residual ``r = (G11 - G22, 2 G12) / tr G`` of ``G = M^T M`` (that of
+    ``J^T J``: r is scale-free), as :func:`mechopt.performance._iso_residual`:
+    ``r = 0`` exactly where LCI = 1, ``g = |r|^2`` smooth and decreasing in LCI.
+    NaN where unreachable or M = 0."""
+    a, b, c, d, kk, ok = _mrows_nb(r1sq, half_d, r3, s1, s2, x, y)
+    g11 = a * a + c * c
+    g22 = b * b + d * d
+    t = g11 + g22
+    if not (ok and t > 0.0):
+        return np.nan, np.nan
+    return (g11 - g22) / t, 2.0 * (a * b + c * d) / t
+
+
+@_njit
+def _axis_root_nb(r1sq, half_d, r3, s1, s2, cy, a, fa, b, fb, n_iter):
+    """Illinois (modified regula falsi) on ``r_1(0, cy + t)`` bracketed by
+    ``a < b``, ``fa fb < 0``, until ``g < _G_ISO``: the LCI there, or -1 (no such
+    point: the bracket collapsed, a NaN inside, or ``n_iter`` exhausted)."""
+    side = 0
+    for _ in range(n_iter):
+        t = 0.5 * (a + b) if fb == fa else (a * fb - b * fa) / (fb - fa)
+        if not (t > a and t < b):
+            t = 0.5 * (a + b)
+        if t == a or t == b:
+            return -1.0
+        f, q = _iso_r_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + t)
+        if not math.isfinite(f):
+            return -1.0
+        if f * f + q * q < _G_ISO:
+            return _lci_point_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + t)
+        if f * fb > 0.0:
+            b = t
+            fb = f
+            if side == -1:
+                fa *= 0.5
+            side = -1
+        else:
+            a = t
+            fa = f
+            if side == 1:
+                fb *= 0.5
+            side = 1
+    return -1.0
+
+
+@_njit
+def _axis_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, n_ax, n_iter):
+    """Isotropic point on the y axis within the disk, for the mirror-symmetric modes
+    (``s1 = -s2``: there ``G12 = 0`` exactly on the axis, so it is a root of ``r_1``
+    alone). ``r`` at ``n_ax + 1`` equally spaced points of the diameter; the first
+    (from ``cy - R`` up) sample with ``g < _G_ISO`` or sign change of ``r_1``
+    whose :func:`_axis_root_nb` succeeds gives the LCI there. -1 if none."""
+    ta = -R
+    fa, qa = _iso_r_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + ta)
+    if fa * fa + qa * qa < _G_ISO:
+        return _lci_point_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + ta)
+    for k in range(1, n_ax + 1):
+        tb = -R + (2.0 * R) * k / n_ax
+        fb, qb = _iso_r_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + tb)
+        if fa * fb < 0.0:
+            v = _axis_root_nb(r1sq, half_d, r3, s1, s2, cy, ta, fa, tb, fb, n_iter)
+            if v >= 0.0:
+                return v
+        if fb * fb + qb * qb < _G_ISO:
+            return _lci_point_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + tb)
+        ta = tb
+        fa = fb
+    return -1.0
+
+
+@_njit
+def _iso_newton_nb(r1sq, half_d, r3, s1, s2, cy, R, sx, sy, n_iter, n_min, wk):
+    """Isotropic points as :func:`mechopt.performance._newton_isotropy`: plain
+    Newton on ``r = 0`` (central differences, no descent test: it crosses the long
+    curved valleys of near-isotropy that a monotone method does not) from the
+    starts ``R (sx, sy)`` at once, steps capped at R/2, iterates projected into
+    the disk; every 4 iterations the worse half of the starts (by ``g``) is
+    dropped while more than ``n_min`` remain; stops at the first point with ``g <
+    _G_ISO``. ``wk``: (6, sx.size) work space. Returns ``(g, LCI)`` of the best
+    point visited (``(inf, -1)`` if none)."""
+    px = wk[0]
+    py = wk[1]
+    gk = wk[2]
+    ddx = wk[3]
+    ddy = wk[4]
+    n = sx.size
+    for k in range(n):
+        px[k] = R * sx[k]
+        py[k] = R * sy[k]
+    h = max(1e-5 * R, 1e-12 * (abs(cy) + R))
+    bx = 0.0
+    by = 0.0
+    bg = np.inf
+    for it in range(n_iter):
+        kb = -1
+        gmin = np.inf
+        for k in range(n):
+            x = px[k]
+            y = py[k]
+            f0, q0 = _iso_r_nb(r1sq, half_d, r3, s1, s2, x, cy + y)
+            f1, q1 = _iso_r_nb(r1sq, half_d, r3, s1, s2, x + h, cy + y)
+            f2, q2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, x - h, cy + y)
+            f3, q3 = _iso_r_nb(r1sq, half_d, r3, s1, s2, x, cy + (y + h))
+            f4, q4 = _iso_r_nb(r1sq, half_d, r3, s1, s2, x, cy + (y - h))
+            g = f0 * f0 + q0 * q0
+            gk[k] = g
+            if g < gmin:
+                gmin = g
+                kb = k
+            j11 = (f1 - f2) / (2.0 * h)
+            j12 = (f3 - f4) / (2.0 * h)
+            j21 = (q1 - q2) / (2.0 * h)
+            j22 = (q3 - q4) / (2.0 * h)
+            det = j11 * j22 - j12 * j21
+            ddx[k] = -(j22 * f0 - j12 * q0) / det
+            ddy[k] = -(j11 * q0 - j21 * f0) / det
+        if kb >= 0 and gmin < bg:
+            bx = px[kb]
+            by = py[kb]
+            bg = gmin
+        if bg < _G_ISO:
+            break
+        m = 0
+        for k in range(n):
+            st = math.hypot(ddx[k], ddy[k])
+            if math.isfinite(st) and st > 1e-15 * R and math.isfinite(gk[k]):
+                wk[5, m] = gk[k]
+                m += 1
+        if m == 0:
+            break
+        med = np.inf
+        if it % 4 == 3 and m > n_min:  # keep the better half
+            med = np.median(wk[5, :m])
+        j = 0
+        for k in range(n):
+            st = math.hypot(ddx[k], ddy[k])
+            if math.isfinite(st) and st > 1e-15 * R and math.isfinite(gk[k]) and gk[k] <= med:
+                cap = 0.5 * R / st if st > 0.5 * R else 1.0
+                qx = px[k] + cap * ddx[k]
+                qy = py[k] + cap * ddy[k]
+                rr = math.hypot(qx, qy)
+                if rr > R:
+                    sc = R / rr
+                    qx = qx * sc
+                    qy = qy * sc
+                px[j] = qx
+                py[j] = qy
+                j += 1
+        n = j
+    if not bg < np.inf:
+        return np.inf, -1.0
+    return bg, _lci_point_nb(r1sq, half_d, r3, s1, s2, bx, cy + by)
+
+
 @_njit
 def _mci_nb(r1sq, half_d, r3, s1, s2, cy, R, ux, uy, lv, step0, n_iter, dirs, n_rim, n_start,
-            starts):
+            starts, sx, sy, n_min, wk):
     """Maximum LCI over the disk of radius R about (0, cy), given the LCI ``lv`` at
     the unit nodes ``(ux, uy)``:
 
-    * from each of ``n_start`` nodes (the best one, then the best one farther
-      than R/3 from the nodes already used) a compass search
-      (:func:`mechopt.performance.max_lci`), then damped Newton iterations on
-      both isotropy conditions (LCI = 1 exactly where J is a scaled rotation or
-      reflection: a cone apex that direct search approaches only slowly);
-    * a golden-section search along the rim.
+    1. isotropic points (LCI = 1, nothing is larger): for the mirror-symmetric
+       modes a root of the isotropy residual on the y axis
+       (:func:`_axis_iso_nb`), else (all modes) plain Newton on the residual
+       from the starts ``R (sx, sy)`` (:func:`_iso_newton_nb`, the search of
+       :func:`mechopt.performance.max_lci`); the first found ends the search;
+    2. otherwise, from each of ``n_start`` nodes (the best one, then the best one
+       farther than R/3 from the nodes already used) a compass search, then
+       damped Newton iterations on both isotropy conditions (J a scaled rotation
+       or reflection);
+    3. a golden-section search along the rim.
+
+    The largest LCI evaluated (never below the best node), capped at 1.
     """
     best = -1.0
+    for k in range(lv.size):
+        best = max(best, lv[k])
+    if s1 != s2:
+        v = _axis_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, _AXIS_N, _AXIS_ITERS)
+        if v >= 0.0:
+            return min(max(best, v), 1.0)
+    g, v = _iso_newton_nb(r1sq, half_d, r3, s1, s2, cy, R, sx, sy, _ISO_ITERS, n_min, wk)
+    if g < _G_ISO:
+        return min(max(best, v), 1.0)
+    best = max(best, v)
     m = 0
     for _ in range(n_start):
         kb = -1
@@ -972,14 +1281,16 @@ def _mci_nb(r1sq, half_d, r3, s1, s2, cy, R, ux, uy, lv, step0, n_iter, dirs, n_
         bx, by, b = _compass_nb(r1sq, half_d, r3, s1, s2, cy, R, R * ux[kb], R * uy[kb], lv[kb],
                                 R * step0, n_iter, dirs)
         best = max(best, b)
+        best = max(best, _tr_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, bx, by, R * step0,
+                                       n_iter))
         for which in range(2):
             best = max(best, _newton_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, bx, by, which, 12))
-    return max(best, _rim_nb(r1sq, half_d, r3, s1, s2, cy, R, n_rim))
+    return min(max(best, _rim_nb(r1sq, half_d, r3, s1, s2, cy, R, n_rim)), 1.0)
 
 
 @_njit
 def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs, n_rim, lv,
-                       starts, out):
+                       starts, sx, sy, n_min, wk, out):
     """Mean LCI over the MIC disk, its maximum (best node, then
     :func:`_mci_nb`), and the means of the velocity, payload and
     stiffness extremes over the concentric half-radius disk."""
@@ -997,7 +1308,7 @@ def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs
         acc += w[k] * v
     out[0] = acc
     out[1] = _mci_nb(r1sq, half_d, r3, s1, s2, cy, R, ux, uy, lv, step0, n_iter, dirs, n_rim,
-                     starts.size, starts)
+                     starts.size, starts, sx, sy, n_min, wk)
     h = 0.5 * R
     a_vmax = 0.0
     a_vmin = 0.0
@@ -1035,12 +1346,13 @@ def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs
 
 @_njit
 def _disk_stats_batch_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs, n_rim,
-                         n_start, out):
+                         n_start, sx, sy, n_min, out):
     lv = np.empty(ux.size)
     starts = np.empty(n_start, np.int64)
+    wk = np.empty((6, sx.size))
     for i in range(r1.size):
         _disk_stats_one_nb(r1[i], r2[i], r3[i], s1, s2, cy[i], R[i], ux, uy, w, step0, n_iter,
-                           dirs, n_rim, lv, starts, out[i])
+                           dirs, n_rim, lv, starts, sx, sy, n_min, wk, out[i])
 
 
 def _lci_at_np(rr, s1, s2, x, y):
@@ -1091,6 +1403,97 @@ def _compass_np(rr, s1, s2, cy, R, bx, by, best, step, n_iter):
     return bx, by, best
 
 
+def _tr_step_np(gx, gy, hxx, hxy, hyy, delta):
+    """:func:`_tr_step_nb` for arrays."""
+    disc = np.hypot(0.5 * (hxx - hyy), hxy)
+    l1 = 0.5 * (hxx + hyy) - disc
+    l2 = 0.5 * (hxx + hyy) + disc
+    big = hxx >= hyy
+    ax, ay = np.where(big, l2 - hyy, hxy), np.where(big, hxy, l2 - hxx)
+    n = np.hypot(ax, ay)
+    ex = np.where(n > 0.0, ax / n, 1.0)
+    ey = np.where(n > 0.0, ay / n, 0.0)
+    ge = gx * ex + gy * ey
+    gf = gy * ex - gx * ey
+    newton = (l1 > 0.0) & (np.hypot(ge / l2, gf / l1) <= delta)
+    mu_lo = np.where(-l1 > 0.0, -l1, 0.0)
+    mu = mu_lo + 1e-12 * (np.abs(l1) + np.abs(l2)) + 1e-300
+    for _ in range(12):
+        de = -ge / (l2 + mu)
+        df = -gf / (l1 + mu)
+        nrm = np.hypot(de, df)
+        q = de * de / (l2 + mu) + df * df / (l1 + mu)
+        new = mu + (nrm * nrm / q) * (nrm - delta) / delta
+        lo = mu_lo + 0.5 * (mu - mu_lo)
+        mu = np.where(new > lo, new, lo)
+    mu = np.where(newton, 0.0, mu)
+    de = -ge / (l2 + mu)
+    df = -gf / (l1 + mu)
+    nrm = np.hypot(de, df)
+    short = ~newton & (nrm < delta)
+    d2 = delta * delta - nrm * nrm
+    tau = np.sqrt(np.where(d2 > 0.0, d2, 0.0))
+    df = np.where(short, np.where(gf > 0.0, df - tau, df + tau), df)
+    nrm = np.where(short, np.hypot(de, df), nrm)
+    sc = np.where(nrm > delta, delta / nrm, 1.0)
+    de, df = np.where(nrm > delta, de * sc, de), np.where(nrm > delta, df * sc, df)
+    pred = -(ge * de + gf * df + 0.5 * (l2 * de * de + l1 * df * df))
+    return de * ex - df * ey, de * ey + df * ex, pred
+
+
+def _tr_polish_np(rr, s1, s2, cy, R, px, py, delta, n_iter):
+    """:func:`_tr_polish_nb` for arrays of designs (rr: (B, 1) columns, the rest (B,))."""
+    c1 = lambda v: v[:, None]  # noqa: E731
+    res = lambda x, y: tuple(v[:, 0] for v in _iso_r_np(rr, s1, s2, c1(x), c1(cy + y)))  # noqa: E731
+    h = np.maximum(1e-5 * R, 1e-12 * (np.abs(cy) + R))
+    h2 = h * h
+    live = np.ones(R.size, bool)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for _ in range(n_iter):
+            a1, a2 = res(px, py)
+            g0 = a1 * a1 + a2 * a2
+            live &= np.isfinite(g0) & (g0 > _G_ISO)
+            if not live.any():
+                break
+            u1, u2 = res(px + h, py)
+            v1, v2 = res(px - h, py)
+            w1, w2 = res(px, py + h)
+            z1, z2 = res(px, py - h)
+            k1, k2 = res(px + h, py + h)
+            r1x = (u1 - v1) / (2.0 * h)
+            r1y = (w1 - z1) / (2.0 * h)
+            r2x = (u2 - v2) / (2.0 * h)
+            r2y = (w2 - z2) / (2.0 * h)
+            r1xx = (u1 - 2.0 * a1 + v1) / h2
+            r2xx = (u2 - 2.0 * a2 + v2) / h2
+            r1yy = (w1 - 2.0 * a1 + z1) / h2
+            r2yy = (w2 - 2.0 * a2 + z2) / h2
+            r1xy = (k1 - u1 - w1 + a1) / h2
+            r2xy = (k2 - u2 - w2 + a2) / h2
+            gx = 2.0 * (r1x * a1 + r2x * a2)
+            gy = 2.0 * (r1y * a1 + r2y * a2)
+            hxx = 2.0 * (r1x * r1x + r2x * r2x + a1 * r1xx + a2 * r2xx)
+            hyy = 2.0 * (r1y * r1y + r2y * r2y + a1 * r1yy + a2 * r2yy)
+            hxy = 2.0 * (r1x * r1y + r2x * r2y + a1 * r1xy + a2 * r2xy)
+            dx, dy, pred = _tr_step_np(gx, gy, hxx, hxy, hyy, delta)
+            step = np.hypot(dx, dy)
+            tx, ty = px + dx, py + dy
+            rad = np.hypot(tx, ty)
+            sc = np.where(rad > R, R / rad, 1.0)
+            tx, ty = np.where(rad > R, tx * sc, tx), np.where(rad > R, ty * sc, ty)
+            q1, q2 = res(tx, ty)
+            gt = q1 * q1 + q2 * q2
+            rho = (g0 - gt) / pred
+            acc = live & (gt < g0)
+            px, py = np.where(acc, tx, px), np.where(acc, ty, py)
+            grow = (rho > 0.75) & (step > 0.99 * delta)
+            nd = np.where(rho > 0.25, np.where(grow, np.where(2.0 * delta < R, 2.0 * delta, R),
+                                               delta), 0.25 * step)
+            delta = np.where(live, nd, delta)
+            live &= np.isfinite(delta) & (delta > 1e-12 * R) & ~(pred <= 1e-15 * g0)
+    return _lci_at_np(rr, s1, s2, c1(px), c1(cy + py))[:, 0]
+
+
 def _newton_iso_np(rr, s1, s2, cy, R, px, py, which, n_iter):
     c1 = lambda v: v[:, None]  # noqa: E731
     res = lambda x, y: tuple(v[:, 0] for v in _iso_residual_np(rr, s1, s2, c1(x), c1(cy + y), which))  # noqa: E731
@@ -1136,6 +1539,145 @@ def _newton_iso_np(rr, s1, s2, cy, R, px, py, which, n_iter):
     return best
 
 
+def _iso_r_np(rr, s1, s2, x, y):
+    """:func:`_iso_r_nb` (broadcasting)."""
+    a, b, c, d, _, ok = _mrows_np(*rr, s1, s2, x, y)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        g11 = a * a + c * c
+        g22 = b * b + d * d
+        t = g11 + g22
+        t = np.where(ok & (t > 0.0), t, np.nan)
+        return (g11 - g22) / t, 2.0 * (a * b + c * d) / t
+
+
+def _axis_root_np(rr, s1, s2, cy, a, fa, b, fb, n_iter):
+    """:func:`_axis_root_nb` for arrays of brackets (rr: (B, 1) columns, the rest (B,))."""
+    c1 = lambda v: v[:, None]  # noqa: E731
+    out = np.full(cy.size, -1.0)
+    side = np.zeros(cy.size, np.int64)
+    live = np.ones(cy.size, bool)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for _ in range(n_iter):
+            if not live.any():
+                break
+            t = np.where(fb == fa, 0.5 * (a + b), (a * fb - b * fa) / (fb - fa))
+            t = np.where((t > a) & (t < b), t, 0.5 * (a + b))
+            live &= (t != a) & (t != b)
+            f, q = (v[:, 0] for v in _iso_r_np(rr, s1, s2, 0.0, c1(cy + t)))
+            live &= np.isfinite(f)
+            hit = live & (f * f + q * q < _G_ISO)
+            if hit.any():
+                v = _lci_at_np(rr, s1, s2, 0.0, c1(cy + t))[:, 0]
+                out = np.where(hit, v, out)
+                live &= ~hit
+            right = f * fb > 0.0
+            upb, upa = live & right, live & ~right
+            b, fb = np.where(upb, t, b), np.where(upb, f, fb)
+            fa = np.where(upb & (side == -1), 0.5 * fa, fa)
+            a, fa = np.where(upa, t, a), np.where(upa, f, fa)
+            fb = np.where(upa & (side == 1), 0.5 * fb, fb)
+            side = np.where(upb, -1, np.where(upa, 1, side))
+    return out
+
+
+def _axis_iso_np(rr, s1, s2, cy, R, n_ax, n_iter):
+    """:func:`_axis_iso_nb` for arrays of designs (rr: (B, 1) columns, the rest (B,))."""
+    c1 = lambda v: v[:, None]  # noqa: E731
+    B = R.size
+    t = -c1(R) + (2.0 * c1(R)) * np.arange(1, n_ax + 1) / n_ax
+    t = np.concatenate([-c1(R), t], axis=1)
+    f, q = _iso_r_np(rr, s1, s2, 0.0, c1(cy) + t)
+    with np.errstate(invalid="ignore", over="ignore"):
+        # events in the order of _axis_iso_nb: sample k at 2k, the bracket (k, k + 1) at 2k + 1
+        samp = f * f + q * q < _G_ISO
+        sign = f[:, :-1] * f[:, 1:] < 0.0
+    never = 2 * n_ax + 2
+    pos_s = np.where(samp.any(axis=1), 2 * np.argmax(samp, axis=1), never)
+    pos_r = np.full(B, never)
+    val_r = np.full(B, -1.0)
+    todo = sign.copy()
+    while True:
+        k = np.argmax(todo, axis=1)
+        rows = np.flatnonzero(todo.any(axis=1) & (pos_r == never) & (2 * k + 1 < pos_s))
+        if rows.size == 0:
+            break
+        k = k[rows]
+        todo[rows, k] = False
+        sub = tuple(v[rows] for v in rr)
+        v = _axis_root_np(sub, s1, s2, cy[rows], t[rows, k], f[rows, k], t[rows, k + 1],
+                          f[rows, k + 1], n_iter)
+        good = v >= 0.0
+        pos_r[rows[good]] = 2 * k[good] + 1
+        val_r[rows[good]] = v[good]
+    ks = np.minimum(pos_s // 2, n_ax)
+    v_s = _lci_at_np(rr, s1, s2, 0.0, c1(cy) + np.take_along_axis(t, ks[:, None], 1))[:, 0]
+    return np.where(pos_s < pos_r, v_s, val_r)
+
+
+def _iso_newton_np(rr, s1, s2, cy, R, sx, sy, n_iter, n_min):
+    """:func:`_iso_newton_nb` for arrays of designs (rr: (B, 1) columns, the rest
+    (B,)): ``(g, LCI)``. The live starts of each design are kept in their order at
+    the front of its row."""
+    c1 = lambda v: v[:, None]  # noqa: E731
+    B = R.size
+    bx, by = np.zeros(B), np.zeros(B)
+    bg = np.full(B, np.inf)
+    h = np.maximum(1e-5 * R, 1e-12 * (np.abs(cy) + R))
+    idx = np.arange(B)  # designs still searching
+    px, py = c1(R) * sx[None, :], c1(R) * sy[None, :]
+    alive = np.ones(px.shape, bool)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for it in range(n_iter):
+            if idx.size == 0:
+                break
+            sub = tuple(v[idx] for v in rr)
+            cyc, hh, Rc = c1(cy[idx]), c1(h[idx]), c1(R[idx])
+            f0, q0 = _iso_r_np(sub, s1, s2, px, cyc + py)
+            f1, q1 = _iso_r_np(sub, s1, s2, px + hh, cyc + py)
+            f2, q2 = _iso_r_np(sub, s1, s2, px - hh, cyc + py)
+            f3, q3 = _iso_r_np(sub, s1, s2, px, cyc + (py + hh))
+            f4, q4 = _iso_r_np(sub, s1, s2, px, cyc + (py - hh))
+            g = np.where(alive, f0 * f0 + q0 * q0, np.nan)
+            gm = np.where(g < np.inf, g, np.inf)
+            kb = np.argmin(gm, axis=1)
+            gmin = gm[np.arange(idx.size), kb]
+            up = gmin < bg[idx]
+            bx[idx[up]] = px[up, kb[up]]
+            by[idx[up]] = py[up, kb[up]]
+            bg[idx[up]] = gmin[up]
+            j11 = (f1 - f2) / (2.0 * hh)
+            j12 = (f3 - f4) / (2.0 * hh)
+            j21 = (q1 - q2) / (2.0 * hh)
+            j22 = (q3 - q4) / (2.0 * hh)
+            det = j11 * j22 - j12 * j21
+            dx = -(j22 * f0 - j12 * q0) / det
+            dy = -(j11 * q0 - j21 * f0) / det
+            st = np.hypot(dx, dy)
+            keep = alive & np.isfinite(st) & (st > 1e-15 * Rc) & np.isfinite(g)
+            m = keep.sum(axis=1)
+            if it % 4 == 3:  # keep the better half
+                half = m > n_min
+                if half.any():
+                    med = np.nanmedian(np.where(keep[half], g[half], np.nan), axis=1)
+                    keep[half] &= g[half] <= med[:, None]
+            go = ~(bg[idx] < _G_ISO) & (m > 0)
+            cap = np.where(st > 0.5 * Rc, 0.5 * Rc / st, 1.0)
+            qx, qy = px + cap * dx, py + cap * dy
+            rad = np.hypot(qx, qy)
+            sc = np.where(rad > Rc, Rc / rad, 1.0)
+            px, py, alive = qx * sc, qy * sc, keep
+            # drop the finished designs, move the live starts to the front
+            px, py, alive = px[go], py[go], alive[go]
+            idx = idx[go]
+            order = np.argsort(~alive, axis=1, kind="stable")
+            px, py, alive = (np.take_along_axis(v, order, 1) for v in (px, py, alive))
+            ncol = int(alive.sum(axis=1).max()) if idx.size else 0
+            px, py, alive = px[:, :ncol], py[:, :ncol], alive[:, :ncol]
+    v = _lci_at_np(rr, s1, s2, c1(bx), c1(cy + by))[:, 0]
+    found = bg < np.inf
+    return np.where(found, bg, np.inf), np.where(found, v, -1.0)
+
+
 def _mci_starts_np(ux, uy, lv, n_start):
     """Starting nodes of :func:`_mci_nb`: ``(k, have)`` arrays of shape (B, n_start)."""
     c1 = lambda v: v[:, None]  # noqa: E731
@@ -1149,18 +1691,45 @@ def _mci_starts_np(ux, uy, lv, n_start):
     return np.stack(ks, 1), np.stack(haves, 1)
 
 
-def _mci_search_np(rr, s1, s2, cy, R, ux, uy, ks, haves, lvs, step0, n_iter, n_rim):
+def _mci_search_np(rr, s1, s2, cy, R, ux, uy, ks, haves, lvs, step0, n_iter, n_rim, sx, sy,
+                   n_min):
     """Vectorised :func:`_mci_nb` from the starts of :func:`_mci_starts_np` (``lvs``:
-    LCI at those nodes); rr: (B, 1) columns, the rest (B,) or (B, n_start)."""
+    LCI at those nodes, the first the best node); rr: (B, 1) columns, the rest (B,)
+    or (B, n_start)."""
     c1 = lambda v: v[:, None]  # noqa: E731
     B = R.size
-    rows = np.arange(B)
-    best = np.full(B, -1.0)
+    out = np.full(B, np.nan)
+    best = lvs[:, 0].copy()
+    todo = np.ones(B, bool)
+    # 1. isotropic points: on the axis (mirror-symmetric modes), then from the grid of starts
+    if s1 != s2:
+        v = _axis_iso_np(rr, s1, s2, cy, R, _AXIS_N, _AXIS_ITERS)
+        hit = v >= 0.0
+        out[hit] = np.minimum(np.maximum(best[hit], v[hit]), 1.0)
+        todo &= ~hit
+    block = max(1, 200_000 // sx.size)
+    for i0 in range(0, B, block):
+        q = np.flatnonzero(todo[i0:i0 + block]) + i0
+        if q.size == 0:
+            continue
+        g, v = _iso_newton_np(tuple(a[q] for a in rr), s1, s2, cy[q], R[q], sx, sy, _ISO_ITERS,
+                              n_min)
+        hit = g < _G_ISO
+        out[q[hit]] = np.minimum(np.maximum(best[q[hit]], v[hit]), 1.0)
+        todo[q[hit]] = False
+        best[q] = np.maximum(best[q], v)
+    q = np.flatnonzero(todo)
+    if q.size == 0:
+        return out
+    # 2. compass search and damped Newton from the starting nodes, 3. the rim
+    rr, cy, R, ks, haves, lvs, best = (tuple(a[q] for a in rr), cy[q], R[q], ks[q], haves[q],
+                                       lvs[q], best[q])
+    rows = np.arange(q.size)
     for j in range(ks.shape[1]):
         kb, have = ks[:, j], haves[:, j]
         bx, by, b = _compass_np(rr, s1, s2, cy, R, R * ux[kb], R * uy[kb], lvs[:, j],
                                 R * step0, n_iter)
-        cand = b
+        cand = np.maximum(b, _tr_polish_np(rr, s1, s2, cy, R, bx, by, R * step0, n_iter))
         for which in (0, 1):
             cand = np.maximum(cand, _newton_iso_np(rr, s1, s2, cy, R, bx, by, which, 12))
         best = np.where(have, np.maximum(best, cand), best)
@@ -1169,7 +1738,8 @@ def _mci_search_np(rr, s1, s2, cy, R, ux, uy, ks, haves, lvs, step0, n_iter, n_r
     kr = np.argmax(v, axis=1)
     dph = 2.0 * np.pi / n_rim
     fr = _golden_rim_np(rr, s1, s2, cy, R, dph * (kr - 1), dph * (kr + 1), 40)
-    return np.maximum(best, np.maximum(v[rows, kr], fr))
+    out[q] = np.minimum(np.maximum(best, np.maximum(v[rows, kr], fr)), 1.0)
+    return out
 
 
 def _disk_stats_block_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, n_start):
@@ -1190,7 +1760,8 @@ def _disk_stats_block_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, n_start):
     return res, ks, haves, lvs
 
 
-def _disk_stats_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, n_rim, n_start):
+def _disk_stats_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, n_rim, n_start, sx, sy,
+                   n_min):
     out = np.full((r1.size, 8), np.nan)
     live = (R > 0.0) & np.isfinite(R)
     if not live.any():
@@ -1208,17 +1779,35 @@ def _disk_stats_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, n_rim, n
             r1[sl], r2[sl], r3[sl], s1, s2, cy[sl], R[sl], ux, uy, w, n_start)
     # the searches of the MCI touch a few points per design: vectorise over all
     rr = (r1[:, None], r2[:, None], r3[:, None])
-    res[:, 1] = _mci_search_np(rr, s1, s2, cy, R, ux, uy, ks, haves, lvs, step0, n_iter, n_rim)
+    res[:, 1] = _mci_search_np(rr, s1, s2, cy, R, ux, uy, ks, haves, lvs, step0, n_iter, n_rim,
+                               sx, sy, n_min)
     out[live] = res
     return out
+
+
+def _iso_starts(s1, s2):
+    """Unit-disk starts of the isotropy Newton (:func:`_iso_newton_nb`) and the
+    count of starts above which the worse half is dropped: the nodes of the polar
+    ``_ISO_N_R x _ISO_N_THETA`` grid, as in :func:`mechopt.performance.max_lci`. For
+    the mirror-symmetric modes only the nodes with ``x > 0`` (none is on the axis):
+    there ``r(-x, y) = (r_1, -r_2)(x, y)`` holds exactly, so the mirrored start runs
+    the mirrored iteration with the same ``g``, and the half grid does what the
+    whole grid does (with 4 instead of 8 starts as the floor of the halving)."""
+    from mechopt.quadrature import disk_rule
+
+    sx, sy, _ = disk_rule(1.0, "polar", n_r=_ISO_N_R, n_theta=_ISO_N_THETA)
+    if s1 != s2:
+        keep = sx > 0.0
+        return np.ascontiguousarray(sx[keep]), np.ascontiguousarray(sy[keep]), 4
+    return np.ascontiguousarray(sx), np.ascontiguousarray(sy), 8
 
 
 def disk_stats_batch(r1, r2, r3, center_y, radius, mode="+-", quadrature="area", n_r=None,
                      n_theta=None, compiled=None):
     """``(n, 8)`` array of :data:`DISK_STAT_NAMES` for designs with a known MIC.
 
-    GCI is the mean LCI over the MIC disk and MCI its maximum (best quadrature
-    node, then the compass search of :func:`mechopt.performance.max_lci`); the
+    GCI is the mean LCI over the MIC disk and MCI its maximum (the search of
+    :func:`_mci_nb`, which follows :func:`mechopt.performance.max_lci`); the
     velocity, payload and stiffness means are over the concentric disk of half
     radius (Liu 2006 eq. 4, 11, 14, 19). The rule is
     :func:`mechopt.quadrature.disk_rule` (``area`` or ``polar``). NaN rows for a
@@ -1236,13 +1825,14 @@ def disk_stats_batch(r1, r2, r3, center_y, radius, mode="+-", quadrature="area",
     L = (r1 + r2 + r3) / 3.0
     r1, r2, r3, cy, R = r1 / L, r2 / L, r3 / L, cy / L, R / L
     step0 = 1.0 / n_r
+    sx, sy, n_min = _iso_starts(s1, s2)
     out = np.empty((r1.size, 8))
     if use_numba(compiled):
         _disk_stats_batch_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, _MCI_ITERS, _DIRS,
-                             n_theta, _MCI_STARTS, out)
+                             n_theta, _MCI_STARTS, sx, sy, n_min, out)
     else:
         out[:] = _disk_stats_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, _MCI_ITERS, n_theta,
-                                _MCI_STARTS)
+                                _MCI_STARTS, sx, sy, n_min)
     out[:, 2:4] *= L[:, None]
     out[:, 4:6] /= L[:, None]
     out[:, 6:8] *= (L * L)[:, None]
