@@ -282,7 +282,7 @@ def _fig5(curve, paper_rho, paper_a, ours, golden, top):
     ax.plot([golden[0]], [golden[1]], "gv",
             label=f"golden section on the staircase: {golden[0]:.4f}, {golden[1]:.4f}")
     ax.plot([ours["rho"]], [ours["a_max"]], "k^", label=f"mechopt GA: rho*={ours['rho']:.4f}, a={ours['a_max']:.4f}")
-    ax.set_xlabel(r"$\rho = l_2/l_1$")
+    ax.set_xlabel(r"$\rho = l_2/l_1$ [-]")
     ax.set_ylabel(r"$a_{MAX}$ [$l_1$]")
     ax.set_title(r"Le 2013 Fig. 5 redrawn: $\gamma$ = 0.5, $\theta \in [-\pi/3, 4\pi/3]$")
     ax.legend(fontsize=7)
@@ -303,7 +303,7 @@ def _fig6(rho):
     ax.plot([0.0], [SQRT2 / 2 * (1 + rho)], "w*", label="E, eq. (22)")
     ax.legend(fontsize=8)
     ax.set_aspect("equal")
-    ax.set_title(f"Le 2013 Fig. 6 redrawn: LCI in the square, rho = {rho:.4f}")
+    ax.set_title(f"Le 2013 Fig. 6 redrawn:\nLCI in the square, rho = {rho:.4f}", fontsize=10)
     ax.set_xlabel("x [l1]")
     ax.set_ylabel("y [l1]")
     return fig

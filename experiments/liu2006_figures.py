@@ -14,6 +14,7 @@ from matplotlib.patches import Circle, Rectangle
 
 from mechopt import FiveBar
 from mechopt import io as _io
+from mechopt.plotting import INDEX_LABELS, labelled_colorbar, workspace_axes
 from mechopt.workspace import gcw, largest_square, mic, usable_region
 
 __all__ = ["draw_all", "EXAMPLES"]
@@ -35,12 +36,13 @@ def _mechanism_lines(ax, fb, m):
     ax.plot([-fb.r3, float(b1x), x, float(b2x), fb.r3], [0, float(b1y), y, float(b2y), 0], "k-o", ms=3, lw=1.2)
 
 
-def _map(ax, fb, region, values, title, levels=12):
+def _map(ax, fb, region, values, title, label, levels=12):
+    """A local index (``label``: its colour-bar text) over a region, in the base frame."""
     X, Y = region.grid.points()
     V = np.where(region.mask, values, np.nan)
     cs = ax.contourf(X, Y, V, levels=levels)
-    ax.figure.colorbar(cs, ax=ax, shrink=0.8)
-    ax.set_aspect("equal")
+    labelled_colorbar(ax.figure, cs, ax, label, shrink=0.8)
+    workspace_axes(ax)
     ax.set_title(title, fontsize=9)
     return cs
 
@@ -55,7 +57,7 @@ def _disk_region(fb, m, radius, step):
 
 
 def fig_examples(step):
-    fig = Figure(figsize=(16, 3.6))
+    fig = Figure(figsize=(16, 3.6), layout="constrained")
     for k, (name, r) in enumerate(EXAMPLES.items()):
         fb = FiveBar(*r)
         m = mic(fb)
@@ -65,7 +67,7 @@ def fig_examples(step):
         ax.contourf(X, Y, u.mask.astype(float), levels=[0.5, 1.5], colors=["0.85"])
         ax.add_patch(Circle((0, m.center_y), m.radius, fill=False, color="C3", lw=1.2))
         _mechanism_lines(ax, fb, m)
-        ax.set_aspect("equal")
+        workspace_axes(ax)
         ax.set_title(f"{name}\nr = {r}, r_MIC = {m.radius:.4f}", fontsize=8)
     return fig
 
@@ -73,19 +75,19 @@ def fig_examples(step):
 def fig_lci_usable(fb, step, title):
     u = usable_region(fb, step=step)
     X, Y = u.grid.points()
-    fig = Figure(figsize=(6, 4))
-    _map(fig.add_subplot(), fb, u, fb.lci(X, Y), title)
+    fig = Figure(figsize=(6, 4), layout="constrained")
+    _map(fig.add_subplot(), fb, u, fb.lci(X, Y), title, INDEX_LABELS["lci"])
     return fig
 
 
 def fig_usable_pair(step):
-    fig = Figure(figsize=(11, 4))
+    fig = Figure(figsize=(11, 4), layout="constrained")
     for k, r in enumerate([(0.4, 2.33, 0.27), (0.65, 1.62, 0.73)]):
         fb = FiveBar(*r)
         u = usable_region(fb, step=step)
         X, Y = u.grid.points()
         _map(fig.add_subplot(1, 2, k + 1), fb, u, fb.lci(X, Y),
-             f"Figs. 18-19: r = {r}, usable area {u.area:.4f}, LCI")
+             f"Figs. 18-19: r = {r}\nusable area {u.area:.4f}, LCI", INDEX_LABELS["lci"])
     return fig
 
 
@@ -96,12 +98,12 @@ def fig_extremes_on_miw(fb, names, step, title):
     reg = _disk_region(fb, m, m.radius, step)
     X, Y = reg.grid.points()
     loc = ix.local_indices(fb.jacobian(X, Y))
-    fig = Figure(figsize=(5 * len(names), 4))
+    fig = Figure(figsize=(5.8 * len(names), 4.2), layout="constrained")
     for k, name in enumerate(names):
         v = loc[name]
         hi = np.nanpercentile(np.where(reg.mask, v, np.nan), 98)
         _map(fig.add_subplot(1, len(names), k + 1), fb, reg, np.clip(v, None, hi),
-             f"{title}: {name} (clipped at 98th percentile)")
+             f"{title}:\n{name} (clipped at 98th percentile)", INDEX_LABELS[name])
     return fig
 
 
@@ -113,12 +115,15 @@ def fig_gcw_and_square(fb, step):
     side, cy = largest_square(g)
     X, Y = g.grid.points()
     loc = ix.local_indices(fb.jacobian(X, Y))
-    fig = Figure(figsize=(15, 4))
+    fig = Figure(figsize=(15, 4), layout="constrained")
     ax = fig.add_subplot(1, 3, 1)
-    _map(ax, fb, g, fb.lci(X, Y), f"Figs. 25/28: GCW (LCI >= 0.5), area {g.area:.4f}")
+    _map(ax, fb, g, fb.lci(X, Y), f"Figs. 25/28: GCW (LCI >= 0.5), area {g.area:.4f}",
+         INDEX_LABELS["lci"])
     ax.add_patch(Rectangle((-side / 2, cy - side / 2), side, side, fill=False, color="k", lw=1.2))
-    _map(fig.add_subplot(1, 3, 2), fb, g, loc["d_max"], "Fig. 26(a): |D|max on the GCW")
-    _map(fig.add_subplot(1, 3, 3), fb, g, loc["d_min"], "Fig. 26(b): |D|min on the GCW")
+    _map(fig.add_subplot(1, 3, 2), fb, g, loc["d_max"], "Fig. 26(a): |D|max on the GCW",
+         INDEX_LABELS["d_max"])
+    _map(fig.add_subplot(1, 3, 3), fb, g, loc["d_min"], "Fig. 26(b): |D|min on the GCW",
+         INDEX_LABELS["d_min"])
     return fig
 
 
@@ -153,7 +158,7 @@ def atlas_figures(out, quick: bool = False):
         if example is not None:
             s, t = plane_coordinates(*example)
             fig.axes[0].plot([s], [t], "r*", ms=12, label=f"example r = {example}")
-            fig.axes[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=2)
+            fig.axes[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=2)
         _io.save_figure(fig, out / f"{fig_id}_region_{name}.png")
         inside = ""
         if example is not None:

@@ -363,7 +363,7 @@ def _plot_ellipses(quick: bool) -> Figure:
                      f"{norm_lo:.2f} (light) to {norm_hi:.2f} (dark)", fontsize=9)
     fig.suptitle("Wu 2008 Fig. 5 redrawn: acceleration ellipses {a : |(J^T)^-1 M a| <= 1 N} "
                  "(major axis = easiest direction)", fontsize=10)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 0.93))  # room for the suptitle above the panel titles
     return fig
 
 
@@ -383,7 +383,7 @@ def _figures_5_to_7(out: Path, quick: bool):
 
 # --- Fig. 4: driving forces along the Table 3 trajectory -------------------------------------
 def _driving_force_rows(out: Path, quick: bool) -> list[dict]:
-    tr = wu2008_driving_forces(n=651)
+    tr = wu2008_driving_forces(wu2008_gantry(10.0, unit="m"), n=651)
     dyn = _dynamics("built")
     F1g, F2g = dyn.driving_forces(tr["x"], tr["y"], tr["xd"], tr["yd"], tr["xdd"], tr["ydd"],
                                   gravity=False)
@@ -419,6 +419,7 @@ def _plot_forces(data: pd.DataFrame, T0: float, Tf: float) -> Figure:
         ax.axvline(tt, color="0.6", lw=0.6, ls="--")
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_ylabel("driving force [kN]")
+    ax.set_xlabel("t [s]")
     ax.set_title("Wu 2008 Fig. 4 redrawn: driving forces along Table 3 (Table 2 masses)", fontsize=10)
     ax.legend(fontsize=7)
     ax2 = fig.add_subplot(2, 1, 2, sharex=ax)
@@ -427,6 +428,7 @@ def _plot_forces(data: pd.DataFrame, T0: float, Tf: float) -> Figure:
     ax3 = ax2.twinx()
     ax3.plot(t, data["xd"], color="C4", label="x_dot [m/s]")
     ax3.set_ylabel("x_dot [m/s]")
+    ax3.set_xlabel("t [s]")
     ax2.set_xlabel("t [s]")
     ax2.legend(loc="upper left", fontsize=7)
     ax3.legend(loc="lower right", fontsize=7)

@@ -496,16 +496,16 @@ def draw_atlas(table, column: str, region=None, where: str | None = None, quadra
             ax.tricontour(full, region.astype(float), levels=[0.5], colors="r", linewidths=1.8)
         ax.plot([], [], color="r", lw=1.8, label=f"where {where}" if where else "region")
     ax.set_aspect("equal")
-    ax.set_xlabel("$s = (r_1 - r_2)/\\sqrt{2}$")
-    ax.set_ylabel("$t = \\sqrt{3/2}\\, r_3$")
+    ax.set_xlabel("$s = (r_1 - r_2)/\\sqrt{2}$ [-]")
+    ax.set_ylabel("$t = \\sqrt{3/2}\\, r_3$ [-]")
     sec = ax.secondary_yaxis("right", functions=(lambda tt: tt / math.sqrt(1.5),
                                                  lambda r: r * math.sqrt(1.5)))
-    sec.set_ylabel("$r_3$")
+    sec.set_ylabel("$r_3$ [-]")
     ax.text(-SUM / math.sqrt(2), -0.12, "$r_1 \\to 0$", ha="left", va="top", fontsize=8)
     ax.text(SUM / math.sqrt(2), -0.12, "$r_2 \\to 0$", ha="right", va="top", fontsize=8)
     q = f", {quadrature} means" if quadrature else ""
     ax.set_title(f"{_TITLES.get(column, column)}{q}", fontsize=10)
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), fontsize=7, ncol=3, frameon=False)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.3), fontsize=7, ncol=3, frameon=False)
     ax.set_ylim(-0.3, math.sqrt(1.5) * R3_MAX + 0.15)
     return fig
 
@@ -626,45 +626,3 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
             print(f"region '{where}': {int(region.sum())} designs -> {out / 'region.csv'}")
         print(f"wrote {', '.join(manifest['files'])} in {out}")
     return manifest
-
-
-def _cmd_atlas_five_bar(args):
-    run_atlas(args.out, step=args.step, indices=args.index, quadrature=args.quadrature,
-              mode=args.mode, n_jobs=2 if args.n_jobs is None else args.n_jobs, dask=args.dask,
-              where=args.where,
-              figures=not args.no_figures, chunk_size=args.chunk_size,
-              dask_timeout=args.dask_timeout)
-    return 0
-
-
-def register(subparsers):
-    """Add ``mechopt atlas five-bar`` (hook of :mod:`mechopt.cli`)."""
-    from .cli import Parser
-
-    at = subparsers.add_parser("atlas", help="performance atlases over a whole design space")
-    ats = at.add_subparsers(dest="mechanism", required=True, parser_class=Parser)
-    fb = ats.add_parser(
-        "five-bar",
-        help="Liu 2006 atlases (GCI, MCI, GVI, GPI, GSI, r_MIC) over r1 + r2 + r3 = 3",
-        description="Evaluate every design of r1 + r2 + r3 = 3, 0 <= r3 <= 1.5, r1, r2 > 0 "
-                    "on a lattice; write atlas.csv, atlas.json and one PNG per index.")
-    fb.add_argument("--index", default=",".join(DEFAULT_INDICES),
-                    help="comma-separated index groups: gci, mci, gvi, gpi, gsi, r_mic (default: all)")
-    fb.add_argument("--step", type=float, default=0.01, help="lattice step in (0, 0.5] (default 0.01)")
-    fb.add_argument("--quadrature", default="area", help="area (default) or polar")
-    fb.add_argument("--mode", default="+-", help="working mode: +-, -+, ++ or -- (default +-)")
-    par = fb.add_mutually_exclusive_group()
-    # default None (meaning 2): argparse only sees a conflict with --dask when the value
-    # given is not the default object
-    par.add_argument("--n-jobs", type=int, default=None, help="joblib worker processes (default 2)")
-    par.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None,
-                     help="run the chunks on an existing Dask scheduler, e.g. tcp://10.0.0.5:8786")
-    fb.add_argument("--dask-timeout", type=float, default=10.0,
-                    help="seconds to wait for the Dask scheduler (default 10)")
-    fb.add_argument("--out", required=True, help="output folder")
-    fb.add_argument("--where", default=None,
-                    help="optimum region, e.g. \"r_mic > 0.8 and gci > 0.6\": outlined on the "
-                         "atlases, its designs written to region.csv")
-    fb.add_argument("--chunk-size", type=int, default=None, help="designs per work unit")
-    fb.add_argument("--no-figures", action="store_true", help="write the tables only")
-    fb.set_defaults(func=_cmd_atlas_five_bar)

@@ -1,7 +1,9 @@
-"""Command-line interface: ``mechopt evaluate ...`` and ``mechopt run``.
+"""The ``mechopt`` command: evaluate, optimize, sweep, design, atlas, reproduce, report.
 
 Every bad input ends with one line ``mechopt: error: <message>`` on stderr and
-exit status 2, never a traceback.
+exit status 2, never a traceback; SIGINT/SIGTERM end a run with one line and exit
+status 130/143; an empty result (no feasible design, an empty GCW) is a result,
+exit status 0.
 """
 from __future__ import annotations
 
@@ -14,11 +16,10 @@ import sys
 from . import __version__
 
 EXIT_USAGE = 2
-
-#: modules that define ``register(subparsers)`` adding their own sub-command
-#: (each handler is set with ``set_defaults(func=...)`` and returns an exit status)
-_COMMAND_MODULES: tuple[str, ...] = ("mechopt.atlas",)
-
+#: what ``mechopt --help`` says above the commands
+DESCRIPTION = ("Dimensional synthesis of 2-DOF planar parallel manipulators: evaluate a "
+               "design, optimize a published formulation, size a mechanism for a task, "
+               "draw atlases, reproduce the papers.")
 
 class _Parser(argparse.ArgumentParser):
     """argparse with one-line errors (no usage block) and exit status 2."""
@@ -30,8 +31,6 @@ class _Parser(argparse.ArgumentParser):
 class _UsageError(Exception):
     pass
 
-
-Parser = _Parser  # for register() hooks: parser_class=cli.Parser
 
 
 def _fmt(v):
@@ -49,14 +48,61 @@ def _print_table(d: dict, title: str):
         print(f"  {k:<{w}}  {_fmt(v)}")
 
 
-def _cmd_evaluate_five_bar(args):
-    from .evaluate import evaluate_five_bar
-    from .mechanisms.five_bar import FiveBar
+def _cmd_evaluate(args):
+    """``mechopt evaluate <mechanism> ...``: any registered mechanism (generated from its
+    declared parameters, :func:`_add_evaluate_parsers`)."""
+    from .evaluate import evaluate
+    from .mechanisms import get
 
-    fb = FiveBar(args.r1, args.r2, args.r3, mode=args.mode)
-    res = evaluate_five_bar(fb, quadrature=args.quadrature, gamma=args.gamma)
-    _print_result(res, repr(fb), args.json)
+    cls = get(args.mechanism)
+    mech = cls.from_parameters(**{p.name: getattr(args, p.name) for p in cls.parameters})
+    options = {p.name: getattr(args, p.name) for p in _disk_options(cls)}
+    res = evaluate(mech, **options)
+    if args.json:
+        _print_result(res.as_dict(), res.mechanism, True)
+    else:
+        _print_result({"inputs": res.inputs, **res.values}, res.mechanism, False)
     return 0
+
+
+def _disk_options(cls):
+    if not cls.disk_indices:
+        return ()
+    from .evaluate import DISK_OPTIONS
+
+    return DISK_OPTIONS
+
+
+#: how a declared parameter kind is read from the command line (checks follow in the
+#: constructors, with one-line errors)
+_KIND_TYPES = {"length": float, "length0": float, "position": float, "angle_deg": float,
+               "fraction": float, "choice": str}
+
+
+def _add_parameter(parser, p):
+    """One ``--name`` option of a declared :class:`~mechopt.mechanisms.base.Parameter`."""
+    unit = f" [{p.unit}]" if p.unit not in ("-", "") and f"[{p.unit}]" not in p.help else ""
+    extra = ""
+    if p.choices and not all(c in p.help for c in p.choices):
+        extra = f": {', '.join(p.choices)}"
+    default = "" if p.required or p.default is None else f" (default {p.default})"
+    parser.add_argument(p.option, dest=p.name, type=_KIND_TYPES[p.kind], required=p.required,
+                        default=None if p.required else p.default,
+                        help=f"{p.help}{unit}{extra}{default}")
+
+
+def _add_evaluate_parsers(sub):
+    from .mechanisms import registry
+
+    ev = sub.add_parser("evaluate", help="evaluate one design (every registered mechanism)")
+    evs = ev.add_subparsers(dest="mechanism", required=True, parser_class=_Parser)
+    for name, cls in registry().items():
+        mp = evs.add_parser(name, help=cls.cli_help)
+        for p in cls.parameters + _disk_options(cls):
+            _add_parameter(mp, p)
+        mp.add_argument("--json", action="store_true",
+                        help="print one JSON object (inputs echoed; NaN and inf as null)")
+        mp.set_defaults(func=_cmd_evaluate)
 
 
 def _json_safe(v):
@@ -66,6 +112,8 @@ def _json_safe(v):
         return None
     if isinstance(v, list):
         return [_json_safe(x) for x in v]
+    if isinstance(v, dict):
+        return {k: _json_safe(x) for k, x in v.items()}
     return v
 
 
@@ -74,34 +122,6 @@ def _print_result(res: dict, title: str, as_json: bool):
         print(json.dumps({k: _json_safe(v) for k, v in res.items()}, allow_nan=False))
     else:
         _print_table(res, title)
-
-
-def _cmd_evaluate_bipod(args):
-    from .mechanisms.bipod import Bipod, summary
-
-    mech = Bipod(args.b, args.q1_min, args.q1_max, args.q2_min, args.q2_max, branch=args.branch)
-    _print_result(summary(mech), repr(mech), args.json)
-    return 0
-
-
-def _cmd_evaluate_biglide(args):
-    from .mechanisms.biglide import Biglide, summary
-
-    mech = Biglide(args.l1, args.l2, args.q1_min, args.q1_max, args.q2_min, args.q2_max, mode=args.mode)
-    _print_result(summary(mech), repr(mech), args.json)
-    return 0
-
-
-def _cmd_evaluate_gantry(args):
-    import math
-
-    from . import validation as _v
-    from .mechanisms.gantry import summary
-
-    theta = math.radians(_v.finite_number("theta_1S_deg", args.theta_1s_deg))
-    res = summary(args.b, args.h, theta, d2=args.d2, l2=args.l2, length_unit=args.length_unit)
-    _print_result(res, f"Wu 2008 gantry, theta_1S = {args.theta_1s_deg:g} deg", args.json)
-    return 0
 
 
 def _cmd_reproduce(args):
@@ -125,21 +145,6 @@ def _cmd_report(args):
 
     path = write_report(args.results, out=args.html)
     print(f"report: {Path(path).resolve()}")
-    return 0
-
-
-def _cmd_run(args):
-    import pandas as pd
-
-    from .experiments.liu2006 import reproduce_section3
-
-    table = reproduce_section3(quadratures=(args.quadrature,))
-    cols = ["design", "quantity", "paper", "reproduced", "rel_error", "status"]
-    with pd.option_context("display.width", 120):
-        print(table[cols].to_string(index=False, float_format=lambda v: f"{v:.5g}"))
-    counts = table["status"].value_counts()
-    print(f"\n{counts.get('match', 0)} match, {counts.get('differs', 0)} differ "
-          f"(quadrature {args.quadrature}; notes: python -m mechopt.experiments.liu2006)")
     return 0
 
 
@@ -301,14 +306,6 @@ def _add_run_options(p, resumable=False):
                         "paper's) or area; recorded in run.json")
 
 
-def _add_strokes(p):
-    """The actuator strokes of the slider/strut mechanisms (Bipod, Biglide)."""
-    p.add_argument("--q1-min", type=float, required=True)
-    p.add_argument("--q1-max", type=float, required=True)
-    p.add_argument("--q2-min", type=float, default=None, help="default: q1-min")
-    p.add_argument("--q2-max", type=float, default=None, help="default: q1-max")
-
-
 def _first_missing(path):
     """The outermost folder of ``path`` that does not exist yet (None if ``path`` exists)."""
     try:
@@ -336,52 +333,56 @@ def _remove_if_we_made_it_empty(out_before):
         shutil.rmtree(out_before, ignore_errors=True)
 
 
+def _cmd_atlas_five_bar(args):
+    from .atlas import run_atlas
+
+    run_atlas(args.out, step=args.step, indices=args.index, quadrature=args.quadrature,
+              mode=args.mode, n_jobs=2 if args.n_jobs is None else args.n_jobs, dask=args.dask,
+              where=args.where,
+              figures=not args.no_figures, chunk_size=args.chunk_size,
+              dask_timeout=args.dask_timeout)
+    return 0
+
+
+def _add_atlas_parsers(subparsers):
+    """``mechopt atlas five-bar`` (:func:`mechopt.atlas.run_atlas`)."""
+    from .atlas import DEFAULT_INDICES
+
+    at = subparsers.add_parser("atlas", help="performance atlases over a whole design space")
+    ats = at.add_subparsers(dest="mechanism", required=True, parser_class=_Parser)
+    fb = ats.add_parser(
+        "five-bar",
+        help="Liu 2006 atlases (GCI, MCI, GVI, GPI, GSI, r_MIC) over r1 + r2 + r3 = 3",
+        description="Evaluate every design of r1 + r2 + r3 = 3, 0 <= r3 <= 1.5, r1, r2 > 0 "
+                    "on a lattice; write atlas.csv, atlas.json and one PNG per index.")
+    fb.add_argument("--index", default=",".join(DEFAULT_INDICES),
+                    help="comma-separated index groups: gci, mci, gvi, gpi, gsi, r_mic (default: all)")
+    fb.add_argument("--step", type=float, default=0.01, help="lattice step in (0, 0.5] (default 0.01)")
+    fb.add_argument("--quadrature", default="area", help="area (default) or polar")
+    fb.add_argument("--mode", default="+-", help="working mode: +-, -+, ++ or -- (default +-)")
+    par = fb.add_mutually_exclusive_group()
+    # default None (meaning 2): argparse only sees a conflict with --dask when the value
+    # given is not the default object
+    par.add_argument("--n-jobs", type=int, default=None, help="joblib worker processes (default 2)")
+    par.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None,
+                     help="run the chunks on an existing Dask scheduler, e.g. tcp://10.0.0.5:8786")
+    fb.add_argument("--dask-timeout", type=float, default=10.0,
+                    help="seconds to wait for the Dask scheduler (default 10)")
+    fb.add_argument("--out", required=True, help="output folder")
+    fb.add_argument("--where", default=None,
+                    help="optimum region, e.g. \"r_mic > 0.8 and gci > 0.6\": outlined on the "
+                         "atlases, its designs written to region.csv")
+    fb.add_argument("--chunk-size", type=int, default=None, help="designs per work unit")
+    fb.add_argument("--no-figures", action="store_true", help="write the tables only")
+    fb.set_defaults(func=_cmd_atlas_five_bar)
+
+
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="mechopt", description=__doc__.splitlines()[0])
+    p = _Parser(prog="mechopt", description=DESCRIPTION)
     p.add_argument("--version", action="version", version=f"mechopt {__version__}")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
-    ev = sub.add_parser("evaluate", help="evaluate one design")
-    evs = ev.add_subparsers(dest="mechanism", required=True, parser_class=_Parser)
-    fb = evs.add_parser("five-bar", help="symmetric 5R mechanism (Liu 2006 indices)")
-    fb.add_argument("--r1", type=float, required=True, help="crank length")
-    fb.add_argument("--r2", type=float, required=True, help="distal link length")
-    fb.add_argument("--r3", type=float, required=True, help="half base distance")
-    fb.add_argument("--mode", default="+-", help="working mode: +-, -+, ++ or -- (default +-)")
-    fb.add_argument("--quadrature", default="area", help="area (default) or polar")
-    fb.add_argument("--gamma", type=float, default=0.5, help="LCI level of the GCW, in (0, 1)")
-    fb.add_argument("--json", action="store_true", help="print one JSON object")
-    fb.set_defaults(func=_cmd_evaluate_five_bar)
-
-    bp = evs.add_parser("bipod", help="Bipod RPRPR (Stan 2008): exact workspace area and global TQI")
-    bp.add_argument("--b", type=float, required=True, help="base distance")
-    _add_strokes(bp)
-    bp.add_argument("--branch", default="up", help="up (y > 0, default), down or full")
-    bp.add_argument("--json", action="store_true")
-    bp.set_defaults(func=_cmd_evaluate_bipod)
-
-    bg = evs.add_parser("biglide", help="Biglide PRRRP (Stan 2008): exact workspace area, global TQI, k_av")
-    bg.add_argument("--l1", type=float, required=True, help="half distance of the guides")
-    bg.add_argument("--l2", type=float, required=True, help="link length")
-    _add_strokes(bg)
-    bg.add_argument("--mode", default="--", help="--, ++, +- or -+ (default --)")
-    bg.add_argument("--json", action="store_true")
-    bg.set_defaults(func=_cmd_evaluate_biglide)
-
-    gt = evs.add_parser("gantry", help="Wu 2008 gantry: synthesis (eq. 10-16), k_av, eta_D, GTQI")
-    gt.add_argument("--b", type=float, default=500.0, help="task width (default 500)")
-    gt.add_argument("--h", type=float, default=400.0, help="task height (default 400)")
-    gt.add_argument("--theta-1s-deg", type=float, default=10.0, help="smallest link angle, (0, 45) deg")
-    gt.add_argument("--d2", type=float, default=100.0)
-    gt.add_argument("--l2", type=float, default=200.0)
-    gt.add_argument("--length-unit", default="mm", help="mm (default) or m")
-    gt.add_argument("--json", action="store_true")
-    gt.set_defaults(func=_cmd_evaluate_gantry)
-
-    run = sub.add_parser("run", help="the main job: evaluate Liu 2006's five example designs")
-    run.add_argument("--quadrature", default="polar", choices=("area", "polar"),
-                     help="quadrature of the disk means (default polar, the one of the paper)")
-    run.set_defaults(func=_cmd_run)
+    _add_evaluate_parsers(sub)
 
     rp = sub.add_parser("reproduce", help="reproduce a paper's tables and figures beside the published values")
     rp.add_argument("paper", help="le2013, stan2008, liu2006, wu2008 or all")
@@ -450,11 +451,7 @@ def build_parser() -> argparse.ArgumentParser:
     ds.add_argument("--out", required=True, help="output folder")
     ds.set_defaults(func=_cmd_design)
 
-    # sub-commands that live with their own module register themselves here
-    for module in _COMMAND_MODULES:
-        import importlib
-
-        importlib.import_module(module).register(sub)
+    _add_atlas_parsers(sub)
     return p
 
 

@@ -74,7 +74,6 @@ import numpy as np
 from . import indices as _ix
 from . import validation as _v
 from .mechanisms.base import as_points
-from .mechanisms.gantry import Gantry, dimensional_synthesis
 
 __all__ = [
     "GantryInertia",
@@ -171,8 +170,10 @@ class GantryInertia:
         return cls(**kw, g=pub[("table2", "g")][0])
 
     @classmethod
-    def wu2008_scaled(cls, l: float) -> "GantryInertia":
-        """Table 2 carried over to a machine whose links have length ``l`` [m].
+    def wu2008_scaled(cls, l: float, l0: float) -> "GantryInertia":
+        """Table 2 carried over to a machine whose links have length ``l`` [m]; ``l0`` [m]
+        is the link length of the Table 1 design that Table 2 belongs to (eq. 15 at
+        ``theta_1S = 10`` deg: ``1e-3 * dimensional_synthesis(500, 400, radians(10))[2]``).
 
         Table 2 belongs to the Table 1 design (``theta_1S = 10`` deg, ``l = l_0 =
         616.40`` mm); another ``theta_1S`` gives another ``l`` (eq. 14-15), for which
@@ -192,8 +193,8 @@ class GantryInertia:
         At ``l = l_0`` this is Table 2 (to rounding).
         """
         l = _v.positive_length("l", l)
+        l0 = _v.positive_length("l0", l0)
         base = cls.wu2008()
-        l0 = 1e-3 * dimensional_synthesis(500.0, 400.0, math.radians(10.0))[2]
         k = l / l0
         w2 = {name: 12.0 * I0 / m0 - 4.0 * l0 * l0
               for name, m0, I0 in (("1", base.m12, base.I12), ("2", base.m22, base.I22))}
@@ -248,8 +249,8 @@ class GantryDynamics:
     broadcast over arrays of platform positions; results are NaN where unreachable.
     """
 
-    def __init__(self, gantry: Gantry, inertia: GantryInertia):
-        if not isinstance(gantry, Gantry):
+    def __init__(self, gantry, inertia: GantryInertia):
+        if not (hasattr(gantry, "legs") and hasattr(gantry, "column_x")):  # a mechopt.Gantry
             raise ValueError(f"gantry must be a mechopt.Gantry, got {type(gantry).__name__}")
         if not isinstance(inertia, GantryInertia):
             raise ValueError(
@@ -303,7 +304,7 @@ class GantryDynamics:
         """``(t1, t2, c1, c2, ok)``: tan and ``l cos`` of the link angles, NaN where unreachable."""
         x, y = as_points(x, y)
         g = self.gantry
-        _, _, c1, c2, ok = g._legs(x, y)
+        _, _, c1, c2, ok = g.legs(x, y)
         with np.errstate(invalid="ignore", divide="ignore"):
             t1 = (x + g.d1) / c1
             t2 = (x - g.d1) / c2
@@ -565,16 +566,12 @@ def wu2008_trajectory(n: int = 651):
                                val["a_s"], np.linspace(0.0, Tf, n))
 
 
-def wu2008_driving_forces(n: int = 651, inertia: GantryInertia | None = None,
-                          gantry: Gantry | None = None) -> dict:
-    """Driving forces of Wu Fig. 4 along :func:`wu2008_trajectory` (gravity included).
-
-    Defaults: the Table 1 machine in metres and Table 2 inertias (links' mass centres
-    at mid-link). Returns the trajectory dict plus ``F1``, ``F2`` [N].
+def wu2008_driving_forces(gantry, n: int = 651, inertia: GantryInertia | None = None) -> dict:
+    """Driving forces of Wu Fig. 4 along :func:`wu2008_trajectory` (gravity included),
+    for ``gantry`` in metres (Wu's: ``wu2008_gantry(10.0, unit="m")``) with Table 2
+    inertias by default (links' mass centres at mid-link). Returns the trajectory dict
+    plus ``F1``, ``F2`` [N].
     """
-    from .mechanisms.gantry import wu2008_gantry
-
-    gantry = wu2008_gantry(10.0, unit="m") if gantry is None else gantry
     dyn = GantryDynamics(gantry, GantryInertia.wu2008() if inertia is None else inertia)
     tr = wu2008_trajectory(n)
     F1, F2 = dyn.driving_forces(tr["x"], tr["y"], tr["xd"], tr["yd"], tr["xdd"], tr["ydd"])

@@ -148,8 +148,7 @@ def out_lock(folder):
     once with one line (ValueError). The lock file holds the owner's pid; a lock
     whose owner is dead (a killed run) is stale and taken over. Temporary files of
     killed runs are swept when the lock is taken and on every exit."""
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = prepare_out_dir(folder)  # one-line ValueError if it cannot be made or written
     lock = folder / LOCK_NAME
     for _ in range(2):
         try:

@@ -12,7 +12,34 @@ from matplotlib.figure import Figure
 
 import numpy as np
 
-__all__ = ["plot_front", "plot_sweep", "plot_population"]
+__all__ = ["plot_front", "plot_sweep", "plot_population", "INDEX_LABELS", "workspace_axes",
+           "labelled_colorbar"]
+
+#: axis and colour-bar labels of the local indices (Liu 2006 eq. 2, 10, 13, 18), with
+#: units for a mechanism in length unit L and angular joints: speeds per unit joint
+#: rate, forces per unit joint torque, compliance with unit actuator stiffness
+INDEX_LABELS = {
+    "lci": "LCI = 1/kappa [-]",
+    "tqi": "TQI [-]",
+    "v_max": "|V|max [L/rad]", "v_min": "|V|min [L/rad]",
+    "tau_max": "|tau|max [1/L]", "tau_min": "|tau|min [1/L]",
+    "d_max": "|D|max [L^2]", "d_min": "|D|min [L^2]",
+}
+
+
+def workspace_axes(ax, unit: str = "L"):
+    """Label an axes of the base frame: x, y in ``unit``, equal aspect (the one style
+    of every workspace map)."""
+    ax.set_xlabel(f"x [{unit}]")
+    ax.set_ylabel(f"y [{unit}]")
+    ax.set_aspect("equal")
+
+
+def labelled_colorbar(fig, mappable, ax, label: str, **kw):
+    """A colour bar with its quantity and unit (``INDEX_LABELS`` for local indices)."""
+    cb = fig.colorbar(mappable, ax=ax, **kw)
+    cb.set_label(label)
+    return cb
 
 
 def _label(ob):
@@ -32,7 +59,7 @@ def plot_front(problem, front, history, population=None, info=None) -> Figure:
         fig = Figure(figsize=(5, 3.5))
         ax = fig.add_subplot()
         ax.plot(history["generation"], history[f"best_{obs[0].name}"], marker="o")
-        ax.set_xlabel("generation")
+        ax.set_xlabel("generation [-]")
         ax.set_ylabel(_label(obs[0]))
         ax.set_title(problem.name)
         return fig
@@ -105,7 +132,7 @@ def plot_population(problem, population, title=None) -> Figure:
                    label=f"least violation {v[k]:.3g}", zorder=3)
         ax.legend(fontsize=8)
     ax.set_xlabel(names[0])
-    ax.set_ylabel(names[1] if len(names) > 1 else "constraint violation (sum of max(0, g))")
+    ax.set_ylabel(names[1] if len(names) > 1 else "constraint violation (sum of max(0, g)) [-]")
     if len(names) == 1 and isinstance(norm, LogNorm):
         ax.set_yscale("log")
     if len(names) > 1:

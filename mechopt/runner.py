@@ -2,15 +2,38 @@
 
 Population evaluation goes through the Problem's chunked
 :func:`mechopt.parallel.parallel_map` (joblib or Dask), so the same seed gives
-the same front for any ``n_jobs`` and either backend. Outputs go through
-:mod:`mechopt.io` (atomic writes):
+the same front for any ``n_jobs`` and either backend. ``n_jobs=None`` (the
+default) chooses: the first two generations run in this process and are timed
+(CPU time, so that a busy machine does not mislead it); if a generation takes
+:data:`PARALLEL_SECONDS` or more, the rest runs on two processes (on cheap
+problems the processes cost more than they save). The
+algorithm is a name of :data:`ALGORITHMS` (the problem's ``default_algorithm``
+by default) or any pymoo algorithm object, the termination ``("n_gen", gen)``,
+a tolerance ``tol`` (pymoo's default termination with that ``ftol``, ``gen``
+its maximum) or any pymoo termination (a tuple or a ``Termination`` object).
+Outputs go through :mod:`mechopt.io` (atomic writes):
 
 ``front.csv``    one row per non-dominated feasible design (variables, objectives
                  with their natural sign, constraint values, derived indices)
-``history.csv``  per generation: evaluations, best objective values, hypervolume
-``run.json``     problem, algorithm and parameters, seed, versions, wall time,
-                 ``feasible`` (feasible designs in the final population) and
-                 ``evaluations``
+``history.csv``  one row per generation: ``generation``; ``evaluations`` (designs
+                 evaluated so far); ``n_front`` (designs in the algorithm's current
+                 optimum); ``best_<objective>`` per objective (natural sign, best over
+                 that optimum; empty while no design is feasible); with two or more
+                 objectives ``hypervolume``: of the feasible optimum in objectives
+                 normalised to [0, 1] by their declared bounds
+                 (:class:`mechopt.problems.base.Objective`), against the reference
+                 point 1.1 in every direction, so it lies in [0, 1.1^m], rises with
+                 real progress and compares between runs and seeds of a problem (0
+                 while nothing is feasible; empty if an objective declares no bounds)
+``run.json``     problem, settings, ``algorithm`` (name, pop, gen: the maximum
+                 number of generations, null if the termination sets none),
+                 ``algorithm_settings`` (class, population and operator settings:
+                 sampling, selection, crossover, mutation, survival),
+                 ``termination`` (class and parameters), ``generations`` (run),
+                 seed, ``n_jobs`` (used), ``n_jobs_auto`` (chosen by timing) and
+                 ``seconds_per_generation`` (the timed generation), backend,
+                 versions, wall time, ``feasible`` (feasible designs in the final
+                 population) and ``evaluations``
 ``front.png``    the front (or the convergence curve of a single objective)
 
 A run may end without any feasible design (a small budget, a demanding
@@ -23,6 +46,9 @@ violation; :func:`infeasible_line` is the one-line summary the CLI prints.
 """
 from __future__ import annotations
 
+import copy
+import numbers
+import os
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -36,28 +62,107 @@ from . import validation as _v
 from .progress import Progress
 
 __all__ = ["ALGORITHMS", "make_algorithm", "optimize", "resume", "sweep", "parse_weights", "RunResult",
-           "infeasible_line"]
+           "infeasible_line", "describe_algorithm", "describe_termination", "PARALLEL_SECONDS"]
 
-ALGORITHMS = ("ga", "nsga2", "nsga3")
+ALGORITHMS = ("ga", "de", "nsga2", "nsga2-mnn", "nsga3")
+#: the algorithms of :data:`ALGORITHMS` for a single objective
+SINGLE_OBJECTIVE = ("ga", "de")
+
+#: DE's variant and parameters (``de``): best/1/bin with a crossover rate 0.7 rather
+#: than pymoo's 0.2: on the Le 2013 ridges (the tied and relaxed square problems) it
+#: reaches the brute-force optimum from every seed tried, GA and DE with CR 0.2 do not
+#: (benchmarks/bench_fronts.py)
+DE_VARIANT, DE_F, DE_CR = "DE/best/1/bin", 0.5, 0.7
+#: a generation that takes this long in one process (seconds) makes ``n_jobs=None``
+#: use two processes for the rest of the run; below it the process start-up and the
+#: transfers cost more than they save (measured on 2 cores: 0.1 s per generation is
+#: break-even, 0.27 s runs 1.5x faster on two)
+PARALLEL_SECONDS = 0.2
+
+#: largest population and number of generations accepted (a typo such as
+#: ``--pop 100000000000`` would otherwise exhaust memory or never end)
+MAX_POP = MAX_GEN = 1_000_000
 
 
-def make_algorithm(name: str, pop: int, n_obj: int):
-    """A pymoo algorithm by name with population ``pop`` (NSGA-III: Das-Dennis
-    reference directions, as many partitions as fit in ``pop``)."""
+def _probability(name, value):
+    if value is None:
+        return None
+    out = _v.finite_number(name, value)
+    if not 0.0 <= out <= 1.0:
+        raise ValueError(f"{name} must lie in [0, 1], got {_v.show(value)}")
+    return out
+
+
+def _eta(name, value):
+    if value is None:
+        return None
+    out = _v.finite_number(name, value)
+    if not 0.0 < out <= 1e6:
+        raise ValueError(f"{name} must be a positive distribution index (at most 1e6), got {_v.show(value)}")
+    return out
+
+
+def make_algorithm(name: str, pop: int, n_obj: int, crossover_prob=None, mutation_prob=None,
+                   crossover_eta=None, mutation_eta=None):
+    """A pymoo algorithm by name with population ``pop``: ``ga`` (GA), ``de`` (DE,
+    :data:`DE_VARIANT`), ``nsga2`` (NSGA-II), ``nsga2-mnn`` (NSGA-II whose crowding
+    distance is pymoo's M-nearest-neighbour pruning, ``crowding_func="mnn"``: it keeps
+    a many-objective front spread where the plain crowding distance lets it
+    cluster) and ``nsga3`` (NSGA-III: Das-Dennis reference directions, as many
+    partitions as fit in ``pop``).
+
+    ``crossover_prob`` and ``crossover_eta`` set the SBX crossover (probability of
+    a mating being crossed, distribution index); ``mutation_prob`` and
+    ``mutation_eta`` the polynomial mutation (probability of an offspring being
+    mutated, distribution index). For ``de`` the crossover probability is DE's
+    rate CR and the mutation that of its polynomial mutation. Unset values keep
+    each algorithm's defaults (pymoo's; for DE :data:`DE_CR`).
+    """
     _v.choice("algorithm", name, ALGORITHMS)
     pop = _v.integer("pop", pop, 2, MAX_POP)
-    if name == "nsga3" and n_obj < 2:
-        raise ValueError(f"algorithm 'nsga3' needs at least 2 objectives, the problem has {n_obj}")
+    cp, mp = _probability("crossover_prob", crossover_prob), _probability("mutation_prob", mutation_prob)
+    ce, me = _eta("crossover_eta", crossover_eta), _eta("mutation_eta", mutation_eta)
+    if name in ("nsga3", "nsga2-mnn") and n_obj < 2:
+        raise ValueError(f"algorithm {name!r} needs at least 2 objectives, the problem has {n_obj}")
+    if name in SINGLE_OBJECTIVE and n_obj != 1:
+        raise ValueError(f"algorithm {name!r} needs a single objective, the problem has {n_obj}")
+    if name == "de":
+        from pymoo.algorithms.soo.nonconvex.de import DE
+
+        if ce is not None:
+            raise ValueError("crossover_eta does not apply to 'de' (its crossover is binomial)")
+        algo = DE(pop_size=pop, variant=DE_VARIANT, F=DE_F, CR=DE_CR if cp is None else cp)
+        if mp is not None or me is not None:
+            from pymoo.operators.mutation.pm import PM
+
+            old = algo.mating.mutation  # a fresh PM of this DE object, not a shared default
+            algo.mating.mutation = PM(prob=_value(old.prob) if mp is None else mp, at_least_once=True,
+                                      eta=_value(old.eta) if me is None else me)
+        return algo
+    # pymoo's defaults per algorithm: (SBX prob, SBX eta, PM prob, PM eta)
+    defaults = {"ga": (0.9, 15, 0.9, 20), "nsga2": (0.9, 15, 0.9, 20), "nsga2-mnn": (0.9, 15, 0.9, 20),
+                "nsga3": (1.0, 30, 0.9, 20)}[name]
+    ops = {}
+    if cp is not None or ce is not None:  # new operator objects: pymoo's defaults are shared
+        from pymoo.operators.crossover.sbx import SBX
+
+        ops["crossover"] = SBX(prob=defaults[0] if cp is None else cp, eta=defaults[1] if ce is None else ce)
+    if mp is not None or me is not None:
+        from pymoo.operators.mutation.pm import PM
+
+        ops["mutation"] = PM(prob=defaults[2] if mp is None else mp, eta=defaults[3] if me is None else me)
     if name == "ga":
-        if n_obj != 1:
-            raise ValueError(f"algorithm 'ga' needs a single objective, the problem has {n_obj}")
         from pymoo.algorithms.soo.nonconvex.ga import GA
 
-        return GA(pop_size=pop, eliminate_duplicates=True)
-    if name == "nsga2":
+        return GA(pop_size=pop, eliminate_duplicates=True, **ops)
+    if name in ("nsga2", "nsga2-mnn"):
         from pymoo.algorithms.moo.nsga2 import NSGA2
 
-        return NSGA2(pop_size=pop)
+        if name == "nsga2-mnn":
+            from pymoo.operators.survival.rank_and_crowding import RankAndCrowding
+
+            ops["survival"] = RankAndCrowding(crowding_func="mnn")
+        return NSGA2(pop_size=pop, **ops)
     from pymoo.algorithms.moo.nsga3 import NSGA3
     from pymoo.util.ref_dirs import get_reference_directions
 
@@ -67,7 +172,158 @@ def make_algorithm(name: str, pop: int, n_obj: int):
     while comb(p + 1 + n_obj - 1, n_obj - 1) <= pop:
         p += 1
     ref = get_reference_directions("das-dennis", n_obj, n_partitions=p)
-    return NSGA3(ref_dirs=ref, pop_size=pop)
+    return NSGA3(ref_dirs=ref, pop_size=pop, **ops)
+
+
+def _value(v):
+    """The value of a pymoo ``Variable`` (an operator parameter), else ``v``."""
+    return getattr(v, "value", v)
+
+
+def _plain(v):
+    """``v`` as a JSON value if it is a plain setting (number, bool, str, None), else KeyError."""
+    v = _value(v)
+    if v is None or isinstance(v, (bool, np.bool_, str)):
+        return v if not isinstance(v, np.bool_) else bool(v)
+    if isinstance(v, numbers.Integral):
+        return int(v)
+    if isinstance(v, numbers.Real):
+        return float(v) if np.isfinite(v) else str(v)
+    raise KeyError
+
+
+def _operator(op, depth=1) -> dict | None:
+    """``{"class": ..., setting: value}`` of a pymoo operator (its plain public attributes,
+    nested operators one level down)."""
+    if op is None:
+        return None
+    out = {"class": type(op).__name__}
+    for key, v in sorted(vars(op).items()):
+        if key.startswith("_") or key in ("name", "vtype"):
+            continue
+        try:
+            out[key] = _plain(v)
+        except KeyError:
+            if depth > 0 and type(v).__module__.startswith("pymoo.") and hasattr(v, "__dict__"):
+                out[key] = _operator(v, depth - 1)
+    return out
+
+
+def describe_algorithm(algo) -> dict:
+    """Class, population and operator settings of a pymoo algorithm (``run.json``)."""
+    init, mating = getattr(algo, "initialization", None), getattr(algo, "mating", None)
+    out = {"class": type(algo).__name__, "module": type(algo).__module__}
+    for key in ("pop_size", "n_offsprings"):
+        if hasattr(algo, key):
+            try:
+                out[key] = _plain(getattr(algo, key))
+            except KeyError:
+                pass
+    if init is not None:
+        out["sampling"] = _operator(getattr(init, "sampling", None), 0)
+    if mating is not None:
+        if type(mating).__name__ == "Mating":  # the genetic algorithms
+            for key in ("selection", "crossover", "mutation"):
+                out[key] = _operator(getattr(mating, key, None), 0)
+        else:  # e.g. DE's variant: selection scheme, F, CR and its mutation
+            out["mating"] = _operator(mating, 1)
+    if getattr(algo, "survival", None) is not None:
+        out["survival"] = {"class": type(algo.survival).__name__}
+        crowding = getattr(algo.survival, "crowding_func", None)
+        if crowding is not None:
+            out["survival"]["crowding"] = type(crowding).__name__
+    elim = getattr(algo, "eliminate_duplicates", None)
+    if elim is not None:
+        out["eliminate_duplicates"] = type(elim).__name__ != "NoDuplicateElimination"
+    if getattr(algo, "ref_dirs", None) is not None:
+        out["n_ref_dirs"] = int(len(algo.ref_dirs))
+    if type(algo).__module__.split(".")[0] != "pymoo" or not out.keys() - {"class", "module"}:
+        out["settings"] = _operator(algo, 0)  # a class of the user's: its plain attributes
+    return out
+
+
+def describe_termination(term) -> dict:
+    """Class and parameters of a pymoo termination (``run.json``); for pymoo's default
+    terminations also their tolerances and maxima."""
+    out = {"class": type(term).__name__}
+    for key in ("n_max_gen", "n_max_evals", "max_time", "fmin"):
+        if hasattr(term, key):
+            try:
+                out[key] = _plain(getattr(term, key))
+            except KeyError:
+                pass
+    for part, keys in (("x", ("tol",)), ("cv", ("tol",)), ("f", ("tol",)), ("max_gen", ("n_max_gen",)),
+                       ("max_evals", ("n_max_evals",))):
+        crit = getattr(term, part, None)
+        if crit is None or isinstance(crit, (numbers.Number, str)):
+            continue
+        inner = getattr(crit, "termination", crit)  # RobustTermination wraps the criterion
+        name = {"x": "xtol", "cv": "cvtol", "f": "ftol"}.get(part)
+        for k in keys:
+            if hasattr(inner, k):
+                out[name or k] = _plain(getattr(inner, k))
+        window = getattr(getattr(crit, "history", None), "size", None)  # RobustTermination's period
+        if isinstance(window, numbers.Integral):
+            out["period"] = int(window)
+    return out
+
+
+def _max_gen(term):
+    """The generation limit of a termination (None if it sets none)."""
+    for t in (term, getattr(term, "max_gen", None)):
+        n = getattr(t, "n_max_gen", None)
+        if isinstance(n, numbers.Integral) or (isinstance(n, float) and np.isfinite(n)):
+            return int(n)
+    return None
+
+
+def _termination(problem, termination, gen, tol):
+    """A fresh pymoo Termination from the arguments of :func:`optimize`."""
+    from pymoo.core.termination import Termination
+
+    if termination is not None:
+        if tol is not None or gen is not None:
+            raise ValueError("give either termination or gen/tol, not both")
+        if isinstance(termination, Termination):
+            return copy.deepcopy(termination)  # terminations keep state: the caller's stays fresh
+        if isinstance(termination, (tuple, list)) and termination and isinstance(termination[0], str):
+            from pymoo.termination import get_termination
+
+            try:
+                return get_termination(*termination)
+            except Exception as exc:  # noqa: BLE001 - pymoo raises a bare Exception
+                raise ValueError(f"termination {_v.show(termination)} is not a pymoo termination: "
+                                 f"{exc}") from None
+        raise ValueError(f"termination must be a pymoo Termination or a tuple such as ('n_gen', 10), "
+                         f"got {_v.show(termination)}")
+    if tol is not None:
+        ftol = _v.finite_number("tol", tol)
+        if not ftol > 0:
+            raise ValueError(f"tol must be a positive number, got {_v.show(tol)}")
+        from pymoo.termination.default import (DefaultMultiObjectiveTermination,
+                                               DefaultSingleObjectiveTermination)
+
+        kind = DefaultMultiObjectiveTermination if problem.n_obj > 1 else DefaultSingleObjectiveTermination
+        kw = {} if gen is None else {"n_max_gen": _check_sizes(2, gen)[1]}
+        return kind(ftol=ftol, **kw)
+    from pymoo.termination.max_gen import MaximumGenerationTermination
+
+    return MaximumGenerationTermination(_check_sizes(2, problem.default_gen if gen is None else gen)[1])
+
+
+def _user_algorithm(algorithm, pop, operators):
+    """A fresh copy of the caller's pymoo algorithm object (it is not changed)."""
+    from pymoo.core.algorithm import Algorithm
+
+    if not isinstance(algorithm, Algorithm):
+        raise ValueError(f"algorithm must be one of {', '.join(map(repr, ALGORITHMS))} or a pymoo "
+                         f"algorithm object, got {_v.show(algorithm)}")
+    if pop is not None or any(v is not None for v in operators.values()):
+        raise ValueError("pop and the operator settings (crossover_prob, ...) apply to a named "
+                         "algorithm; set them on the algorithm object")
+    if getattr(algorithm, "problem", None) is not None or getattr(algorithm, "is_initialized", False):
+        raise ValueError("the algorithm object has already been set up or run; pass a new one")
+    return copy.deepcopy(algorithm)
 
 
 @dataclass
@@ -83,11 +339,6 @@ class RunResult:
     least: pd.DataFrame | None = None
 
 
-#: largest population and number of generations accepted (a typo such as
-#: ``--pop 100000000000`` would otherwise exhaust memory or never end)
-MAX_POP = MAX_GEN = 1_000_000
-
-
 def _check_sizes(pop, gen):
     pop = _v.integer("pop", pop)
     gen = _v.integer("gen", gen)
@@ -100,36 +351,65 @@ def _check_sizes(pop, gen):
     return pop, gen
 
 
+def _optimum(algo):
+    """The non-dominated feasible designs (the best one, for a single objective; the
+    least violating if none is feasible) among the algorithm's population and its
+    optimum, duplicates dropped. pymoo's own ``opt`` is not enough: NSGA-III keeps
+    only the designs nearest to its reference directions (a tenth of a population on
+    these fronts), and a local search's population is not its best."""
+    from pymoo.core.population import Population
+    from pymoo.util.optimum import filter_optimum
+
+    pop, opt = algo.pop, algo.opt
+    if pop is None or not len(pop):
+        pop = opt
+    elif opt is not None and len(opt):
+        seen = {np.ascontiguousarray(x).tobytes() for x in pop.get("X")}
+        extra = [i for i, x in enumerate(opt.get("X")) if np.ascontiguousarray(x).tobytes() not in seen]
+        if extra:
+            pop = Population.merge(pop, opt[extra])
+    best = filter_optimum(pop, least_infeasible=True)
+    if best is None or not len(best):
+        return None
+    _, first = np.unique(best.get("X"), axis=0, return_index=True)
+    return best[np.sort(first)]
+
+
 class _History:
     """pymoo callback: one history row per generation, and the progress line."""
 
-    def __init__(self, problem, progress: Progress | None):
-        self.problem, self.progress, self.rows, self.ref = problem, progress, [], None
+    def __init__(self, problem, progress: Progress | None, total: int | None):
+        self.problem, self.progress, self.total, self.rows = problem, progress, total, []
 
     def __call__(self, algorithm):
-        F = algorithm.opt.get("F")
-        feas = algorithm.opt.get("FEAS")[:, 0]
+        opt = _optimum(algorithm)
+        n_obj = self.problem.n_obj
+        F = opt.get("F") if opt is not None else np.empty((0, n_obj))
+        feas = opt.get("FEAS")[:, 0] if opt is not None else np.zeros(0, bool)
         row = {"generation": algorithm.n_gen, "evaluations": algorithm.evaluator.n_eval,
                "n_front": int(len(F))}
-        sense = np.array([ob.sense for ob in self.problem.objectives])
         info = ""
         for j, ob in enumerate(self.problem.objectives):
-            best = (F[:, j].min() if len(F) else np.nan) * ob.sense
-            row[f"best_{ob.name}"] = float(best) if feas.any() else np.nan
-        if 2 <= F.shape[1] <= 3:
-            if self.ref is None:
-                pf = algorithm.pop.get("F")
-                lo, hi = pf.min(axis=0), pf.max(axis=0)
-                self.ref = hi + 0.1 * np.maximum(hi - lo, 1e-12)
-            from pymoo.indicators.hv import HV
-
-            row["hypervolume"] = float(HV(ref_point=self.ref)(F[feas])) if feas.any() else 0.0
+            best = (F[feas, j].min() if feas.any() else np.nan) * ob.sense
+            row[f"best_{ob.name}"] = float(best)
+        if F.shape[1] >= 2:
+            row["hypervolume"] = self.problem.hypervolume(F[feas]) if feas.any() else 0.0
             info = f"hv {row['hypervolume']:.5g}"
         elif F.shape[1] == 1:
             info = f"best {self.problem.objectives[0].name} {row[f'best_{self.problem.objectives[0].name}']:.6g}"
         self.rows.append(row)
         if self.progress is not None:
-            self.progress.update(algorithm.n_gen, info)
+            if self.total is None:  # no generation limit: the termination's own progress
+                self.progress.update(int(round(100 * _termination_progress(algorithm))), info)
+            else:
+                self.progress.update(algorithm.n_gen, info)
+
+
+def _termination_progress(algorithm) -> float:
+    try:
+        return float(min(max(algorithm.termination.perc, 0.0), 1.0))
+    except (AttributeError, TypeError, ValueError):
+        return 0.0
 
 
 def _front_table(problem, X) -> pd.DataFrame:
@@ -141,39 +421,75 @@ def _front_table(problem, X) -> pd.DataFrame:
 CHECKPOINT = "checkpoint.pkl"
 
 
-def optimize(problem, algorithm: str | None = None, pop: int | None = None, gen: int | None = None,
-             seed: int = 1, n_jobs: int = 2, client=None, out=None, progress: bool = True,
-             plot: bool = True, checkpoint_every: int | None = None) -> RunResult:
+def _n_jobs(n_jobs):
+    """``None`` (choose by timing) or a checked number of processes."""
+    return None if n_jobs is None else _v.integer("n_jobs", n_jobs, 1)
+
+
+def optimize(problem, algorithm=None, pop: int | None = None, gen: int | None = None,
+             seed: int = 1, n_jobs: int | None = None, client=None, out=None, progress: bool = True,
+             plot: bool = True, checkpoint_every: int | None = None, termination=None,
+             tol: float | None = None, crossover_prob: float | None = None,
+             mutation_prob: float | None = None, crossover_eta: float | None = None,
+             mutation_eta: float | None = None) -> RunResult:
     """Run ``problem`` with a seeded pymoo algorithm; write the run folder if ``out``.
 
+    ``algorithm`` is a name of :data:`ALGORITHMS` (default: the problem's
+    ``default_algorithm``; ``pop`` and the operator settings apply to it, see
+    :func:`make_algorithm`) or a pymoo algorithm object such as ``NSGA2(...)``
+    (copied; the caller's object is left as it is). The run ends after ``gen``
+    generations (default: the problem's ``default_gen``); with ``tol``, when
+    pymoo's default termination with ``ftol=tol`` says so (``gen``, if given, its
+    maximum; otherwise pymoo's, 1000); or by ``termination``, any pymoo termination
+    (``("n_gen", 10)``, ``("n_eval", 500)``, a ``Termination`` object such as
+    ``DefaultMultiObjectiveTermination(ftol=1e-3)``; not together with gen or tol).
+
+    ``n_jobs=None`` chooses 1 or 2 processes by timing the first generations
+    (:data:`PARALLEL_SECONDS`); the front does not depend on it.
+
     With ``checkpoint_every=K`` (needs ``out``) the whole algorithm state (population,
-    random generator, history) is pickled atomically to ``out/checkpoint.pkl`` every
-    K generations; :func:`resume` continues from it and ends with the same
-    ``front.csv``, byte for byte, as an uninterrupted run.
+    random generator, termination, history) is pickled atomically to
+    ``out/checkpoint.pkl`` every K generations; :func:`resume` continues from it and
+    ends with the same ``front.csv``, byte for byte, as an uninterrupted run. The
+    pickled algorithm (``pickle.load(f)["algorithm_state"]``) can also be stepped
+    directly with ``has_next()``/``next()``.
     """
-    algorithm = algorithm or problem.default_algorithm
-    pop, gen = _check_sizes(problem.default_pop if pop is None else pop,
-                            problem.default_gen if gen is None else gen)
+    operators = {"crossover_prob": crossover_prob, "mutation_prob": mutation_prob,
+                 "crossover_eta": crossover_eta, "mutation_eta": mutation_eta}
+    if algorithm is None or isinstance(algorithm, str):
+        name = algorithm or problem.default_algorithm
+        pop = _check_sizes(problem.default_pop if pop is None else pop, 2)[0]
+        algo = None
+    else:
+        name = None
+        algo = _user_algorithm(algorithm, pop, operators)
+    term = _termination(problem, termination, gen, tol)
     seed = _v.integer("seed", seed, 0)
-    n_jobs = _v.integer("n_jobs", n_jobs, 1)
+    n_jobs = _n_jobs(n_jobs)
     if checkpoint_every is not None:
         checkpoint_every = int(_v.finite_number("checkpoint_every", checkpoint_every))
         if checkpoint_every < 1:
             raise ValueError(f"checkpoint_every must be a positive integer, got {checkpoint_every}")
         if out is None:
             raise ValueError("checkpoint_every needs an output folder (--out)")
-    algo = make_algorithm(algorithm, pop, problem.n_obj)
+    if algo is None:
+        algo = make_algorithm(name, pop, problem.n_obj, **operators)
+    else:
+        name = type(algo).__name__
+        pop = _plain(getattr(algo, "pop_size", None)) if isinstance(getattr(algo, "pop_size", None),
+                                                                    numbers.Integral) else None
     out = _io.prepare_out_dir(out) if out is not None else None
-    algo.setup(problem, termination=("n_gen", gen), seed=seed, verbose=False)
-    state = {"algorithm": algorithm, "pop": pop, "gen": gen, "seed": seed, "rows": [], "ref": None,
+    algo.setup(problem, termination=term, seed=seed, verbose=False)
+    state = {"algorithm": name, "pop": pop, "gen": _max_gen(algo.termination), "seed": seed, "rows": [],
              "elapsed": 0.0, "checkpoint_every": checkpoint_every}
     return _drive(algo, state, n_jobs, client, out, progress, plot)
 
 
-def resume(out, n_jobs: int = 2, client=None, progress: bool = True, plot: bool = True) -> RunResult:
+def resume(out, n_jobs: int | None = None, client=None, progress: bool = True, plot: bool = True) -> RunResult:
     """Continue the run whose checkpoint is ``out/checkpoint.pkl`` (see :func:`optimize`)."""
     import pickle
 
+    n_jobs = _n_jobs(n_jobs)
     path = Path(out) / CHECKPOINT
     try:
         with open(path, "rb") as fh:
@@ -189,6 +505,16 @@ def resume(out, n_jobs: int = 2, client=None, progress: bool = True, plot: bool 
     return _drive(algo, state, n_jobs, client, Path(out), progress, plot)
 
 
+def _steppable(algo):
+    """A plain callback and a silent display: what the checkpoint stores in place of
+    the run's (which hold streams and a progress bar), so that the unpickled
+    algorithm can be stepped with ``next()`` as it is."""
+    from pymoo.core.callback import Callback
+    from pymoo.util.display.display import Display
+
+    return Callback(), Display(getattr(algo, "output", None), verbose=False, progress=False)
+
+
 def _save_checkpoint(algo, state, out: Path):
     import pickle
 
@@ -198,7 +524,7 @@ def _save_checkpoint(algo, state, out: Path):
     import cloudpickle
 
     callback, display = algo.callback, algo.display
-    algo.callback, algo.display = None, None  # hold streams and a progress bar
+    algo.callback, algo.display = _steppable(algo)
     try:
         with _io.atomic_path(out / CHECKPOINT) as tmp, open(tmp, "wb") as fh:
             cloudpickle.dump({"algorithm_state": algo, "state": state}, fh, protocol=pickle.HIGHEST_PROTOCOL)
@@ -207,38 +533,59 @@ def _save_checkpoint(algo, state, out: Path):
 
 
 def _drive(algo, state, n_jobs, client, out, progress, plot) -> RunResult:
-    """Advance ``algo`` to its termination, checkpointing on the way; write the outputs."""
-    from pymoo.core.callback import Callback
-    from pymoo.util.display.display import Display
+    """Advance ``algo`` to its termination, checkpointing on the way; write the outputs.
 
+    ``n_jobs=None`` (without a Dask client): generations 1 and 2 run in this process
+    and are timed (CPU time); from generation 3 on, two processes if a generation
+    takes :data:`PARALLEL_SECONDS` or more."""
     problem = algo.problem
-    problem.use_parallel(n_jobs, client)
-    bar = Progress(state["gen"], f"{problem.name} {state['algorithm']}") if progress else None
-    hist = _History(problem, bar)
-    hist.rows, hist.ref = state["rows"], state["ref"]
+    auto = n_jobs is None and client is None
+    used = 1 if n_jobs is None else n_jobs
+    problem.use_parallel(used, client)
+    total = state.get("gen")
+    label = f"{problem.name} {state['algorithm']}"
+    bar = Progress(total if total is not None else 100, label) if progress else None
+    hist = _History(problem, bar, total)
+    hist.rows = state["rows"]
     algo.callback = hist
     if algo.display is None:
-        algo.display = Display(algo.output, verbose=False, progress=False)
+        algo.display = _steppable(algo)[1]
     every = state["checkpoint_every"]
+    timed, per_gen = [], None
     t0 = time.perf_counter() - state["elapsed"]
     try:
         while algo.has_next():
+            c_gen, n_gen = time.process_time(), algo.evaluator.n_eval
             algo.next()
-            state["ref"], state["elapsed"] = hist.ref, time.perf_counter() - t0
+            state["elapsed"] = time.perf_counter() - t0
+            if auto and len(timed) < 2:
+                # CPU time of this process (all the evaluation, with one process): a
+                # loaded machine does not make a cheap problem look expensive
+                timed.append((time.process_time() - c_gen, algo.evaluator.n_eval - n_gen))
+                # the cheaper of the two per evaluation (the first may pay for imports
+                # and compilation), for a generation's number of evaluations
+                per_gen = min(t / max(n, 1) for t, n in timed) * timed[-1][1]
+                if len(timed) == 2 and per_gen >= PARALLEL_SECONDS and (os.cpu_count() or 1) >= 2:
+                    used = 2
+                    problem.use_parallel(used, None)
             if every and algo.n_gen % every == 0 and algo.has_next():
                 _save_checkpoint(algo, state, out)
         res = algo.result()
+        best = _optimum(algo)
     finally:
         problem.use_parallel(1, None)
-        algo.callback = Callback()
+        algo.callback, algo.display = _steppable(algo)
         if bar is not None:
             bar.close()
     wall = time.perf_counter() - t0
-    X = res.opt.get("X") if res.opt is not None else np.empty((0, problem.n_var))
-    feas = res.opt.get("FEAS")[:, 0] if res.opt is not None else np.zeros(0, bool)
+    X = best.get("X") if best is not None else np.empty((0, problem.n_var))
+    feas = best.get("FEAS")[:, 0] if best is not None else np.zeros(0, bool)
     population = _population_table(problem, res.pop)
-    info = _run_info(problem, state["algorithm"], state["pop"], state["gen"], state["seed"], n_jobs,
-                     client, wall)
+    info = _run_info(problem, algo, state, used, client, wall)
+    info["n_jobs_auto"] = auto
+    if auto and per_gen is not None:
+        info["seconds_per_generation"] = round(per_gen, 4)
+    info["generations"] = int(hist.rows[-1]["generation"]) if hist.rows else 0
     info["evaluations"] = int(algo.evaluator.n_eval)
     info["feasible"] = int(res.pop.get("FEAS")[:, 0].sum()) if feas.any() else 0
     least = None
@@ -303,7 +650,7 @@ def infeasible_line(info: dict) -> str | None:
             f"least violation {info['least_violation']:.6g} at {design}")
 
 
-def _run_info(problem, algorithm, pop, gen, seed, n_jobs, client, wall) -> dict:
+def _run_info(problem, algo, state, n_jobs, client, wall) -> dict:
     import pymoo
 
     return {
@@ -311,8 +658,10 @@ def _run_info(problem, algorithm, pop, gen, seed, n_jobs, client, wall) -> dict:
         "summary": problem.summary,
         "settings": dict(problem.settings),
         "single_optimum": problem.single_optimum,
-        "algorithm": {"name": algorithm, "pop": pop, "gen": gen},
-        "seed": seed,
+        "algorithm": {"name": state["algorithm"], "pop": state["pop"], "gen": state["gen"]},
+        "algorithm_settings": describe_algorithm(algo),
+        "termination": describe_termination(algo.termination),
+        "seed": state["seed"],
         "n_jobs": n_jobs,
         "backend": "dask" if client is not None else "joblib",
         "versions": {"mechopt": __version__, "pymoo": pymoo.__version__, "numpy": np.__version__},
@@ -324,14 +673,17 @@ def _run_info(problem, algorithm, pop, gen, seed, n_jobs, client, wall) -> dict:
 parse_weights = _v.weights
 
 
-def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int = 2, client=None,
-          out=None, progress: bool = True) -> pd.DataFrame:
+def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | None = None, client=None,
+          out=None, progress: bool = True, tol: float | None = None, crossover_prob: float | None = None,
+          mutation_prob: float | None = None, crossover_eta: float | None = None,
+          mutation_eta: float | None = None) -> pd.DataFrame:
     """Weighted-sum optima of a 2-objective problem for each weight ``w`` of objective 1.
 
     The objectives are scaled by the span of the NSGA-II front of the same seed
     (``Z = w f1/s1 + (1 - w) f2/s2`` in minimisation form), unless the problem
     defines ``weighted_sum(w)`` itself (e.g. Stan 2008's ``Z = W1 T + W2 W``).
     Writes ``sweep.csv``, the front run's files and ``sweep.png`` when ``out``.
+    ``tol`` and the operator settings apply to every run (see :func:`optimize`).
 
     A weight whose GA run finds no feasible design has ``feasible`` False, NaN
     objectives and its least-violating design with its ``violation``; the totals
@@ -350,9 +702,13 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int = 2, 
         raise ValueError(f"weights must be numbers in [0, 1], got {_v.show(weights)}")
     _check_sizes(problem.default_pop if pop is None else pop, problem.default_gen if gen is None else gen)
     _v.integer("seed", seed, 0)
-    _v.integer("n_jobs", n_jobs, 1)
+    _n_jobs(n_jobs)
+    run_kw = dict(tol=tol, crossover_prob=crossover_prob, mutation_prob=mutation_prob,
+                  crossover_eta=crossover_eta, mutation_eta=mutation_eta)
+    make_algorithm("nsga2", 2, 2, **{k: v for k, v in run_kw.items() if k != "tol"})  # checks them
+    _termination(problem, None, gen, tol)
     out = _io.prepare_out_dir(out) if out is not None else None
-    front_run = optimize(problem, "nsga2", pop, gen, seed, n_jobs, client, out, progress, plot=False)
+    front_run = optimize(problem, "nsga2", pop, gen, seed, n_jobs, client, out, progress, plot=False, **run_kw)
     F = np.column_stack([ob.sense * front_run.front[ob.name].to_numpy(float) for ob in problem.objectives])
     scales = np.ptp(F, axis=0) if len(F) > 1 else np.ones(2)
     scales = np.where(scales > 0, scales, 1.0)
@@ -361,7 +717,7 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int = 2, 
     bar = Progress(len(weights), f"{problem.name} sweep") if progress else None
     for i, w in enumerate(weights):
         single = WeightedSum(problem, float(w), scales)
-        r = optimize(single, "ga", pop, gen, seed, n_jobs, client, None, progress=False, plot=False)
+        r = optimize(single, "ga", pop, gen, seed, n_jobs, client, None, progress=False, plot=False, **run_kw)
         runs.append(r)
         columns = columns or list(r.front.columns)
         if len(r.front):

@@ -22,6 +22,9 @@ _REGISTRY = {
     "stan2008-biglide": ("stan2008", "StanBiglide", {}),
     "wu2008": ("wu2008", "WuGantry", {}),
     "wu2008-dynamic": ("wu2008", "WuGantryDynamic", {}),
+    # task-driven design (mechopt design); with no options, the five-bar for a 100 x 60 mm
+    # rectangle 180 mm in front of the base, LCI >= 0.4
+    "design": ("design", "DesignProblem", {}),
 }
 
 

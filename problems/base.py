@@ -14,19 +14,56 @@ from pymoo.core.problem import Problem
 
 from mechopt.parallel import chunks, parallel_map
 
-__all__ = ["MechoptProblem", "Objective"]
+__all__ = ["MechoptProblem", "Objective", "HV_REFERENCE"]
 
 
 class Objective:
-    """A named objective: ``sense=+1`` minimised, ``-1`` maximised."""
+    """A named objective: ``sense=+1`` minimised, ``-1`` maximised.
 
-    def __init__(self, name: str, sense: int, unit: str = "-"):
+    ``bounds = (lo, hi)`` is the range of its natural value over the problem's
+    design space, known from the formulation (each problem says why in a comment):
+    the runner normalises every objective with it to [0, 1] (0 at the best end,
+    1 at the worst, :meth:`normalise`) and takes the hypervolume of ``history.csv``
+    against the reference point :data:`HV_REFERENCE` in every direction, so that
+    it rises with real progress and compares between runs. A value outside the
+    bounds is allowed (it normalises outside [0, 1]); beyond the reference point
+    it adds no hypervolume.
+    """
+
+    def __init__(self, name: str, sense: int, unit: str = "-", bounds=None):
         if sense not in (1, -1):
             raise ValueError(f"sense must be +1 (minimise) or -1 (maximise), got {sense!r}")
         self.name, self.sense, self.unit = name, sense, unit
+        if bounds is not None:
+            try:
+                lo, hi = (float(b) for b in bounds)
+            except (TypeError, ValueError):
+                raise ValueError(f"bounds of objective {name!r} must be (lo, hi), got {bounds!r}") from None
+            if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+                raise ValueError(f"bounds of objective {name!r} must be finite with lo < hi, got {bounds!r}")
+            bounds = (lo, hi)
+        self.bounds = bounds
+
+    def with_bounds(self, lo, hi) -> "Objective":
+        """The same objective with the range ``(lo, hi)`` (for bounds an instance computes)."""
+        return Objective(self.name, self.sense, self.unit, (lo, hi))
+
+    def normalise(self, f):
+        """``f`` in pymoo's minimisation form (``sense * value``) mapped to [0, 1] by
+        :attr:`bounds`: 0 at the best natural value, 1 at the worst."""
+        if self.bounds is None:
+            raise ValueError(f"objective {self.name!r} declares no bounds")
+        lo, hi = self.bounds
+        best = lo if self.sense == 1 else -hi  # the best end in minimisation form
+        return (np.asarray(f, float) - best) / (hi - lo)
 
     def __repr__(self):
-        return f"Objective({self.name!r}, {'min' if self.sense == 1 else 'max'})"
+        rng = "" if self.bounds is None else f", bounds=({self.bounds[0]:g}, {self.bounds[1]:g})"
+        return f"Objective({self.name!r}, {'min' if self.sense == 1 else 'max'}{rng})"
+
+
+#: hypervolume reference point of the normalised objectives, in every direction
+HV_REFERENCE = 1.1
 
 
 def _evaluate_chunk(args):
@@ -38,9 +75,11 @@ class MechoptProblem(Problem):
     """Common machinery; see the module docstring.
 
     Class attributes to set: ``name`` (registry key), ``summary`` (one line),
-    ``var_names``, ``objectives`` (tuple of :class:`Objective`), ``constr_names``,
-    ``default_algorithm``, ``default_pop``, ``default_gen``, and ``settings`` (the
-    constructor options that change the numbers).
+    ``var_names``, ``objectives`` (tuple of :class:`Objective`, each with its
+    ``bounds``), ``constr_names``, ``default_algorithm``, ``default_pop``,
+    ``default_gen`` (the default run, chosen by measurement against a brute-force
+    front: ``benchmarks/bench_fronts.py``), and ``settings`` (the constructor
+    options that change the numbers).
     """
 
     name = "base"
@@ -88,6 +127,28 @@ class MechoptProblem(Problem):
         state = self.__dict__.copy()
         state.update(client=None, n_jobs=1, on_chunk=None)
         return state
+
+    def normalise(self, F) -> np.ndarray:
+        """Objectives ``F`` (minimisation form, ``(n, n_obj)``) scaled to [0, 1] by each
+        objective's declared bounds (:meth:`Objective.normalise`)."""
+        F = np.asarray(F, float).reshape(-1, self.n_obj)
+        return np.column_stack([ob.normalise(F[:, j]) for j, ob in enumerate(self.objectives)]) \
+            if len(F) else np.empty((0, self.n_obj))
+
+    def hypervolume(self, F) -> float:
+        """Hypervolume of ``F`` (minimisation form) in normalised objectives against the
+        reference point :data:`HV_REFERENCE` in every direction: between 0 and
+        ``HV_REFERENCE ** n_obj``, comparable between runs of the problem. NaN when
+        an objective declares no bounds."""
+        if any(ob.bounds is None for ob in self.objectives):
+            return float("nan")
+        F = self.normalise(F)
+        F = F[np.all(F < HV_REFERENCE, axis=1)]
+        if not len(F):
+            return 0.0
+        from pymoo.indicators.hv import HV
+
+        return float(HV(ref_point=np.full(self.n_obj, HV_REFERENCE))(F))
 
     def evaluate_designs(self, X) -> dict:
         """Return ``{"F": (n, n_obj), "G": (n, n_constr), "extra": {name: (n,)}}``."""

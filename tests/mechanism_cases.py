@@ -136,3 +136,17 @@ CASES += [
      sample_away_from_singularities)
     for mode in GANTRY_MODES
 ]
+
+
+# --- a general 5R with unequal legs (mechopt.mechanisms.asymmetric_five_bar) -----------
+# (label, a1, c1, a2, c2, r3): the new mechanism is this module plus these cases.
+from mechopt.mechanisms.asymmetric_five_bar import MODES as ASYM_MODES  # noqa: E402
+from mechopt.mechanisms.asymmetric_five_bar import AsymmetricFiveBar  # noqa: E402
+
+_ASYM_DESIGNS = [("a1=1,c1=1.5,a2=0.8,c2=1.7", 1.0, 1.5, 0.8, 1.7, 0.5)]
+CASES += [
+    (f"AsymmetricFiveBar[{label},{mode}]",
+     functools.partial(AsymmetricFiveBar, a1, c1, a2, c2, r3, mode), sample_away_from_singularities)
+    for label, a1, c1, a2, c2, r3 in _ASYM_DESIGNS
+    for mode in ASYM_MODES
+]

@@ -6,7 +6,7 @@ import sys
 import pytest
 
 from mechopt.cli import main
-from mechopt.evaluate import FIVE_BAR_KEYS
+from mechopt.evaluate import DISK_KEYS
 
 REQUIRED = {"r_mic", "mic_center_y", "gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min",
             "gsi_max", "gsi_min", "usable_area", "gcw_area", "gcw_gci", "gcw_square_side",
@@ -16,7 +16,10 @@ REQUIRED = {"r_mic", "mic_center_y", "gci", "mci", "gvi_max", "gvi_min", "gpi_ma
 def test_evaluate_five_bar_json(capsys):
     assert main(["evaluate", "five-bar", "--r1", "0.85", "--r2", "1.6", "--r3", "0.55", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert REQUIRED <= set(out) == set(FIVE_BAR_KEYS)
+    assert REQUIRED <= set(out) == set(DISK_KEYS) | {"mechanism", "inputs"}
+    # the inputs are echoed (with the options that change the numbers)
+    assert out["inputs"] == {"r1": 0.85, "r2": 1.6, "r3": 0.55, "mode": "+-", "quadrature": "area",
+                             "gamma": 0.5}
     assert out["quadrature"] == "area" and out["mode"] == "+-"
     assert out["r_mic"] == pytest.approx(0.85, rel=1e-6)
     lo, hi = out["theta1_range_deg"]

@@ -273,7 +273,7 @@ def test_table3_trajectory_and_forces():
     np.testing.assert_array_equal(tr["y"], 0.5)
     assert np.max(np.abs(tr["xd"])) == pytest.approx(1.0)
     assert np.max(np.abs(tr["xdd"])) == pytest.approx(6.67)
-    out = wu2008_driving_forces(651)
+    out = wu2008_driving_forces(wu2008_gantry(10.0, unit="m"), 651)
     assert np.all(np.isfinite(out["F1"])) and np.all(np.isfinite(out["F2"]))
     # zero acceleration and constant speed: forces continuous across the cruise
     cruise = (out["t"] > out["T0"] + 1e-3) & (out["t"] < out["Tf"] - out["T0"] - 1e-3)

@@ -12,14 +12,20 @@ from mechopt.published import TABLE_COLUMNS
 
 WEIGHT_LABELS = ("W1=0.7,W2=0.3", "W1=0.3,W2=0.7", "W1=1,W2=0", "W1=0,W2=1")
 QUANTITIES = (
-    ["workspace_area"]
+    ["workspace_area", "workspace_area[b=62mm]"]
     + [f"q1_over_b[{w}]" for w in WEIGHT_LABELS]
+    + [f"q1_over_b[{w};GA Table 1 rates]" for w in WEIGHT_LABELS]
+    + ["q1_over_b[W1=1,W2=0;retracted pose]", "q1_over_b[W1=0,W2=1;design 80/62]"]
     + [f"L2[{w}]" for w in WEIGHT_LABELS]
+    + [f"L2[{w};GA Table 1 rates]" for w in WEIGHT_LABELS]
+    + [f"L2[{w};L1=0.5]" for w in WEIGHT_LABELS]
     + ["ga_population", "ga_generations", "ga_crossover_rate", "ga_mutation_rate"]
+    + ["claim:max_workspace_at_q1min/b=1.35", "claim:fig9_pose_regular", "claim:fig10_pose_regular"]
 )
 RUN_FILES = ("front.csv", "history.csv", "run.json", "front.png", "sweep.csv", "sweep.png")
 TOP_FILES = ("fig29_tqi_bipod.png", "fig30_tqi_biglide.png", "tradeoff_bipod.png",
-             "tradeoff_biglide.png", "curves.csv")
+             "tradeoff_biglide.png", "curves.csv", "area_search.csv", "bipod_readings.csv",
+             "bipod_reachable_optima.csv", "biglide_l1_scan.csv")
 
 
 @pytest.fixture(scope="module")
@@ -36,12 +42,18 @@ def test_table_columns_and_quantities(quick):
 
 def test_statuses_valid_and_differs_explained(quick):
     _, df = quick
-    assert set(df["status"]) <= {"match", "differs", "not-reported"}
-    for rec in df[df["status"] == "differs"].itertuples():
+    assert set(df["status"]) <= {"match", "differs", "not-reported", "holds", "fails"}
+    assert set(df["kind"]) <= {"computed", "setting", "reading", "claim"}
+    for rec in df[df["status"].isin(["differs", "holds", "fails"])].itertuples():
         assert isinstance(rec.note, str) and rec.note.strip(), rec.quantity
-    # every row also names its tolerance (comparison_row) and has a finite value
-    assert df["note"].str.contains("tol ").all()
+    # every compared row also names its tolerance (comparison_row) and has a finite value
+    compared = df[df["kind"] != "claim"]
+    assert compared["note"].str.contains("tol ").all()
+    assert set(df[df["kind"] == "claim"]["status"]) <= {"holds", "fails"}
     assert np.all(np.isfinite(df["reproduced"].to_numpy(float)))
+    # the Table rows are computed, the GA settings settings
+    assert (df[df["quantity"].isin([f"q1_over_b[{w}]" for w in WEIGHT_LABELS])]["kind"] == "computed").all()
+    assert (df[df["quantity"].str.startswith("ga_")]["kind"] == "setting").all()
 
 
 def test_files_exist(quick):
@@ -98,7 +110,9 @@ def test_ga_settings_rows(quick):
     s = stan2008.SETTINGS[True]
     assert _row(df, "ga_population")["reproduced"] == s["pop"]
     assert _row(df, "ga_generations")["reproduced"] == s["gen"]
-    assert _row(df, "ga_crossover_rate")["reproduced"] == pytest.approx(0.9)  # pymoo SBX
+    # the rates actually run (Table 1's), with the operators named
+    assert _row(df, "ga_crossover_rate")["reproduced"] == pytest.approx(0.08)
+    assert _row(df, "ga_mutation_rate")["reproduced"] == pytest.approx(0.005)
     assert "SBX" in _row(df, "ga_crossover_rate")["note"]
     assert "polynomial mutation" in _row(df, "ga_mutation_rate")["note"]
     assert stan2008.SETTINGS[False]["pop"] == 50 and stan2008.SETTINGS[False]["gen"] == 100
@@ -110,3 +124,5 @@ def test_full_run_uses_table1_sizes(tmp_path):
     assert _row(df, "ga_population")["status"] == "match"
     assert _row(df, "ga_generations")["status"] == "match"
     assert _row(df, "q1_over_b[W1=0,W2=1]")["reproduced"] == pytest.approx(1.35, abs=1e-6)
+    assert _row(df, "ga_crossover_rate")["status"] == "match"
+    assert _row(df, "workspace_area[b=62mm]")["status"] == "match"

@@ -391,19 +391,27 @@ def option_tokens(draw, spec, required=()):
     return [t for k in order for t in groups[k]], invalid
 
 
-EVALUATE_SPECS = {
-    "five-bar": ([("--r1", "pos"), ("--r2", "pos"), ("--r3", "nonneg"), ("--mode", "mode5"),
-                  ("--quadrature", "quad"), ("--gamma", "unit"), ("--json", "flag")],
-                 ("--r1", "--r2", "--r3")),
-    "bipod": ([("--b", "pos_lo"), ("--q1-min", "pos_lo"), ("--q1-max", "pos_hi"), ("--q2-min", "pos_lo"),
-               ("--q2-max", "pos_hi"), ("--branch", "branch"), ("--json", "flag")],
-              ("--b", "--q1-min", "--q1-max")),
-    "biglide": ([("--l1", "pos_lo"), ("--l2", "pos_hi"), ("--q1-min", "real_lo"), ("--q1-max", "real_hi"),
-                 ("--q2-min", "real_lo"), ("--q2-max", "real_hi"), ("--mode", "mode5"), ("--json", "flag")],
-                ("--l1", "--l2", "--q1-min", "--q1-max")),
-    "gantry": ([("--b", "pos"), ("--h", "pos"), ("--theta-1s-deg", "deg"), ("--d2", "nonneg"),
-                ("--l2", "nonneg"), ("--length-unit", "unit_name"), ("--json", "flag")], ()),
-}
+def _evaluate_specs():
+    """``{mechanism: (option specs, required options)}`` of ``mechopt evaluate``, from each
+    registered mechanism's declared parameters (the same declarations the CLI is
+    generated from), with this file's value generators per parameter kind."""
+    from mechopt.evaluate import DISK_OPTIONS
+    from mechopt.mechanisms import registry
+
+    by_kind = {"length": "pos", "length0": "nonneg", "position": "real", "angle_deg": "deg",
+               "fraction": "unit"}
+    by_choices = {frozenset(("+-", "-+", "++", "--")): "mode5", frozenset(("area", "polar")): "quad",
+                  frozenset(("up", "down", "full")): "branch", frozenset(("mm", "m")): "unit_name"}
+    specs = {}
+    for name, cls in registry().items():
+        params = cls.parameters + (DISK_OPTIONS if cls.disk_indices else ())
+        spec = [(p.option, by_choices[frozenset(p.choices)] if p.choices else by_kind[p.kind])
+                for p in params] + [("--json", "flag")]
+        specs[name] = (spec, tuple(p.option for p in params if p.required))
+    return specs
+
+
+EVALUATE_SPECS = _evaluate_specs()
 #: appended to a fully valid five-bar command (a full evaluation takes ~1 s)
 FIVE_BAR_SPOILERS = [["--gamma", "1.5"], ["--r1", "nan"], ["--mode", "+/"], ["--quadrature", "gauss"],
                      ["--r3", "-1"], ["--r2", "1e13"], ["--gamma=-0.0"], ["--r1", "x"]]
@@ -1295,7 +1303,7 @@ def workspace(draw):
 @target
 def performance(draw):
     from mechopt import performance as P
-    from mechopt.evaluate import evaluate_five_bar
+    from mechopt.evaluate import evaluate
 
     what = draw(st.sampled_from(["global", "disk_mean", "max_lci", "region", "evaluate"]))
     quad = draw(name_of(("area", "polar")))
@@ -1318,7 +1326,7 @@ def performance(draw):
         elif what == "region":
             P.region_indices(fb, _usable())
         else:
-            evaluate_five_bar(fb, quadrature=quad, gamma=gamma, step=step)
+            evaluate(fb, quadrature=quad, gamma=gamma, step=step)
     return run
 
 

@@ -310,7 +310,7 @@ def test_gravity_and_bias_match(model, gantry, wu):
 
 
 def test_driving_forces_along_the_wu_trajectory(model, gantry):
-    tr = wu2008_driving_forces(n=61)
+    tr = wu2008_driving_forces(wu2008_gantry(10.0, unit="m"), n=61)
     state = [np.asarray(tr[k], float) for k in ("x", "y", "xd", "yd", "xdd", "ydd")]
     par = params(gantry, GantryInertia.wu2008())
     tau = model.forces(par, *state)

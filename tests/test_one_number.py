@@ -30,7 +30,7 @@ def test_evaluate_gantry_away_from_the_paper_design(capsys, theta):
 def test_table2_law_is_table2_at_the_table1_design_and_physical_elsewhere():
     table2 = GantryInertia.wu2008()
     l0 = 1e-3 * dimensional_synthesis(500.0, 400.0, math.radians(10.0))[2]
-    at_l0 = GantryInertia.wu2008_scaled(l0)
+    at_l0 = GantryInertia.wu2008_scaled(l0, l0)
     for name in ("m11", "m21", "m12", "m22", "m13", "m23", "m4", "mN", "I12", "I22"):
         assert getattr(at_l0, name) == pytest.approx(getattr(table2, name), rel=1e-12), name
     # the cross-section invariant of a uniform plate, I_c/m - l^2/12 = w^2/12, is Table 2's
@@ -38,7 +38,7 @@ def test_table2_law_is_table2_at_the_table1_design_and_physical_elsewhere():
     assert w2_12 > 0.0
     for deg in np.linspace(1.0, 44.0, 12):
         g = wu2008_gantry(float(deg), unit="m")
-        p = GantryInertia.wu2008_scaled(g.l)
+        p = GantryInertia.wu2008_scaled(g.l, l0)
         assert p.m12 / g.l == pytest.approx(table2.m12 / l0, rel=1e-12)  # mass per length
         central = p.I12 - p.m12 * (g.l / 2.0) ** 2
         assert central / p.m12 - g.l * g.l / 12.0 == pytest.approx(w2_12, rel=1e-9)

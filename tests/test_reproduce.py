@@ -35,11 +35,70 @@ FILES = {
 }
 
 
+#: every figure the quick reproduction saves, as (path, matplotlib Figure)
+FIGURES = []
+
+
 @pytest.fixture(scope="module")
 def results(tmp_path_factory):
+    from mechopt import io as _io
+
     out = tmp_path_factory.mktemp("results")
-    assert main(["reproduce", "all", "--quick", "--out", str(out)]) == 0
+    save = _io.save_figure
+
+    def capture(fig, path, dpi=120):
+        FIGURES.append((str(path), fig))
+        return save(fig, path, dpi)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(_io, "save_figure", capture)
+        assert main(["reproduce", "all", "--quick", "--out", str(out)]) == 0
     return out
+
+
+def _text_boxes(fig):
+    """Window extents of every title, axis label, legend and suptitle (drawn with Agg)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    r = canvas.get_renderer()
+    items = []
+    for ax in fig.axes:
+        if not ax.axison:
+            continue
+        for t in (ax.title, ax.xaxis.label, ax.yaxis.label):
+            if t.get_text() and t.get_visible():
+                items.append((t.get_window_extent(r), ax, t.get_text()))
+        if ax.get_legend() is not None:
+            items.append((ax.get_legend().get_window_extent(r), ax, "legend"))
+    if fig._suptitle is not None:
+        items.append((fig._suptitle.get_window_extent(r), None, "suptitle"))
+    return items, r
+
+
+def test_every_figure_has_labelled_axes_with_units_and_no_overlapping_text(results):
+    """Every axis names its quantity and unit ([-] when dimensionless), every colour bar
+    its quantity, and no title, label or legend overlaps another text or another axes."""
+    assert len(FIGURES) >= 30
+    for path, fig in FIGURES:
+        for ax in fig.axes:
+            if not ax.axison:
+                continue
+            xl, yl = ax.get_xlabel(), ax.get_ylabel()
+            if ax.get_label() == "<colorbar>":
+                assert xl or yl, f"{path}: unlabelled colour bar"
+                continue
+            for lab in (xl, yl):
+                assert "[" in lab and "]" in lab, f"{path}: axis label {lab!r} without a unit"
+        items, r = _text_boxes(fig)
+        for i, (box, ax, text) in enumerate(items):
+            for box2, _, text2 in items[i + 1:]:
+                assert not box.overlaps(box2) or text == text2 == "legend", (path, text, text2)
+            for other in fig.axes:
+                if other is ax or text == "legend":
+                    continue
+                assert not box.overlaps(other.get_window_extent(r)), (path, text, other.get_label())
 
 
 @pytest.mark.parametrize("paper", list(REQUIRED))

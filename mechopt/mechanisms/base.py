@@ -25,7 +25,49 @@ import numpy as np
 from .. import indices as _ix
 from .. import validation as _v
 
-__all__ = ["PlanarMechanism", "as_points"]
+__all__ = ["PlanarMechanism", "Parameter", "REQUIRED", "PARAMETER_KINDS", "as_points"]
+
+#: the kinds of a declared parameter (the CLI's converters and the fuzz tests' value
+#: generators both follow them): a positive length, a length that may vanish, a signed
+#: position, an angle in degrees, a fraction in (0, 1), one string of ``choices``
+PARAMETER_KINDS = ("length", "length0", "position", "angle_deg", "fraction", "choice")
+
+
+class _Required:
+    def __repr__(self):
+        return "REQUIRED"
+
+
+#: default of a parameter that must be given
+REQUIRED = _Required()
+
+
+class Parameter:
+    """A declared input of a mechanism (a constructor argument, or an option of its
+    evaluation): ``name`` (a Python identifier; the CLI option is ``--name`` with
+    dashes), ``kind`` (:data:`PARAMETER_KINDS`), ``unit`` ([L], deg, ...), ``help``,
+    ``default`` (:data:`REQUIRED` when it must be given) and ``choices``."""
+
+    __slots__ = ("name", "kind", "unit", "help", "default", "choices")
+
+    def __init__(self, name, kind, unit, help, default=REQUIRED, choices=None):
+        if kind not in PARAMETER_KINDS:
+            raise ValueError(f"kind must be one of {PARAMETER_KINDS}, got {kind!r}")
+        if (kind == "choice") != (choices is not None):
+            raise ValueError("choices are given exactly for kind 'choice'")
+        self.name, self.kind, self.unit, self.help = name, kind, unit, help
+        self.default, self.choices = default, None if choices is None else tuple(choices)
+
+    @property
+    def required(self) -> bool:
+        return self.default is REQUIRED
+
+    @property
+    def option(self) -> str:
+        return "--" + self.name.replace("_", "-")
+
+    def __repr__(self):
+        return f"Parameter({self.name!r}, {self.kind!r}, {self.unit!r})"
 
 
 #: a coordinate beyond this magnitude lies out of reach of every admissible design
@@ -59,14 +101,60 @@ def as_points(x, y):
 
 
 class PlanarMechanism(ABC):
-    """Abstract 2-DOF planar parallel mechanism (see the module docstring)."""
+    """Abstract 2-DOF planar parallel mechanism (see the module docstring).
 
+    Every member a mechanism has is declared here, with its contract; the contract
+    suite (``tests/test_contract.py``) checks each on every implementation. A new
+    mechanism is one module of :mod:`mechopt.mechanisms` defining a subclass with a
+    ``cli_name``: :func:`mechopt.mechanisms.registry` finds it, and ``mechopt
+    evaluate`` offers it with the options of its :attr:`parameters`.
+    """
+
+    #: name under ``mechopt evaluate`` (None: not offered there, e.g. a base class)
+    cli_name: str | None = None
+    #: one line for ``mechopt evaluate --help``
+    cli_help: str = ""
+    #: the inputs of :meth:`from_parameters` (declared, so the CLI is generated)
+    parameters: tuple[Parameter, ...] = ()
+    #: the options of :meth:`summary` (e.g. a quadrature)
+    summary_options: tuple[Parameter, ...] = ()
+    #: True when the Liu 2006 indices over the MIC (a disk centred on the y axis)
+    #: apply: the mechanism is symmetric about the y axis
+    disk_indices: bool = False
     #: working modes (inverse-kinematics branches) the mechanism supports
     modes: tuple[str, ...] = ()
+    #: assembly modes of the forward problem (``fk(q1, q2, assembly)``)
+    assembly_modes: tuple[str, ...] = ("up", "down")
     #: names of the two actuator coordinates, for tables and plots
     joint_names: tuple[str, str] = ("q1", "q2")
     #: True when the actuator coordinates are angles (reported in degrees)
     angular_joints: bool = False
+    #: the working mode of this instance (one of :attr:`modes`)
+    mode: str
+
+    @classmethod
+    def from_parameters(cls, **values) -> "PlanarMechanism":
+        """The mechanism of the declared :attr:`parameters` (keyword values)."""
+        return cls(**values)
+
+    def parameter_values(self) -> dict:
+        """``{name: value}`` of the declared :attr:`parameters` of this instance."""
+        return {p.name: getattr(self, p.name) for p in self.parameters}
+
+    def summary(self, **options) -> dict:
+        """The mechanism's own global numbers (areas, means over its workspace) for
+        ``mechopt evaluate``, as ``{name: float or str}``; options of
+        :attr:`summary_options`. Default: none."""
+        return {}
+
+    @abstractmethod
+    def with_mode(self, mode: str) -> "PlanarMechanism":
+        """The same dimensions in another working mode (one of :attr:`modes`)."""
+
+    @abstractmethod
+    def assembly_of(self, x, y):
+        """Array of strings: the assembly mode (:attr:`assembly_modes`) of each pose,
+        i.e. the ``fk`` solution that returns it."""
 
     # --- to implement -------------------------------------------------------
     @abstractmethod
@@ -113,6 +201,12 @@ class PlanarMechanism(ABC):
         areas scale as ``factor^2``; the Jacobian scales as ``1/factor`` for angular
         joints and is unchanged for prismatic ones (``q`` is then a length).
         """
+
+    @property
+    def joint_limits(self):
+        """``((q1_lo, q1_hi), (q2_lo, q2_hi))``: the actuator ranges, or None for a
+        mechanism whose joints turn freely (the five-bar's cranks)."""
+        return None
 
     # --- derived once for every mechanism ------------------------------------
     def _within_strokes(self, q1, q2, rtol: float = 1e-12):

@@ -80,7 +80,7 @@ import numpy as np
 
 from .. import geometry as _g
 from .. import validation as _v
-from .base import PlanarMechanism, as_points
+from .base import Parameter, PlanarMechanism, as_points
 
 __all__ = ["Biglide", "MODES", "ASSEMBLY_MODES", "GTQI_METHODS", "summary", "SUMMARY_KEYS"]
 
@@ -127,6 +127,17 @@ class Biglide(PlanarMechanism):
     See the module docstring for the kinematics, singularities and references.
     """
 
+    cli_name = "biglide"
+    cli_help = "Biglide PRRRP (Stan 2008): exact workspace area, global TQI, k_av"
+    parameters = (
+        Parameter("l1", "length", "L", "half the distance of the guides [L]"),
+        Parameter("l2", "length", "L", "link length [L]"),
+        Parameter("q1_min", "position", "L", "lower stroke limit of slider 1 [L]"),
+        Parameter("q1_max", "position", "L", "upper stroke limit of slider 1 [L]"),
+        Parameter("q2_min", "position", "L", "lower stroke limit of slider 2 [L] (default: q1-min)", None),
+        Parameter("q2_max", "position", "L", "upper stroke limit of slider 2 [L] (default: q1-max)", None),
+        Parameter("mode", "choice", "-", "signs of the inverse kinematics, leg 1 first", "--", MODES),
+    )
     modes = MODES
     assembly_modes = ASSEMBLY_MODES
     joint_names = ("q1", "q2")
@@ -158,6 +169,10 @@ class Biglide(PlanarMechanism):
     def with_mode(self, mode: str) -> "Biglide":
         """The same dimensions in another working mode."""
         return Biglide(self.l1, self.l2, self.q1_min, self.q1_max, self.q2_min, self.q2_max, mode)
+
+    def summary(self) -> dict:
+        """:data:`SUMMARY_KEYS` (see :func:`summary`)."""
+        return summary(self)
 
     def scaled(self, factor: float) -> "Biglide":
         """Every length (``l1``, ``l2``, the stroke limits) multiplied by ``factor``

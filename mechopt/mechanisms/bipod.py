@@ -62,7 +62,7 @@ import numpy as np
 
 from .. import geometry as _g
 from .. import validation as _v
-from .base import PlanarMechanism, as_points
+from .base import Parameter, PlanarMechanism, as_points
 
 __all__ = [
     "Bipod",
@@ -155,6 +155,17 @@ class Bipod(PlanarMechanism):
     See the module docstring for the kinematics, singularities and references.
     """
 
+    cli_name = "bipod"
+    cli_help = "Bipod RPRPR (Stan 2008): exact workspace area and global TQI"
+    parameters = (
+        Parameter("b", "length", "L", "base distance [L]"),
+        Parameter("q1_min", "length", "L", "shortest strut 1 [L]"),
+        Parameter("q1_max", "length", "L", "longest strut 1 [L]"),
+        Parameter("q2_min", "length", "L", "shortest strut 2 [L] (default: q1-min)", None),
+        Parameter("q2_max", "length", "L", "longest strut 2 [L] (default: q1-max)", None),
+        Parameter("branch", "choice", "-", "workspace half plane: up (y > 0), down or full", "up",
+                  BRANCHES),
+    )
     modes = BRANCHES
     assembly_modes = ASSEMBLY_MODES
     joint_names = ("q1", "q2")
@@ -183,7 +194,13 @@ class Bipod(PlanarMechanism):
         """The same dimensions on another branch."""
         return Bipod(self.b, self.q1_min, self.q1_max, self.q2_min, self.q2_max, branch)
 
-    with_mode = with_branch
+    def with_mode(self, mode: str) -> "Bipod":
+        """The same dimensions on another branch (the Bipod's working mode)."""
+        return self.with_branch(mode)
+
+    def summary(self) -> dict:
+        """:data:`SUMMARY_KEYS` (see :func:`summary`)."""
+        return summary(self)
 
     def scaled(self, factor: float) -> "Bipod":
         """``b`` and the strokes multiplied by ``factor`` (the Jacobian of these

@@ -22,7 +22,7 @@ import numpy as np
 
 from .. import fast_lci as _fast_lci
 from .. import validation as _v
-from .base import PlanarMechanism, as_points
+from .base import Parameter, PlanarMechanism, as_points
 
 __all__ = ["FiveBar", "MODES", "ASSEMBLY_MODES"]
 
@@ -54,7 +54,17 @@ class FiveBar(PlanarMechanism):
     doi:10.1016/j.mechmachtheory.2005.05.003, eq. (1).
     """
 
+    cli_name = "five-bar"
+    cli_help = "symmetric 5R mechanism (Liu 2006 indices)"
+    parameters = (
+        Parameter("r1", "length", "L", "crank (proximal link) length [L]"),
+        Parameter("r2", "length", "L", "distal link length [L]"),
+        Parameter("r3", "length0", "L", "half the base distance [L]"),
+        Parameter("mode", "choice", "-", "working mode of Le 2013 eq. (17)-(18)", "+-", MODES),
+    )
+    disk_indices = True
     modes = MODES
+    assembly_modes = ASSEMBLY_MODES
     joint_names = ("theta1", "theta2")
     angular_joints = True
 

@@ -49,7 +49,7 @@ import math
 import numpy as np
 
 from .. import validation as _v
-from .base import PlanarMechanism, as_points
+from .base import Parameter, PlanarMechanism, as_points
 
 __all__ = [
     "Gantry",
@@ -191,10 +191,23 @@ class Gantry(PlanarMechanism):
     change of length unit (see :meth:`scaled`).
     """
 
+    cli_name = "gantry"
+    cli_help = "Wu 2008 gantry: synthesis (eq. 10-16), k_av, eta_D, GTQI"
+    parameters = (
+        Parameter("b", "length", "length unit", "task width", 500.0),
+        Parameter("h", "length", "length unit", "task height", 400.0),
+        Parameter("theta_1s_deg", "angle_deg", "deg", "smallest link angle theta_1S, in (0, 45)", 10.0),
+        Parameter("d2", "length0", "length unit", "platform half-width", 100.0),
+        Parameter("l2", "length0", "length unit", "platform height", 200.0),
+        Parameter("length_unit", "choice", "-", "unit of the lengths given and printed", "mm",
+                  tuple(_LENGTH_UNITS)),
+    )
     modes = MODES
     assembly_modes = ASSEMBLY_MODES
     joint_names = ("q1", "q2")
     angular_joints = False
+    #: the inputs of :meth:`from_parameters` when the gantry was synthesized from them
+    synthesis_inputs: dict | None = None
     #: the boundary of the reachable set includes stroke-limit arcs (joint limits),
     #: which are not type-I loci (see the module docstring)
     reachable_boundary_is_type1 = False
@@ -243,6 +256,34 @@ class Gantry(PlanarMechanism):
         q_min = y0 - l2 / 2.0 - l * math.cos(theta_1S)
         return cls(d1, l, stroke, q_min=q_min, l2=l2, d2=d2, mode="--",
                    task_workspace=(-b / 2.0, b / 2.0, y0, y0 + h))
+
+    @classmethod
+    def from_parameters(cls, b=500.0, h=400.0, theta_1s_deg=10.0, d2=100.0, l2=200.0,
+                        length_unit="mm") -> "Gantry":
+        """The design of Wu's synthesis (eq. 10-16) for a ``b x h`` task and ``theta_1S``
+        [deg], task rectangle at its place (:meth:`from_synthesis`)."""
+        unit = _v.choice("length_unit", length_unit, tuple(_LENGTH_UNITS))
+        deg = _v.finite_number("theta_1s_deg", theta_1s_deg)
+        if not 0.0 < deg < 45.0:
+            raise ValueError(f"theta_1s_deg must lie in (0, 45) deg (eq. 14), got {_v.show(theta_1s_deg)}")
+        g = cls.from_synthesis(b, h, math.radians(deg), l2=l2, d2=d2)
+        g.synthesis_inputs = dict(b=float(b), h=float(h), theta_1s_deg=deg, d2=float(d2),
+                                  l2=float(l2), length_unit=unit)
+        return g
+
+    def parameter_values(self) -> dict:
+        """The synthesis inputs of :meth:`from_parameters` (None if made otherwise)."""
+        if self.synthesis_inputs is None:
+            return {k: getattr(self, k) for k in ("d1", "l", "stroke", "q_min", "l2", "d2", "mode")}
+        return dict(self.synthesis_inputs)
+
+    def summary(self) -> dict:
+        """:data:`SUMMARY_KEYS` of the synthesized design (see :func:`summary`)."""
+        if self.synthesis_inputs is None:
+            raise ValueError("summary needs a gantry made by Gantry.from_parameters (Wu's synthesis)")
+        kw = dict(self.synthesis_inputs)
+        deg = kw.pop("theta_1s_deg")
+        return summary(theta_1S=math.radians(deg), **kw)
 
     def __repr__(self):
         return (f"Gantry(d1={self.d1!r}, l={self.l!r}, stroke={self.stroke!r}, "
@@ -312,8 +353,9 @@ class Gantry(PlanarMechanism):
         return np.where(empty, np.nan, lo), np.where(empty, np.nan, hi)
 
     # --- protocol ------------------------------------------------------------------
-    def _legs(self, x, y):
-        """``(q1, q2, c1, c2, reachable)`` without masking."""
+    def legs(self, x, y):
+        """``(q1, q2, c1, c2, reachable)`` without masking: slider positions (eq. 2) and
+        ``c_i = l cos(theta_i)`` [L] of both legs (for the dynamics' ``tan theta_i``)."""
         c1, c2 = self._offsets(x)
         y_a = y - self.l2 / 2.0
         q1 = y_a - c1
@@ -328,12 +370,12 @@ class Gantry(PlanarMechanism):
 
     def reachable(self, x, y):
         x, y = as_points(x, y)
-        return self._legs(x, y)[4]
+        return self.legs(x, y)[4]
 
     def ik(self, x, y):
         """Slider heights ``(q1, q2, reachable)`` of eq. (2) in the working mode [L]."""
         x, y = as_points(x, y)
-        q1, q2, _, _, ok = self._legs(x, y)
+        q1, q2, _, _, ok = self.legs(x, y)
         return np.where(ok, q1, np.nan), np.where(ok, q2, np.nan), ok
 
     def closure(self, x, y):
@@ -342,7 +384,7 @@ class Gantry(PlanarMechanism):
         Rows of ``J = B^-1 A`` are ``(tan theta_i, 1)`` (Wu eq. 4-5).
         """
         x, y = as_points(x, y)
-        _, _, c1, c2, ok = self._legs(x, y)
+        _, _, c1, c2, ok = self.legs(x, y)
         u1 = x + self.d1
         u2 = x - self.d1
         A = np.stack([np.stack([u1, c1], -1), np.stack([u2, c2], -1)], -2)
@@ -626,7 +668,8 @@ def summary(b=500.0, h=400.0, theta_1S=math.radians(10.0), d2=100.0, l2=200.0,
     k_av = g.k_av(reading="literal")
     g_m = g.scaled(_LENGTH_UNITS[length_unit])
     if inertia is None:
-        inertia = _dyn.GantryInertia.wu2008_scaled(g_m.l)
+        l0 = dimensional_synthesis(500.0, 400.0, math.radians(10.0))[2] * _LENGTH_UNITS["mm"]
+        inertia = _dyn.GantryInertia.wu2008_scaled(g_m.l, l0)
     dyn = _dyn.GantryDynamics(g_m, inertia)
     eta = dyn.eta_d(n=n)
     xs, ys, w = _dyn.rectangle_rule(g.task_workspace, n)

@@ -1,0 +1,290 @@
+"""Default runs against brute-force reference fronts (issue 12, part 3).
+
+For every registered problem with at most 2 design variables, a reference front
+is computed by brute force from the problem's own ``evaluate_designs``:
+
+1. a lattice over the bounds: 2001 points for one variable, 161 x 161 for two
+   (``--quick``: 201, 41 x 41);
+2. refinement: a lattice 10 (two variables: 6; quick: 8, 4) times finer in the
+   cells around every non-dominated feasible lattice point that has a neighbour
+   off the front (the edges of the Pareto set in design space: for a front that
+   is a curve in design space every point of it, for a 2-D set its outline; at
+   most :data:`MAX_CENTRES` of them, evenly), once for one variable, twice for
+   two (quick: once);
+3. the feasible non-dominated designs of all evaluations.
+
+A single-objective problem's "front" is its best feasible design; the
+refinement zooms :data:`SO_LEVELS` times, :data:`SO_REFINE` times finer each,
+around the best :data:`SO_TOP` designs instead.
+
+Then the problem's default run, ``mechopt.runner.optimize(get(name), seed=1,
+n_jobs=2)``, is measured against it: objectives in minimisation form,
+normalised by the reference front's ideal and nadir (an objective whose span on
+the reference front is zero, as on a single-design front, by its declared
+range, :attr:`mechopt.problems.base.Objective.bounds`), IGD+
+(``pymoo.indicators.igd_plus.IGDPlus``) and the ratio of hypervolumes
+(``pymoo.indicators.hv.HV``, reference point 1.1 in every direction; above 1
+where the run beats the lattice). For a single objective, the relative gap
+``(f_run - f_ref) / |f_ref|`` of the best values in minimisation form (> 0: the
+run is worse). Targets: IGD+ <= 0.01, HV ratio >= 0.98 (gap <= 1e-4 for one
+objective) and each default run under 60 s on 2 cores. The same run is repeated
+with ``n_jobs=None`` (the runner's choice, shown with its time): its front must
+be the same (``--no-auto`` skips it).
+
+    python benchmarks/bench_fronts.py [--quick] [--problems a,b] [--cache DIR] [--no-auto]
+
+The full references take about 15 minutes on 2 cores (most of it le2013-gamma and
+le2013-relaxed, 3-5 ms per design), ``--quick`` about 1 minute; the default runs
+about 2 minutes twice. ``--cache DIR`` keeps the reference fronts
+(``DIR/<problem>-<lattice>.npz``) for the next call. Exit status 1 if a target is
+missed. The functions are imported by ``tests/test_convergence.py``.
+"""
+from __future__ import annotations
+
+import argparse
+import itertools
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from mechopt.parallel import chunks, parallel_map
+from mechopt.problems import get, names
+
+#: full and quick lattices by number of variables: (points per variable, refinement
+#: factor, levels of refinement)
+FULL = {1: (2001, 10, 1), 2: (161, 6, 2)}
+QUICK = {1: (201, 8, 1), 2: (41, 4, 1)}
+#: one objective: zoom levels around the best ``SO_TOP`` designs, each ``SO_REFINE``
+#: times finer (the optimum to ``step / SO_REFINE ** SO_LEVELS``)
+SO_TOP, SO_REFINE, SO_LEVELS = 10, 4, 6
+#: most refinement centres per level (taken evenly from the front, sorted)
+MAX_CENTRES = 400
+#: targets of the issue
+IGD_MAX, HV_MIN, GAP_MAX, SECONDS_MAX = 0.01, 0.98, 1e-4, 60.0
+
+
+def _eval_chunk(args):
+    name, X = args
+    res = get(name).evaluate_designs(X)
+    G = res.get("G")
+    feasible = np.all(G <= 0, axis=1) if G is not None and G.shape[1] else np.ones(len(X), bool)
+    return res["F"], feasible
+
+
+def evaluate(name, X, n_jobs=2):
+    """``(F, feasible)`` of designs ``X`` (minimisation form), in ``n_jobs`` processes."""
+    if len(X) == 0:
+        return np.empty((0, get(name).n_obj)), np.zeros(0, bool)
+    parts = parallel_map(_eval_chunk, [(name, c) for c in chunks(X, max(1, 8 * n_jobs))], n_jobs=n_jobs)
+    return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
+
+
+def nondominated(F):
+    """Mask of the rows of ``F`` that no other row dominates (duplicates: the first kept)."""
+    import moocore
+
+    if len(F) == 0:
+        return np.zeros(0, bool)
+    return np.asarray(moocore.is_nondominated(F, keep_weakly=False), bool)
+
+
+def _lattice(xl, xu, n):
+    return [np.linspace(a, b, n) for a, b in zip(xl, xu)]
+
+
+def _front_mask(F, feasible, n_obj, top=1):
+    """Designs on the front: non-dominated feasible ones (the ``top`` best for one objective)."""
+    mask = np.zeros(len(F), bool)
+    idx = np.flatnonzero(feasible)
+    if not len(idx):
+        return mask
+    if n_obj == 1:
+        order = idx[np.argsort(F[idx, 0], kind="stable")]
+        mask[order[:top]] = True
+    else:
+        mask[idx[nondominated(F[idx])]] = True
+    return mask
+
+
+def reference_front(name, grid=None, refine=None, levels=None, n_jobs=2, quick=False, log=None):
+    """Brute-force reference of problem ``name``: ``{"X", "F", "evaluations", "seconds"}``
+    with ``F`` the non-dominated feasible objective vectors (minimisation form)."""
+    p = get(name)
+    d = p.n_var
+    if d > 2:
+        raise ValueError(f"{name} has {d} design variables; the brute force covers at most 2")
+    g0, k0, l0 = (QUICK if quick else FULL)[d]
+    if p.n_obj == 1:
+        k0, l0 = SO_REFINE, SO_LEVELS
+    grid, refine, levels = grid or g0, refine or k0, l0 if levels is None else levels
+    t0 = time.perf_counter()
+    axes = _lattice(p.xl, p.xu, grid)
+    step = (p.xu - p.xl) / (grid - 1)
+    X = np.array(list(itertools.product(*axes)), float)
+    F, feas = evaluate(name, X, n_jobs)
+    seen = {tuple(np.round((x - p.xl) / step * refine ** levels).astype(np.int64)) for x in X}
+    for level in range(1, levels + 1):
+        front = _front_mask(F, feas, p.n_obj, top=SO_TOP)
+        centres = X[front]
+        if p.n_obj > 1:  # only the edges of the Pareto set: a front point with a neighbour off it
+            centres = centres[_edge_points(X, front, step / refine ** (level - 1))]
+            if len(centres) > MAX_CENTRES:
+                order = np.lexsort(centres.T[::-1])
+                centres = centres[order[np.linspace(0, len(centres) - 1, MAX_CENTRES).round().astype(int)]]
+        fine = step / refine ** level
+        offs = np.array(list(itertools.product(range(-refine, refine + 1), repeat=d)), float) * fine
+        cand = (centres[:, None, :] + offs[None, :, :]).reshape(-1, d)
+        cand = np.clip(cand, p.xl, p.xu)
+        keys = np.round((cand - p.xl) / step * refine ** levels).astype(np.int64)
+        new = []
+        for x, key in zip(cand, map(tuple, keys)):
+            if key not in seen:
+                seen.add(key)
+                new.append(x)
+        if log:
+            log(f"  {name}: level {level}: {len(centres)} centres, {len(new)} new designs")
+        if not new:
+            break
+        Xn = np.array(new)
+        Fn, fn = evaluate(name, Xn, n_jobs)
+        X, F, feas = np.vstack([X, Xn]), np.vstack([F, Fn]), np.concatenate([feas, fn])
+    front = _front_mask(F, feas, p.n_obj, top=1)
+    Xf, Ff = X[front], F[front]
+    if p.n_obj > 1:  # one design per objective vector
+        _, first = np.unique(np.round(Ff, 12), axis=0, return_index=True)
+        Xf, Ff = Xf[np.sort(first)], Ff[np.sort(first)]
+    return {"X": Xf, "F": Ff, "evaluations": len(X), "seconds": time.perf_counter() - t0}
+
+
+def _edge_points(X, front, h):
+    """Of the front designs ``X[front]``, those with a lattice neighbour (spacing ``h``,
+    among the evaluated designs) that is off the front; with none evaluated, kept."""
+    keys = {tuple(k): bool(f) for k, f in zip(np.round(X / h).astype(np.int64), front)}
+    d = X.shape[1]
+    offs = [o for o in itertools.product((-1, 0, 1), repeat=d) if any(o)]
+    out = []
+    for x in X[front]:
+        k = np.round(x / h).astype(np.int64)
+        out.append(any(not keys.get(tuple(k + o), True) for o in offs))
+    return np.array(out, bool)
+
+
+def normalisation(problem, F_ref):
+    """``(ideal, span)`` of the reference front; a zero span by the objective's declared range."""
+    ideal, nadir = F_ref.min(axis=0), F_ref.max(axis=0)
+    span = nadir - ideal
+    declared = np.array([1.0 if ob.bounds is None else ob.bounds[1] - ob.bounds[0]
+                         for ob in problem.objectives], float)
+    span = np.where(span > 1e-12 * np.maximum(1.0, declared), span, declared)
+    return ideal, span
+
+
+def compare(problem, F_ref, F_run) -> dict:
+    """IGD+ and HV ratio (several objectives) or the relative gap (one) of ``F_run``."""
+    if problem.n_obj == 1:
+        best, got = float(F_ref[:, 0].min()), float(F_run[:, 0].min()) if len(F_run) else np.inf
+        return {"gap": (got - best) / abs(best) if best else got - best}
+    from pymoo.indicators.hv import HV
+    from pymoo.indicators.igd_plus import IGDPlus
+
+    if not len(F_run):
+        return {"igd_plus": np.inf, "hv_ratio": 0.0}
+    ideal, span = normalisation(problem, F_ref)
+    R, A = (F_ref - ideal) / span, (F_run - ideal) / span
+    hv = HV(ref_point=np.full(problem.n_obj, 1.1))
+    return {"igd_plus": float(IGDPlus(R)(A)), "hv_ratio": float(hv(A) / hv(R))}
+
+
+def default_run(name, n_jobs=2, seed=1):
+    """The default run of ``name``: ``(F in minimisation form, seconds, run.json info)``;
+    ``n_jobs=None``: the runner chooses."""
+    from mechopt.runner import optimize
+
+    p = get(name)
+    t0 = time.perf_counter()
+    res = optimize(p, seed=seed, n_jobs=n_jobs, progress=False, plot=False)
+    wall = time.perf_counter() - t0
+    F = np.column_stack([ob.sense * res.front[ob.name].to_numpy(float) for ob in p.objectives]) \
+        if len(res.front) else np.empty((0, p.n_obj))
+    return F, wall, res.info
+
+
+def bench_problems():
+    """Every registered problem with at most 2 design variables."""
+    return [n for n in names() if get(n).n_var <= 2]
+
+
+def _cached_reference(name, quick, cache, log):
+    p = get(name)
+    grid = (QUICK if quick else FULL)[p.n_var]
+    grid = (grid[0], SO_TOP, SO_REFINE, SO_LEVELS) if p.n_obj == 1 else grid + (MAX_CENTRES,)
+    path = Path(cache) / f"{name}-{'-'.join(map(str, grid))}.npz" if cache else None
+    if path is not None and path.exists():
+        z = np.load(path)
+        return {"X": z["X"], "F": z["F"], "evaluations": int(z["evaluations"]), "seconds": float(z["seconds"])}
+    ref = reference_front(name, quick=quick, log=log)
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        np.savez(path, **ref)
+    return ref
+
+
+def _budget(info):
+    a = info["algorithm"]
+    text = f"{a['name']} {a['pop']}x{a['gen']}"
+    if a.get("polish"):
+        text += f" + {a['polish']}"
+    return text
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="coarse reference lattices")
+    ap.add_argument("--problems", default=None, help="comma list (default: every problem with <= 2 variables)")
+    ap.add_argument("--cache", default=None, help="folder that keeps the reference fronts")
+    ap.add_argument("--no-auto", action="store_true",
+                    help="skip the second default run with the automatic number of processes")
+    args = ap.parse_args(argv)
+    todo = args.problems.split(",") if args.problems else bench_problems()
+
+    def log(msg):
+        print(msg, file=sys.stderr, flush=True)
+
+    rows, ok = [], True
+    for name in todo:
+        p = get(name)
+        ref = _cached_reference(name, args.quick, args.cache, log)
+        F, wall, info = default_run(name, n_jobs=2)
+        if args.no_auto:
+            auto = ""
+        else:  # the same run with n_jobs=None: the same front, the runner's choice of processes
+            F_auto, wall_auto, info_auto = default_run(name, n_jobs=None)
+            same = F_auto.shape == F.shape and np.array_equal(F_auto, F)
+            ok &= same
+            auto = f"{wall_auto:.1f} ({info_auto['n_jobs']}){'' if same else ' FRONT DIFFERS'}"
+        m = compare(p, ref["F"], F)
+        if p.n_obj == 1:
+            good = m["gap"] <= GAP_MAX and wall < SECONDS_MAX
+            quality = f"gap {m['gap']:+.2e}"
+        else:
+            good = m["igd_plus"] <= IGD_MAX and m["hv_ratio"] >= HV_MIN and wall < SECONDS_MAX
+            quality = f"{m['igd_plus']:.4f}  {m['hv_ratio']:.4f}"
+        ok &= good
+        rows.append((name, p.n_var, p.n_obj, quality, len(F), len(ref["F"]), wall, auto, _budget(info),
+                     "ok" if good else "MISS"))
+        log(f"{name}: {quality}, {wall:.1f} s ({len(ref['F'])} reference points, "
+            f"{ref['evaluations']} evaluations in {ref['seconds']:.0f} s)")
+    print("| problem | vars | obj | IGD+ (or gap) | HV ratio | front | ref. front | s (2 jobs) "
+          "| s (auto: jobs) | default run | |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        q = r[3].split()
+        igd, hv = (q[0], q[1]) if q[0] != "gap" else (" ".join(q), "-")
+        print(f"| {r[0]} | {r[1]} | {r[2]} | {igd} | {hv} | {r[4]} | {r[5]} | {r[6]:.1f} | {r[7]} | {r[8]} | {r[9]} |")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
