@@ -407,7 +407,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="save the algorithm state every K generations (resume with --resume)")
     op.add_argument("--resume", metavar="DIR", default=None,
                     help="continue the checkpointed run in DIR (other run options are ignored)")
-    op.add_argument("--algorithm", default=None, help="ga, nsga2 or nsga3 (default: the problem's)")
+    op.add_argument("--algorithm", default=None,
+                    help="ga, de, nsga2, nsga2-mnn or nsga3 (default: the problem's)")
     op.set_defaults(func=_cmd_optimize)
 
     sw = sub.add_parser("sweep", help="weighted-sum optima of a 2-objective problem for a range of weights")
@@ -440,14 +441,17 @@ def build_parser() -> argparse.ArgumentParser:
     ds.add_argument("--payload", type=float, default=None, help="payload force [N] for the torque objective")
     ds.add_argument("--pick", default=None, metavar="NAME=W,...",
                     help="choose design.json by weights of the normalised objectives (default: the knee)")
-    ds.add_argument("--algorithm", default=None, help="ga, nsga2 or nsga3 (default: ga for one objective, else nsga2)")
+    ds.add_argument("--algorithm", default=None,
+                    help="ga, de, nsga2, nsga2-mnn or nsga3 (default: ga for one objective, else nsga2)")
     ds.add_argument("--pop", type=int, default=None, help="population size (default 40)")
     ds.add_argument("--gen", type=int, default=None, help="generations (default 50)")
     ds.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
     ds.add_argument("--n-jobs", type=int, default=2, help="joblib worker processes (default 2)")
     ds.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None, help="evaluate on a Dask cluster")
     ds.add_argument("--no-polish", action="store_true",
-                    help="skip the local polish of each objective's best design (COBYLA + direct search)")
+                    help="skip the local polish of each objective's best design (SLSQP, COBYLA and a "
+                         "direct search; with a free placement, lengths searched with the best "
+                         "height for each)")
     ds.add_argument("--out", required=True, help="output folder")
     ds.set_defaults(func=_cmd_design)
 

@@ -1875,7 +1875,7 @@ def _polish_start(item):
     objective the placement does not change, with a free placement: the placement scan
     of :func:`_place` (without zoom), then :func:`_polish_lengths`. Otherwise (a fixed
     placement, or an objective that depends on it) up to ``rounds`` rounds of
-    :func:`_place` and :func:`_polish`, until a round gains less than 1e-4 (relative).
+    :func:`_place` and :func:`_polish`, until a round gains less than 0.1 %.
     Every evaluation uses the certification's sampling. Returns ``(x, f)`` of a
     certified design better than the start, or None."""
     problem, x, j, seed, rounds = item
@@ -1903,7 +1903,7 @@ def _polish_start(item):
             gain = (f_cur - fn) / max(abs(f_cur), 1e-300) if math.isfinite(f_cur) else math.inf
             if fn < f_cur:
                 cur, f_cur = new, fn
-            if not gain > 1e-4:
+            if not gain > 1e-3:
                 break
     if not f_cur < f0 or not certify(ev, ev.decode(cur))["feasible"]:
         return None
