@@ -158,8 +158,20 @@ def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
 
 def stop_workers():
     """End every local worker process now (after an interrupt or a fatal error)."""
+    import threading
+
     from joblib.externals.loky import reusable_executor
 
+    # killing the workers can race loky's manager thread, which then dies with a
+    # KeyError traceback on stderr: the run is already ending with its one line
+    previous = threading.excepthook
+
+    def _quiet(args):
+        if args.thread is not None and args.thread.name.startswith("ExecutorManagerThread"):
+            return
+        previous(args)
+
+    threading.excepthook = _quiet
     ex = reusable_executor._executor
     if ex is not None:
         ex.shutdown(wait=False, kill_workers=True)
