@@ -1,16 +1,18 @@
-# The two commands of the README: `make run` and `make test`.
-# Each builds the virtual environment .venv if it is missing.
+# The commands of the README: `make run`, `make test` and `make docs`.
+# Each builds the virtual environment .venv if it is missing; every install is
+# constrained to the tested versions (constraints.txt).
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+PIP := $(BIN)/python -m pip install --quiet -c constraints.txt
 
-.PHONY: run test bench clean
+.PHONY: run test docs bench clean
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml constraints.txt
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test,dask]'
+	$(PIP) -e '.[test,dask]'
 	touch $(STAMP)
 
 run: $(STAMP)
@@ -19,6 +21,12 @@ run: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
+
+# the API reference (autodoc + numpydoc), the tutorials and the output reference
+# (myst-parser), warnings as errors; the docs extra is installed when missing
+docs: $(STAMP)
+	$(BIN)/python -c "import sphinx, numpydoc, myst_parser" 2>/dev/null || $(PIP) -e '.[docs]'
+	$(BIN)/sphinx-build -W --keep-going -b html docs build/docs
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_lci.py

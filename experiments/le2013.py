@@ -467,11 +467,11 @@ def run(out: Path, quick: bool = False) -> pd.DataFrame:
     _io.write_csv(curve, out / "curve.csv")
 
     ga = dict(pop=6, gen=3) if quick else {}
-    best = optimize(get("le2013"), seed=1, out=out / "front", progress=False, **ga).front.iloc[0]
-    relaxed = optimize(get("le2013-relaxed"), seed=1, out=out / "relaxed", progress=False,
+    best = optimize(get("le2013"), seed=1, out=out / "front", progress=False, overwrite=True, **ga).front.iloc[0]
+    relaxed = optimize(get("le2013-relaxed"), seed=1, out=out / "relaxed", progress=False, overwrite=True,
                        **ga).front.iloc[0]
     sweep(get("le2013-gamma"), parse_weights("0,0.5,1" if quick else "0:1:0.1"), seed=1,
-          out=out / "sweep", progress=False, **(dict(pop=6, gen=2) if quick else {}))
+          out=out / "sweep", progress=False, overwrite=True, **(dict(pop=6, gen=2) if quick else {}))
     at_paper = square_side(1.0, paper_rho, tied_half_base(paper_rho))
 
     fa = _flowchart_analysis(curve)

@@ -281,10 +281,10 @@ def run(out, quick: bool = False) -> pd.DataFrame:
                       ignore_index=True)
     # the (r_MIC, GCI) trade-off inside Omega_W-GCI: front and weighting sweep
     sizes = dict(pop=8, gen=3) if quick else {}
-    optimize(get("liu2006-w-gci"), seed=1, out=out / "front", progress=False, **sizes)
-    optimize(get("liu2006-many"), seed=1, out=out / "front_many", progress=False, **sizes)
+    optimize(get("liu2006-w-gci"), seed=1, out=out / "front", progress=False, overwrite=True, **sizes)
+    optimize(get("liu2006-many"), seed=1, out=out / "front_many", progress=False, overwrite=True, **sizes)
     sweep(get("liu2006-w-gci"), parse_weights("0,0.5,1" if quick else "0:1:0.1"), seed=1,
-          out=out / "sweep", progress=False, **sizes)
+          out=out / "sweep", progress=False, overwrite=True, **sizes)
     return table
 
 

@@ -217,11 +217,9 @@ def _optimise_mechanism(args):
     Table 1's rates for the weights ``ws`` of the paper's Table."""
     key, folder, pop, gen, ws, rates = args
     problem = get(PROBLEMS[key])
+    # the sweep writes its NSGA-II front run's files too (front.csv, front.png)
     table = sweep(problem, parse_weights(WEIGHTS), pop, gen, SEED, n_jobs=1, out=folder,
-                  progress=False)
-    # the sweep's own NSGA-II run (same seed and sizes) wrote front.csv without a figure:
-    # the same run again, with front.png
-    optimize(problem, "nsga2", pop, gen, SEED, n_jobs=1, out=folder, progress=False)
+                  progress=False, overwrite=True)
     return table, {w: _run_paper_ga(problem, w, pop, gen, rates) for w in ws}
 
 

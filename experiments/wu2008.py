@@ -487,7 +487,8 @@ def _claim_rows(curve: pd.DataFrame) -> list[dict]:
 
 
 def _runs(out: Path, quick: bool):
-    kw = dict(seed=1, progress=False, n_jobs=1 if quick else 2)
+    # the paper's folder is reproduce's: a run of the other mode (quick or full) is replaced
+    kw = dict(seed=1, progress=False, n_jobs=1 if quick else 2, overwrite=True)
     small = dict(pop=8, gen=3) if quick else {}
     runner.optimize(problems.get("wu2008"), out=out / "front", **small, **kw)
     runner.optimize(problems.get("wu2008-dynamic"), out=out / "front_dynamic",

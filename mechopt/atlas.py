@@ -35,6 +35,7 @@ indices.
 """
 from __future__ import annotations
 
+import json
 import math
 import sys
 import time
@@ -58,7 +59,6 @@ __all__ = [
     "compute_atlas",
     "draw_atlas",
     "run_atlas",
-    "register",
 ]
 
 #: index names of the command line -> columns of atlas.csv
@@ -518,17 +518,19 @@ CHUNK_DIR = ".atlas_chunks"
 def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", mode: str = "+-",
               n_jobs: int = 2, dask: str | None = None, where: str | None = None,
               figures: bool = True, chunk_size: int | None = None, dask_timeout: float = 10.0,
-              verbose: bool = True) -> dict:
+              verbose: bool = True, overwrite: bool = False) -> dict:
     """Compute, write and draw an atlas into the folder ``out``.
 
     Writes ``atlas.csv``, ``atlas.json`` (settings, counts, timings),
-    ``atlas_<column>.png`` per index column and, with ``where``, ``region.csv``.
-    Every input is checked before any work starts. Returns the manifest.
+    ``atlas_<column>.png`` per index column and, with ``where``, ``region.csv``,
+    as one set (:func:`mechopt.io.output_set`: ``manifest.json`` says last that the
+    set is complete). Every input is checked before any work starts. A folder
+    holding an atlas of other settings (or another kernel path) is refused unless
+    ``overwrite``; the same command again resumes from the finished chunks.
+    Returns the contents of ``atlas.json``.
     """
     from . import io as _io
     from .conditions import parse_condition
-    from .parallel import connect
-    from .progress import Progress
     from .quadrature import QUADRATURES
 
     t0 = time.perf_counter()
@@ -551,6 +553,20 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
     if where is not None:
         cond = parse_condition(where, names=("r1", "r2", "r3", "s", "t") + cols)
     out = _io.prepare_out_dir(out)
+    key = {"mechanism": "five-bar", "step": step, "indices": list(groups), "quadrature": quadrature,
+           "mode": mode, "where": where, "figures": bool(figures), "kernel": "numba" if _k.HAVE_NUMBA else "numpy"}
+    with _io.run_in(out, "atlas", key, ATLAS_OUTPUTS, overwrite) as run:
+        return _run_atlas(out, run, step, groups, cols, quadrature, mode, n_jobs, dask, dask_timeout, where,
+                          cond, figures, chunk_size, verbose, t0)
+
+
+def _run_atlas(out, run, step, groups, cols, quadrature, mode, n_jobs, dask, dask_timeout, where, cond,
+               figures, chunk_size, verbose, t0):
+    """The computation and the files of :func:`run_atlas` (its inputs checked)."""
+    from . import io as _io
+    from .parallel import connect
+    from .progress import Progress
+
     client = connect(dask, timeout=dask_timeout) if dask is not None else None
     try:
         grid_n = len(design_grid(step))
@@ -575,15 +591,39 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
     finally:
         if client is not None:
             client.close()
-    _io.write_csv(table, out / "atlas.csv")
+    with _io.output_set(out, run) as stage:
+        _write_atlas(stage, table, groups, cols, cond, where, quadrature, figures, t0, t_compute, step,
+                     mode, dask, n_jobs)
     import shutil
 
-    shutil.rmtree(out / CHUNK_DIR, ignore_errors=True)  # atlas.csv is complete
+    shutil.rmtree(out / CHUNK_DIR, ignore_errors=True)  # the atlas is complete
+    manifest = json.loads((out / "atlas.json").read_text())
+    if verbose:
+        msg = (f"atlas: {len(table)} designs ({manifest['n_degenerate']} without MIC) in {t_compute:.1f} s "
+               f"[{manifest['backend']}, {'numba' if _k.HAVE_NUMBA else 'numpy'}], "
+               f"{quadrature} means, mode {mode}")
+        print(msg)
+        if manifest["n_region"] is not None:
+            print(f"region '{where}': {manifest['n_region']} designs -> {out / 'region.csv'}")
+        print(f"wrote {', '.join(manifest['files'])} in {out}")
+    return manifest
+
+
+#: the names an atlas writes (such files that no run manifest accounts for are refused)
+ATLAS_OUTPUTS = ("atlas.csv", "region.csv", "atlas.json", "atlas_*.png")
+
+
+def _write_atlas(stage, table, groups, cols, cond, where, quadrature, figures, t0, t_compute, step, mode,
+                 dask, n_jobs):
+    """The atlas's files, written into the staging folder of its output set."""
+    from . import io as _io
+
+    _io.write_csv(table, stage / "atlas.csv")
     region = None
     files = ["atlas.csv"]
     if cond is not None:
         region = cond.evaluate(table)
-        _io.write_csv(table[region], out / "region.csv")
+        _io.write_csv(table[region], stage / "region.csv")
         files.append("region.csv")
     t2 = time.perf_counter()
     if figures:
@@ -593,7 +633,7 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
             if c == "r_mic" and "r_mic" not in groups:
                 continue
             fig = draw_atlas(table, c, region=region, where=where, quadrature=quadrature)
-            _io.save_figure(fig, out / f"atlas_{c}.png")
+            _io.save_figure(fig, stage / f"atlas_{c}.png")
             files.append(f"atlas_{c}.png")
     t_draw = time.perf_counter() - t2
     n_bad = int((table["r_mic"] <= 0).sum())
@@ -616,13 +656,4 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
                     "total": round(time.perf_counter() - t0, 3)},
         "files": files + ["atlas.json"],
     }
-    _io.write_json(manifest, out / "atlas.json")
-    if verbose:
-        msg = (f"atlas: {len(table)} designs ({n_bad} without MIC) in {t_compute:.1f} s "
-               f"[{manifest['backend']}, {'numba' if _k.HAVE_NUMBA else 'numpy'}], "
-               f"{quadrature} means, mode {mode}")
-        print(msg)
-        if region is not None:
-            print(f"region '{where}': {int(region.sum())} designs -> {out / 'region.csv'}")
-        print(f"wrote {', '.join(manifest['files'])} in {out}")
-    return manifest
+    _io.write_json(manifest, stage / "atlas.json")

@@ -94,14 +94,21 @@ def _add_parameter(parser, p):
 def _add_evaluate_parsers(sub):
     from .mechanisms import registry
 
-    ev = sub.add_parser("evaluate", help="evaluate one design (every registered mechanism)")
+    ev = sub.add_parser("evaluate", help="evaluate one design (every registered mechanism)",
+                        description="Evaluate one design of a registered mechanism. Lengths [L] are in "
+                                    "any one unit: the printed lengths are in that unit, areas in its "
+                                    "square, angles in deg, the indices dimensionless (docs/outputs.md "
+                                    "lists every key with its unit).")
     evs = ev.add_subparsers(dest="mechanism", required=True, parser_class=_Parser)
     for name, cls in registry().items():
-        mp = evs.add_parser(name, help=cls.cli_help)
+        mp = evs.add_parser(name, help=cls.cli_help,
+                            description=f"{cls.cli_help}. Lengths [L] in any one unit; the output's "
+                                        "lengths are in that unit, its areas in that unit squared.")
         for p in cls.parameters + _disk_options(cls):
             _add_parameter(mp, p)
         mp.add_argument("--json", action="store_true",
-                        help="print one JSON object (inputs echoed; NaN and inf as null)")
+                        help="print one JSON object (inputs echoed; NaN and inf as null; keys and "
+                             "units: docs/outputs.md)")
         mp.set_defaults(func=_cmd_evaluate)
 
 
@@ -170,9 +177,14 @@ def _cmd_optimize(args):
 
     if args.resume is not None:
         args.out = args.resume
+        expect = {"problem": args.problem, "algorithm": args.algorithm, "pop": args.pop, "gen": args.gen,
+                  "seed": args.seed, "checkpoint_every": args.checkpoint_every, **_run_settings(args),
+                  "settings": _problem_options(args)}
+        if args.overwrite:
+            raise ValueError("--overwrite starts a new run; it does not go with --resume")
         client = _client(args)
         try:
-            res = resume(args.resume, args.n_jobs, client)
+            res = resume(args.resume, args.n_jobs, client, expect=expect)
         finally:
             if client is not None:
                 client.close()
@@ -182,9 +194,9 @@ def _cmd_optimize(args):
         problem = get(args.problem, **_problem_options(args))
         client = _client(args)
         try:
-            res = optimize(problem, args.algorithm, args.pop, args.gen, args.seed, args.n_jobs, client,
+            res = optimize(problem, args.algorithm, args.pop, args.gen, _seed(args), args.n_jobs, client,
                            args.out, progress=True, checkpoint_every=args.checkpoint_every,
-                           **_run_settings(args))
+                           overwrite=args.overwrite, **_run_settings(args))
         finally:
             if client is not None:
                 client.close()
@@ -204,8 +216,8 @@ def _cmd_sweep(args):
     weights = parse_weights(args.weights)
     client = _client(args)
     try:
-        table = sweep(problem, weights, args.pop, args.gen, args.seed, args.n_jobs, client, args.out,
-                      **_run_settings(args))
+        table = sweep(problem, weights, args.pop, args.gen, _seed(args), args.n_jobs, client, args.out,
+                      overwrite=args.overwrite, **_run_settings(args))
     finally:
         if client is not None:
             client.close()
@@ -254,7 +266,7 @@ def _cmd_design(args):
                         min_length=args.min_length, max_length=args.max_length, shape=shape,
                         algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
                         n_jobs=args.n_jobs, client=client, out=args.out, progress=True, pick=args.pick,
-                        polish=not args.no_polish)
+                        polish=not args.no_polish, overwrite=args.overwrite)
     finally:
         if client is not None:
             client.close()
@@ -270,6 +282,10 @@ def _cmd_design(args):
 def _problem_options(args) -> dict:
     """Problem constructor options given on the command line (only those set)."""
     return {k: v for k, v in (("quadrature", args.quadrature),) if v is not None}
+
+
+def _seed(args) -> int:
+    return 1 if args.seed is None else args.seed
 
 
 def _run_settings(args) -> dict:
@@ -294,7 +310,8 @@ def _add_run_options(p, resumable=False):
                    help="probability that an offspring is mutated (polynomial mutation); default: the algorithm's")
     p.add_argument("--mutation-eta", type=float, default=None, metavar="ETA",
                    help="distribution index of the polynomial mutation (default: the algorithm's)")
-    p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    # default None (meaning 1): --resume must tell a seed given from the default
+    p.add_argument("--seed", type=int, default=None, help="random seed (default 1)")
     p.add_argument("--n-jobs", type=int, default=None,
                    help="joblib worker processes (default: auto, 1 if a generation evaluates in under "
                         "0.2 s, else 2; recorded in run.json)")
@@ -304,6 +321,8 @@ def _add_run_options(p, resumable=False):
     p.add_argument("--quadrature", default=None, choices=None,
                    help="rule of the disk means of the Liu 2006 problems: polar (default, the "
                         "paper's) or area; recorded in run.json")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace another run that --out holds (only the files that run wrote)")
 
 
 def _first_missing(path):
@@ -340,7 +359,7 @@ def _cmd_atlas_five_bar(args):
               mode=args.mode, n_jobs=2 if args.n_jobs is None else args.n_jobs, dask=args.dask,
               where=args.where,
               figures=not args.no_figures, chunk_size=args.chunk_size,
-              dask_timeout=args.dask_timeout)
+              dask_timeout=args.dask_timeout, overwrite=args.overwrite)
     return 0
 
 
@@ -357,7 +376,8 @@ def _add_atlas_parsers(subparsers):
                     "on a lattice; write atlas.csv, atlas.json and one PNG per index.")
     fb.add_argument("--index", default=",".join(DEFAULT_INDICES),
                     help="comma-separated index groups: gci, mci, gvi, gpi, gsi, r_mic (default: all)")
-    fb.add_argument("--step", type=float, default=0.01, help="lattice step in (0, 0.5] (default 0.01)")
+    fb.add_argument("--step", type=float, default=0.01, help="lattice step of the non-dimensional "
+                    "link ratios (r1 + r2 + r3 = 3), in [0.001, 0.5] (default 0.01)")
     fb.add_argument("--quadrature", default="area", help="area (default) or polar")
     fb.add_argument("--mode", default="+-", help="working mode: +-, -+, ++ or -- (default +-)")
     par = fb.add_mutually_exclusive_group()
@@ -367,13 +387,15 @@ def _add_atlas_parsers(subparsers):
     par.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None,
                      help="run the chunks on an existing Dask scheduler, e.g. tcp://10.0.0.5:8786")
     fb.add_argument("--dask-timeout", type=float, default=10.0,
-                    help="seconds to wait for the Dask scheduler (default 10)")
+                    help="time to wait for the Dask scheduler [s] (default 10)")
     fb.add_argument("--out", required=True, help="output folder")
     fb.add_argument("--where", default=None,
                     help="optimum region, e.g. \"r_mic > 0.8 and gci > 0.6\": outlined on the "
                          "atlases, its designs written to region.csv")
     fb.add_argument("--chunk-size", type=int, default=None, help="designs per work unit")
     fb.add_argument("--no-figures", action="store_true", help="write the tables only")
+    fb.add_argument("--overwrite", action="store_true",
+                    help="replace an atlas of other settings that --out holds (files it wrote only)")
     fb.set_defaults(func=_cmd_atlas_five_bar)
 
 
@@ -406,7 +428,8 @@ def build_parser() -> argparse.ArgumentParser:
     op.add_argument("--checkpoint-every", type=int, default=None, metavar="K",
                     help="save the algorithm state every K generations (resume with --resume)")
     op.add_argument("--resume", metavar="DIR", default=None,
-                    help="continue the checkpointed run in DIR (other run options are ignored)")
+                    help="continue the checkpointed run in DIR (run options given with it must "
+                         "equal the run's; --n-jobs and --dask may change)")
     op.add_argument("--algorithm", default=None,
                     help="ga, de, nsga2, nsga2-mnn or nsga3 (default: the problem's)")
     op.set_defaults(func=_cmd_optimize)
@@ -419,9 +442,13 @@ def build_parser() -> argparse.ArgumentParser:
     ds = sub.add_parser("design", help="size a mechanism for a task region (requirements over the whole task)")
     ds.add_argument("mechanism", help="five-bar, biglide, bipod or gantry")
     ds.add_argument("--task", required=True,
-                    help="rect:W,H@X,Y | circle:R@X,Y | polygon:x1,y1;x2,y2;... | points:FILE.csv (base frame)")
-    ds.add_argument("--unit", default="mm", help="length unit of the task and of every length (default mm)")
-    ds.add_argument("--min-lci", type=float, default=None, help="LCI >= this everywhere on the task")
+                    help="rect:W,H@X,Y | circle:R@X,Y | polygon:x1,y1;x2,y2;... | points:FILE.csv; "
+                         "lengths [unit] of --unit, in the base frame (base midpoint at the origin, "
+                         "y away from the base)")
+    ds.add_argument("--unit", default="mm",
+                    help="length unit of the task and of every length: mm, cm, m or in (default mm)")
+    ds.add_argument("--min-lci", type=float, default=None,
+                    help="LCI >= this everywhere on the task (dimensionless, in (0, 1))")
     ds.add_argument("--mode", default=None, help="working mode (five-bar: +-, -+, ++, --; bipod: up, down) or any")
     ds.add_argument("--place", default="fixed", help="fixed (default), free-y or free: task placement")
     ds.add_argument("--objectives", default="size,min-lci",
@@ -433,7 +460,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="|link angle from the slider axis| limits [deg] (gantry, biglide; Wu: 15,75)")
     ds.add_argument("--max-stroke", type=float, default=None, help="longest actuator stroke [unit] (sliders)")
     ds.add_argument("--shape", default=None, metavar="R1,R2,R3",
-                    help="fix the link ratios; the design variable is the scale D (Liu 2006 sec. 3.2.3)")
+                    help="fix the link ratios (non-dimensional); the design variable is the scale "
+                         "D [unit] (Liu 2006 sec. 3.2.3)")
     ds.add_argument("--actuator-speed", type=float, default=None, help="actuator speed limit [rad/s or unit/s]")
     ds.add_argument("--actuator-torque", type=float, default=None, help="actuator torque limit [N m or N]")
     ds.add_argument("--min-speed", type=float, default=None, help="guaranteed speed in every direction [unit/s]")
@@ -446,6 +474,8 @@ def build_parser() -> argparse.ArgumentParser:
     ds.add_argument("--pop", type=int, default=None, help="population size (default 40)")
     ds.add_argument("--gen", type=int, default=None, help="generations (default 50)")
     ds.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    ds.add_argument("--overwrite", action="store_true",
+                    help="replace another run that --out holds (only the files that run wrote)")
     ds.add_argument("--n-jobs", type=int, default=2, help="joblib worker processes (default 2)")
     ds.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None, help="evaluate on a Dask cluster")
     ds.add_argument("--no-polish", action="store_true",
@@ -530,7 +560,7 @@ def main(argv=None) -> int:
 
         stop_workers()
         _remove_if_we_made_it_empty(out_before)
-        where = f" {exc.filename}" if exc.filename else ""
+        where = f" {exc.filename}" if exc.filename else (f" in {out}" if out else "")
         print(f"mechopt: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
         return EXIT_USAGE
     finally:

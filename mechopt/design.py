@@ -485,18 +485,33 @@ class Requirements:
     reachability in one working mode without crossing a type-II singularity is
     always required.
 
-    min_lci : LCI >= gamma over the task, in (0, 1).
-    joint_limits : ``((lo1, hi1), (lo2, hi2))`` (or one ``(lo, hi)`` for both) crank
-        angles [rad] of the five-bar, as :meth:`FiveBar.ik` returns them (unwrapped).
-    link_angle : ``(lo, hi)`` [rad]: ``lo <= |theta_i| <= hi`` for the angle of each
-        link from the slider direction (biglide, gantry; Wu 2008 eq. 1, 13).
-    max_stroke : largest actuator stroke [L] (biglide, bipod, gantry).
-    min_speed : guaranteed platform speed in every direction [L/s]; needs
-        ``actuator_speed`` (rad/s or L/s).
-    min_force : guaranteed platform force in every direction [N]; needs
-        ``actuator_torque`` (N m or N).
-    payload : force [N] to hold in the worst direction (the ``torque`` objective).
-    singularity_margin : smallest |sine of the angle between the legs| allowed.
+    Parameters
+    ----------
+    min_lci : float, optional
+        LCI >= gamma over the task, gamma in (0, 1).
+    joint_limits : tuple, optional
+        ``((lo1, hi1), (lo2, hi2))`` (or one ``(lo, hi)`` for both) crank angles
+        [rad] of the five-bar, as :meth:`FiveBar.ik
+        <mechopt.mechanisms.five_bar.FiveBar.ik>` returns them (unwrapped).
+    link_angle : tuple, optional
+        ``(lo, hi)`` [rad]: ``lo <= |theta_i| <= hi`` for the angle of each link from
+        the slider direction (biglide, gantry; Wu 2008 eq. 1, 13).
+    max_stroke : float, optional
+        Largest actuator stroke [L] (biglide, bipod, gantry).
+    min_speed : float, optional
+        Guaranteed platform speed in every direction [L/s]; needs
+        ``actuator_speed``.
+    min_force : float, optional
+        Guaranteed platform force in every direction [N]; needs
+        ``actuator_torque``.
+    actuator_speed : float, optional
+        Actuator rate limit [rad/s for cranks, L/s for sliders].
+    actuator_torque : float, optional
+        Actuator effort limit [N m for cranks, N for sliders].
+    payload : float, optional
+        Force [N] to hold in the worst direction (the ``torque`` objective).
+    singularity_margin : float
+        Smallest ``|sine of the angle between the legs|`` allowed (default 1e-3).
     """
 
     min_lci: float | None = None
@@ -1953,7 +1968,8 @@ def _polish_front(problem, X, objectives=None, n_starts=None, rounds=3, seed=0, 
 def design(mechanism, task, requirements: Requirements | None = None, objectives=("size", "min-lci"),
            *, mode=None, place="fixed", min_length=None, max_length=None, shape=None,
            algorithm=None, pop=None, gen=None, seed=1, n_jobs=1, client=None, out=None,
-           progress=False, polish=True, pick=None, checkpoint_every=None, plot=True) -> DesignResult:
+           progress=False, polish=True, pick=None, checkpoint_every=None, plot=True,
+           overwrite=False) -> DesignResult:
     """Size ``mechanism`` (one of :data:`MECHANISMS`) for ``task``.
 
     Builds :class:`mechopt.problems.design.DesignProblem`, runs it with
@@ -1966,15 +1982,15 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     counted in ``info["dropped_by_certification"]``) and returns a
     :class:`DesignResult`. With ``out``, writes ``front.csv``, ``design.json`` (the
     knee, or ``pick`` weights), ``run.json``, ``history.csv``, ``front.png`` and
-    ``design.png``; they appear only once all are computed (a staging folder inside
-    ``out`` is renamed file by file), so a failed run leaves nothing half-written.
+    ``design.png`` as one set (:func:`mechopt.io.output_set`, with ``manifest.json``
+    written last), so a failed run leaves nothing half-written; a folder holding
+    another run is refused unless ``overwrite``.
 
     Raises :class:`NoFeasibleDesign` (a ValueError) naming the requirement that
     fails most when no design is feasible.
     """
     from . import io as _io
     from .problems import get as _problem
-    from .runner import optimize
 
     # the registered "design" problem (mechopt.problems.design.DesignProblem), built on
     # this module's evaluator: through the registry, so that the two modules do not
@@ -1985,71 +2001,94 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     ev = problem.evaluator
     if pick is not None:
         _parse_weights(pick, ev.objectives)
-    staging = None
+    if checkpoint_every is not None:
+        raise ValueError("design runs are not checkpointed; run mechopt.runner.optimize on the "
+                         "registered 'design' problem to checkpoint one")
+    manifest = None
     if out is not None:
         out = _io.prepare_out_dir(out)
-        import tempfile
+        key = {"mechanism": mechanism, "task": _task_digest(task), "requirements": repr(requirements),
+               "objectives": list(objectives), "mode": mode, "place": place, "min_length": min_length,
+               "max_length": max_length, "shape": shape, "algorithm": repr(algorithm), "pop": pop, "gen": gen,
+               "seed": seed, "polish": polish, "pick": pick}
+        with _io.run_in(out, "design", key, DESIGN_OUTPUTS, overwrite) as manifest:
+            return _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress,
+                           polish, manifest)
+    return _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, None, progress, polish, None)
 
-        staging = Path(tempfile.mkdtemp(prefix=".design-", dir=out))
-    try:
-        run = optimize(problem, algorithm, pop, gen, seed, n_jobs, client, staging, progress=progress,
-                       plot=False, checkpoint_every=checkpoint_every)
-        info = dict(run.info)
-        if not len(run.front):
-            raise _no_design(problem, run)
-        X = run.front[list(problem.var_names)].to_numpy(float)
-        polished = []
-        if polish:
-            new = _polish_front(problem, X, seed=seed, n_jobs=info.get("n_jobs") or n_jobs or 1, client=client)
-            for j, rows_j in new.items():
-                if rows_j:
-                    X = np.vstack([X, *rows_j])
-                    polished.append(ev.objectives[j])
-        rows, kept, dropped = [], [], 0
-        for x in X:
-            v = ev.decode(x)
-            res = certify(ev, v)
-            if not res["feasible"]:
-                dropped += 1
-                continue
-            rows.append(ev.row(v, res))
-            kept.append(ev.objective_values(res))
-        if not rows:
-            raise _no_design(problem, run, certified=True)
-        F = np.array(kept) * np.array([OBJECTIVES[o][0] for o in ev.objectives])
-        nd = _non_dominated(F)
-        front = pd.DataFrame([rows[i] for i in nd])
-        keys = list(ev.objectives)
-        front = front.sort_values(keys, kind="mergesort").drop_duplicates(
-            subset=[c for c in front.columns if c in (*ev.spec.lengths, "mode", "task_x", "task_y")]
-        ).reset_index(drop=True)
-        info.update(design=ev.settings(), polished=polished, dropped_by_certification=dropped,
-                    front_size=int(len(front)), problem="design", certification=asdict(Sampling.fine()))
-        result = DesignResult(front, info, ev, run)
-        chosen = result.pick(pick)
-        result.chosen_index = chosen["index"]
-        info["chosen"] = {"index": chosen["index"], "by": "knee" if pick is None else f"weights {pick}"}
-        if out is not None:
-            from .plotting import plot_front
 
-            fig_front = plot_front(problem, front, run.history, run.population, info)
-            fig_design = plot_design(ev, chosen)
-            _io.write_csv(front, staging / "front.csv")
-            _io.write_json(_json_record(chosen), staging / "design.json")
-            _io.write_json(info, staging / "run.json")
-            _io.save_figure(fig_front, staging / "front.png")
-            _io.save_figure(fig_design, staging / "design.png")
-            import os
+def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest):
+    """The run, polish and certification of :func:`design`, and its files with ``out``."""
+    from . import io as _io
+    from .runner import optimize
 
-            for name in ("history.csv", "front.png", "design.png", "design.json", "run.json", "front.csv"):
-                if (staging / name).exists():
-                    os.replace(staging / name, out / name)
-        return result
-    finally:
-        if staging is not None:
-            import shutil
+    run = optimize(problem, algorithm, pop, gen, seed, n_jobs, client, None, progress=progress,
+                   plot=False)
+    info = dict(run.info)
+    if not len(run.front):
+        raise _no_design(problem, run)
+    X = run.front[list(problem.var_names)].to_numpy(float)
+    polished = []
+    if polish:
+        new = _polish_front(problem, X, seed=seed, n_jobs=info.get("n_jobs") or n_jobs or 1, client=client)
+        for j, rows_j in new.items():
+            if rows_j:
+                X = np.vstack([X, *rows_j])
+                polished.append(ev.objectives[j])
+    rows, kept, dropped = [], [], 0
+    for x in X:
+        v = ev.decode(x)
+        res = certify(ev, v)
+        if not res["feasible"]:
+            dropped += 1
+            continue
+        rows.append(ev.row(v, res))
+        kept.append(ev.objective_values(res))
+    if not rows:
+        raise _no_design(problem, run, certified=True)
+    F = np.array(kept) * np.array([OBJECTIVES[o][0] for o in ev.objectives])
+    nd = _non_dominated(F)
+    front = pd.DataFrame([rows[i] for i in nd])
+    keys = list(ev.objectives)
+    front = front.sort_values(keys, kind="mergesort").drop_duplicates(
+        subset=[c for c in front.columns if c in (*ev.spec.lengths, "mode", "task_x", "task_y")]
+    ).reset_index(drop=True)
+    info.update(design=ev.settings(), polished=polished, dropped_by_certification=dropped,
+                front_size=int(len(front)), problem="design", certification=asdict(Sampling.fine()))
+    result = DesignResult(front, info, ev, run)
+    chosen = result.pick(pick)
+    result.chosen_index = chosen["index"]
+    info["chosen"] = {"index": chosen["index"], "by": "knee" if pick is None else f"weights {pick}"}
+    if out is not None:
+        from .plotting import plot_front
 
-            shutil.rmtree(staging, ignore_errors=True)
+        fig_front = plot_front(problem, front, run.history, run.population, info)
+        fig_design = plot_design(ev, chosen)
+        with _io.output_set(out, manifest) as stage:
+            _io.write_csv(front, stage / "front.csv")
+            _io.write_csv(run.history, stage / "history.csv")
+            _io.write_json(_json_record(chosen), stage / "design.json")
+            _io.write_json(info, stage / "run.json")
+            _io.save_figure(fig_front, stage / "front.png")
+            _io.save_figure(fig_design, stage / "design.png")
+    return result
+
+
+def _task_digest(task) -> str:
+    """sha256 of everything that defines ``task`` (its arrays byte for byte): a run
+    manifest's record of the task, whatever its size."""
+    import hashlib
+
+    h = hashlib.sha256()
+    for part in (task.kind, task.unit, task.center, task.radius):
+        h.update(repr(part).encode())
+    for arr in (task.vertices, task.pts):
+        h.update(b"-" if arr is None else np.ascontiguousarray(arr, dtype="<f8").tobytes())
+    return h.hexdigest()
+
+
+#: the names a design run writes (such files no run manifest accounts for are refused)
+DESIGN_OUTPUTS = ("front.csv", "history.csv", "design.json", "run.json", "front.png", "design.png")
 
 
 def _non_dominated(F):

@@ -3,16 +3,16 @@
 Convention (Liu 2006, eq. 1): ``theta_dot = J p_dot``. With the singular values
 ``s_max >= s_min`` of ``J``:
 
-=====================  =====================  ============================
-index                  value                  source
-=====================  =====================  ============================
-LCI = 1/kappa_J        s_min / s_max          Liu eq. (3), Le eq. (20)
-|V|max, |V|min         1/s_min, 1/s_max       Liu eq. (10)
-|tau|max, |tau|min     s_max, s_min           Liu eq. (13)
-|D|max, |D|min         1/s_min^2, 1/s_max^2   Liu eq. (18), k_p = 1
-TQI                    2 kappa/(kappa^2 + 1)  Stan 2008 eq. (9), Frobenius
-manipulability         1/|det J|              sqrt(det(J^-1 J^-T))
-=====================  =====================  ============================
+==========================  =========================  ==============================
+index                       value                      source
+==========================  =========================  ==============================
+LCI = 1/kappa_J             s_min / s_max              Liu eq. (3), Le eq. (20)
+``|V|max``, ``|V|min``      1/s_min, 1/s_max           Liu eq. (10)
+``|tau|max``, ``|tau|min``  s_max, s_min               Liu eq. (13)
+``|D|max``, ``|D|min``      1/s_min^2, 1/s_max^2       Liu eq. (18), k_p = 1
+TQI                         2 kappa/(kappa^2 + 1)      Stan 2008 eq. (9), Frobenius
+manipulability              ``1/|det J|``              ``sqrt(det(J^-1 J^-T))``
+==========================  =========================  ==============================
 
 All functions broadcast over leading axes: ``J`` has shape ``(..., 2, 2)``. Where
 ``J`` contains NaN (unreachable pose) the result is NaN; callers decide how to

@@ -3,7 +3,7 @@
 Each paper's printed values live in ``mechopt/data/<paper>.csv`` with their
 source (section, table, figure or equation), unit and printed decimals; one
 :class:`Record` per row (:func:`lookup`). A reproduced value *matches* when it lies
-within the acceptance tolerance of its row, in the printed unit:
+within the acceptance tolerance of its row, in the printed unit::
 
     tol = max(half a unit of the last printed digit,
               tol_abs,                 # an absolute accuracy in that unit

@@ -34,7 +34,10 @@ Outputs go through :mod:`mechopt.io` (atomic writes):
                  ``seconds_per_generation`` (the timed generation), backend,
                  versions, wall time, ``feasible`` (feasible designs in the final
                  population) and ``evaluations``
-``front.png``    the front (or the convergence curve of a single objective)
+``front.png``    the front (or the convergence curve of a single
+                 objective)
+``manifest.json`` the run (problem, settings, algorithm, seed) and, written
+                 last, that the set is complete with each file's sha256
 
 A run may end without any feasible design (a small budget, a demanding
 requirement). That is an answer, not an error: ``front.csv`` keeps its header
@@ -431,7 +434,7 @@ def optimize(problem, algorithm=None, pop: int | None = None, gen: int | None = 
              plot: bool = True, checkpoint_every: int | None = None, termination=None,
              tol: float | None = None, crossover_prob: float | None = None,
              mutation_prob: float | None = None, crossover_eta: float | None = None,
-             mutation_eta: float | None = None) -> RunResult:
+             mutation_eta: float | None = None, overwrite: bool = False) -> RunResult:
     """Run ``problem`` with a seeded pymoo algorithm; write the run folder if ``out``.
 
     ``algorithm`` is a name of :data:`ALGORITHMS` (default: the problem's
@@ -448,11 +451,23 @@ def optimize(problem, algorithm=None, pop: int | None = None, gen: int | None = 
     (:data:`PARALLEL_SECONDS`); the front does not depend on it.
 
     With ``checkpoint_every=K`` (needs ``out``) the whole algorithm state (population,
-    random generator, termination, history) is pickled atomically to
-    ``out/checkpoint.pkl`` every K generations; :func:`resume` continues from it and
-    ends with the same ``front.csv``, byte for byte, as an uninterrupted run. The
-    pickled algorithm (``pickle.load(f)["algorithm_state"]``) can also be stepped
+    random generator, termination, history) is saved atomically to
+    ``out/checkpoint.pkl`` every K generations, authenticated (see
+    :mod:`mechopt.checkpoint`); :func:`resume` continues from it and ends with the
+    same ``front.csv``, byte for byte, as an uninterrupted run. The saved algorithm
+    (``mechopt.checkpoint.read(path)[1]["algorithm_state"]``) can also be stepped
     directly with ``has_next()``/``next()``.
+
+    Before the first evaluation the run's memory and time are estimated
+    (:mod:`mechopt.budget`): a run that cannot fit in memory, or would take longer
+    than 30 days, is refused with the estimate; one above an hour says so.
+
+    The outputs (``front.csv``, ``history.csv``, ``run.json``, ``front.png``) are
+    written as one set, and ``out/manifest.json`` records the run (its problem,
+    settings, algorithm and seed) and, last, that the set is complete
+    (:func:`mechopt.io.output_set`). A folder holding another run is refused unless
+    ``overwrite`` (then the files that run wrote are replaced); files no manifest
+    accounts for are refused, never removed.
     """
     operators = {"crossover_prob": crossover_prob, "mutation_prob": mutation_prob,
                  "crossover_eta": crossover_eta, "mutation_eta": mutation_eta}
@@ -478,31 +493,168 @@ def optimize(problem, algorithm=None, pop: int | None = None, gen: int | None = 
         name = type(algo).__name__
         pop = _plain(getattr(algo, "pop_size", None)) if isinstance(getattr(algo, "pop_size", None),
                                                                     numbers.Integral) else None
-    out = _io.prepare_out_dir(out) if out is not None else None
     algo.setup(problem, termination=term, seed=seed, verbose=False)
     state = {"algorithm": name, "pop": pop, "gen": _max_gen(algo.termination), "seed": seed, "rows": [],
-             "elapsed": 0.0, "checkpoint_every": checkpoint_every}
-    return _drive(algo, state, n_jobs, client, out, progress, plot)
+             "elapsed": 0.0, "checkpoint_every": checkpoint_every,
+             "options": {"problem": problem.name, "settings": dict(problem.settings), "algorithm": name,
+                         "pop": pop, "gen": _max_gen(algo.termination), "seed": seed, "tol": tol,
+                         **operators, "checkpoint_every": checkpoint_every}}
+    _check_budget(problem, algo)
+    if out is None:
+        return _drive(algo, state, n_jobs, client, out, progress, plot)
+    out = _io.prepare_out_dir(out)
+    with _io.run_in(out, "optimize", _run_key(problem, algo, seed), RUN_OUTPUTS, overwrite) as manifest:
+        state["run_id"] = manifest["run_id"]
+        return _drive(algo, state, n_jobs, client, out, progress, plot, manifest)
 
 
-def resume(out, n_jobs: int | None = None, client=None, progress: bool = True, plot: bool = True) -> RunResult:
-    """Continue the run whose checkpoint is ``out/checkpoint.pkl`` (see :func:`optimize`)."""
-    import pickle
+#: the names a run writes into its folder: such files that no manifest of a mechopt run
+#: accounts for are refused (:func:`mechopt.io.claim_out`)
+RUN_OUTPUTS = ("front.csv", "history.csv", "run.json", "front.png", "sweep.csv", "sweep.png", CHECKPOINT)
+
+
+def _run_key(problem, algo, seed) -> dict:
+    """What fixes a run's result: problem, its settings, algorithm, termination, seed."""
+    return {"problem": problem.name, "settings": dict(problem.settings), "algorithm": describe_algorithm(algo),
+            "termination": describe_termination(algo.termination), "seed": seed}
+
+
+def _check_budget(problem, algo):
+    """Refuse a run that cannot fit in memory or would take years (mechopt.budget);
+    print a line for one estimated above an hour."""
+    import math
+    import sys
+
+    from . import budget
+
+    term = algo.termination
+    max_gen = _max_gen(term)
+    max_eval = None
+    for t in (term, getattr(term, "max_evals", None)):
+        n = getattr(t, "n_max_evals", None)
+        if isinstance(n, numbers.Integral) or (isinstance(n, float) and np.isfinite(n)):
+            max_eval = int(n)
+            break
+    pop = getattr(algo, "pop_size", None)
+    if not isinstance(pop, numbers.Integral) or (max_gen is None and max_eval is None):
+        return None  # a termination by time or a custom algorithm: nothing to estimate from
+    n_off = getattr(algo, "n_offsprings", None)
+    n_off = int(n_off) if isinstance(n_off, numbers.Integral) and n_off > 0 else int(pop)
+    if max_gen is None:
+        max_gen = math.ceil(max(max_eval - pop, 0) / n_off) + 1
+    line = budget.check(budget.estimate(problem, int(pop), n_off, max_gen, max_eval))
+    if line:
+        print(line, file=sys.stderr)
+    return line
+
+
+def resume(out, n_jobs: int | None = None, client=None, progress: bool = True, plot: bool = True,
+           expect: dict | None = None) -> RunResult:
+    """Continue the run whose checkpoint is ``out/checkpoint.pkl`` (see :func:`optimize`).
+
+    The checkpoint is authenticated before it is loaded (:mod:`mechopt.checkpoint`)
+    and must belong to the run ``out/manifest.json`` records. ``expect`` holds
+    options the caller asks for (the keys of the checkpoint's ``options``: problem,
+    algorithm, pop, gen, seed, tol, the operator settings, checkpoint_every, and
+    ``settings``, the problem's): any that differ from the checkpointed run's are
+    refused with the list. A finished run, and one stopped before its first
+    checkpoint, say so. Every refusal is a one-line ValueError.
+    """
+    from . import checkpoint as _ck
 
     n_jobs = _n_jobs(n_jobs)
-    path = Path(out) / CHECKPOINT
+    out = Path(out)
+    where = f"--resume {str(out)!r}"
+    manifest = _io.read_manifest(out)
+    path = out / CHECKPOINT
+    if not os.path.lexists(path):
+        if manifest is not None and manifest["status"] == "complete":
+            raise ValueError(f"{where}: this run is complete (its result is front.csv); nothing to resume")
+        if manifest is not None:
+            raise ValueError(f"{where}: the run started but stopped before its first checkpoint; "
+                             f"run it again without --resume")
+        raise ValueError(f"{where} holds no {CHECKPOINT}")
     try:
-        with open(path, "rb") as fh:
-            ck = pickle.load(fh)
+        header, ck = _ck.read(path)
         algo, state = ck["algorithm_state"], ck["state"]
-        if not (hasattr(algo, "has_next") and hasattr(algo, "problem") and isinstance(state, dict)):
-            raise TypeError("not a mechopt checkpoint")
-    except FileNotFoundError:
-        raise ValueError(f"--resume {str(out)!r} holds no {CHECKPOINT}") from None
-    except (OSError, pickle.UnpicklingError, EOFError, KeyError, AttributeError, TypeError,
-            ValueError, ImportError, IndexError) as exc:  # ImportError: written by another version
-        raise ValueError(f"--resume {str(out)!r}: unreadable {CHECKPOINT} ({type(exc).__name__})") from None
-    return _drive(algo, state, n_jobs, client, Path(out), progress, plot)
+        _check_state(algo, state)
+    except _ck.UnreadableCheckpoint as exc:
+        raise ValueError(f"{where}: unreadable {CHECKPOINT} ({exc})") from None
+    except OSError as exc:
+        raise ValueError(f"{where}: unreadable {CHECKPOINT} ({exc.strerror or type(exc).__name__})") from None
+    except (KeyError, TypeError, AttributeError, ValueError) as exc:
+        raise ValueError(f"{where}: unreadable {CHECKPOINT} (not a mechopt run state: "
+                         f"{type(exc).__name__})") from None
+    manifest = _manifest_for(out, where, manifest, header)
+    if expect:
+        diff = _conflicts(header.get("options") or {}, expect)
+        if diff:
+            raise ValueError(f"{where}: options differ from the checkpointed run ({diff}); drop them to "
+                             f"resume, or start a new run in another folder")
+    return _drive(algo, state, n_jobs, client, out, progress, plot, manifest)
+
+
+def _check_state(algo, state):
+    """The loaded checkpoint holds a pymoo algorithm set up on a problem and the
+    runner's state with the types it needs (TypeError/KeyError otherwise)."""
+    from pymoo.core.algorithm import Algorithm
+    from pymoo.core.problem import Problem
+
+    if not isinstance(algo, Algorithm) or not isinstance(getattr(algo, "problem", None), Problem):
+        raise TypeError("not a pymoo algorithm")
+    if not isinstance(state, dict):
+        raise TypeError("state")
+    kinds = {"rows": list, "elapsed": float, "algorithm": (str, type(None)), "seed": numbers.Integral,
+             "gen": (numbers.Integral, type(None)), "checkpoint_every": (numbers.Integral, type(None))}
+    for key, kind in kinds.items():
+        if not isinstance(state[key], kind):
+            raise TypeError(key)
+    if not all(isinstance(r, dict) for r in state["rows"]):
+        raise TypeError("rows")
+
+
+def _manifest_for(out: Path, where: str, manifest, header: dict) -> dict:
+    """The run manifest a resumed checkpoint continues: the folder's, if the
+    checkpoint is that run's; a new one for a folder without (an older mechopt's),
+    unless its run.json names another problem."""
+    from .io import MANIFEST
+
+    if manifest is not None:
+        if manifest.get("run_id") != header.get("run_id"):
+            diff = _io.differences(manifest.get("key", {}), header.get("key") or {})
+            raise ValueError(f"{where}: {CHECKPOINT} belongs to another run than {MANIFEST}"
+                             f"{f' ({diff})' if diff else ''}; remove the one you do not want")
+        if manifest["status"] == "complete":
+            raise ValueError(f"{where}: this run is complete (its result is front.csv); nothing to resume")
+        return manifest
+    import json
+
+    try:
+        done = json.loads((out / "run.json").read_text())
+    except (OSError, ValueError):
+        done = None
+    if isinstance(done, dict) and done.get("problem") not in (None, header.get("problem")):
+        raise ValueError(f"{where}: {CHECKPOINT} is a run of {header.get('problem')}, run.json one of "
+                         f"{done.get('problem')}; remove the one you do not want")
+    manifest = {"kind": "optimize", "key": header.get("key") or {}, "status": "running",
+                "run_id": header.get("run_id") or os.urandom(16).hex(), "owned": [CHECKPOINT]}
+    _io.write_json(manifest, out / MANIFEST)
+    return manifest
+
+
+def _conflicts(recorded: dict, expect: dict) -> str:
+    """``"pop 1 (the run's: 20), seed 4 (the run's: 3)"`` for the asked-for options that
+    differ from the recorded ones ("" if none)."""
+    out = []
+    for key, want in expect.items():
+        if want is None:
+            continue
+        if key == "settings":
+            have = recorded.get("settings") or {}
+            out += [f"{k} {v!r} (the run's: {have.get(k)!r})" for k, v in want.items() if have.get(k) != v]
+        elif recorded.get(key) != want:
+            out.append(f"{key} {want!r} (the run's: {recorded.get(key)!r})")
+    return ", ".join(out)
 
 
 def _steppable(algo):
@@ -516,23 +668,22 @@ def _steppable(algo):
 
 
 def _save_checkpoint(algo, state, out: Path):
-    import pickle
+    """The algorithm and the runner's state, authenticated (mechopt.checkpoint), with a
+    header naming the run, so that ``--resume`` can check it before loading it."""
+    from . import checkpoint as _ck
 
-    # cloudpickle (a joblib dependency) because pymoo's algorithms hold local
-    # functions (its random-state decorator) that plain pickle refuses; the file
-    # loads with plain pickle
-    import cloudpickle
-
+    header = {"run_id": state.get("run_id"), "problem": algo.problem.name,
+              "key": _run_key(algo.problem, algo, state["seed"]), "options": state.get("options"),
+              "generation": int(algo.n_gen), "mechopt": __version__}
     callback, display = algo.callback, algo.display
     algo.callback, algo.display = _steppable(algo)
     try:
-        with _io.atomic_path(out / CHECKPOINT) as tmp, open(tmp, "wb") as fh:
-            cloudpickle.dump({"algorithm_state": algo, "state": state}, fh, protocol=pickle.HIGHEST_PROTOCOL)
+        _ck.write(out / CHECKPOINT, {"algorithm_state": algo, "state": state}, header)
     finally:
         algo.callback, algo.display = callback, display
 
 
-def _drive(algo, state, n_jobs, client, out, progress, plot) -> RunResult:
+def _drive(algo, state, n_jobs, client, out, progress, plot, manifest=None) -> RunResult:
     """Advance ``algo`` to its termination, checkpointing on the way; write the outputs.
 
     ``n_jobs=None`` (without a Dask client): generations 1 and 2 run in this process
@@ -570,6 +721,7 @@ def _drive(algo, state, n_jobs, client, out, progress, plot) -> RunResult:
                     problem.use_parallel(used, None)
             if every and algo.n_gen % every == 0 and algo.has_next():
                 _save_checkpoint(algo, state, out)
+                _io.own(out, manifest, CHECKPOINT)
         res = algo.result()
         best = _optimum(algo)
     finally:
@@ -597,13 +749,14 @@ def _drive(algo, state, n_jobs, client, out, progress, plot) -> RunResult:
         info.update(_violation_info(problem, least))
     history = pd.DataFrame(hist.rows)
     if out is not None:
-        _io.write_csv(front, out / "front.csv")
-        _io.write_csv(history, out / "history.csv")
-        _io.write_json(info, out / "run.json")
-        if plot:
-            from .plotting import plot_front
+        with _io.output_set(out, manifest) as stage:
+            _io.write_csv(front, stage / "front.csv")
+            _io.write_csv(history, stage / "history.csv")
+            _io.write_json(info, stage / "run.json")
+            if plot:
+                from .plotting import plot_front
 
-            _io.save_figure(plot_front(problem, front, history, population, info), out / "front.png")
+                _io.save_figure(plot_front(problem, front, history, population, info), stage / "front.png")
         if (out / CHECKPOINT).exists():
             (out / CHECKPOINT).unlink()  # the run is complete: nothing to resume
     return RunResult(front, history, info, population, least)
@@ -676,13 +829,15 @@ parse_weights = _v.weights
 def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | None = None, client=None,
           out=None, progress: bool = True, tol: float | None = None, crossover_prob: float | None = None,
           mutation_prob: float | None = None, crossover_eta: float | None = None,
-          mutation_eta: float | None = None) -> pd.DataFrame:
+          mutation_eta: float | None = None, overwrite: bool = False) -> pd.DataFrame:
     """Weighted-sum optima of a 2-objective problem for each weight ``w`` of objective 1.
 
     The objectives are scaled by the span of the NSGA-II front of the same seed
     (``Z = w f1/s1 + (1 - w) f2/s2`` in minimisation form), unless the problem
     defines ``weighted_sum(w)`` itself (e.g. Stan 2008's ``Z = W1 T + W2 W``).
-    Writes ``sweep.csv``, the front run's files and ``sweep.png`` when ``out``.
+    Writes ``sweep.csv``, ``sweep.png`` and the front run's ``front.csv``,
+    ``history.csv``, ``run.json`` and ``front.png`` when ``out``, as one set with a
+    manifest (``overwrite`` as in :func:`optimize`).
     ``tol`` and the operator settings apply to every run (see :func:`optimize`).
 
     A weight whose GA run finds no feasible design has ``feasible`` False, NaN
@@ -690,8 +845,6 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | Non
     (``table.attrs["sweep"]``, also under ``"sweep"`` in ``run.json``) say how many
     weights are feasible and, if none and the front is empty, the least violation.
     """
-    from .problems.weighted import WeightedSum  # noqa: F401 (installed sub-package)
-
     if problem.n_obj != 2:
         raise ValueError(f"sweep needs a 2-objective problem, {problem.name} has {problem.n_obj}")
     try:  # every input is checked before the first run writes into out
@@ -707,8 +860,20 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | Non
                   crossover_eta=crossover_eta, mutation_eta=mutation_eta)
     make_algorithm("nsga2", 2, 2, **{k: v for k, v in run_kw.items() if k != "tol"})  # checks them
     _termination(problem, None, gen, tol)
-    out = _io.prepare_out_dir(out) if out is not None else None
-    front_run = optimize(problem, "nsga2", pop, gen, seed, n_jobs, client, out, progress, plot=False, **run_kw)
+    if out is None:
+        return _sweep(problem, weights, pop, gen, seed, n_jobs, client, None, progress, run_kw, None)
+    out = _io.prepare_out_dir(out)
+    key = {"problem": problem.name, "settings": dict(problem.settings), "weights": weights,
+           "pop": pop, "gen": gen, "seed": seed, **run_kw}
+    with _io.run_in(out, "sweep", key, RUN_OUTPUTS, overwrite) as manifest:
+        return _sweep(problem, weights, pop, gen, seed, n_jobs, client, out, progress, run_kw, manifest)
+
+
+def _sweep(problem, weights, pop, gen, seed, n_jobs, client, out, progress, run_kw, manifest):
+    """The runs of :func:`sweep` (its inputs checked) and, with ``out``, its files."""
+    from .problems.weighted import WeightedSum  # noqa: F401 (installed sub-package)
+
+    front_run = optimize(problem, "nsga2", pop, gen, seed, n_jobs, client, None, progress, plot=False, **run_kw)
     F = np.column_stack([ob.sense * front_run.front[ob.name].to_numpy(float) for ob in problem.objectives])
     scales = np.ptp(F, axis=0) if len(F) > 1 else np.ones(2)
     scales = np.where(scales > 0, scales, 1.0)
@@ -719,7 +884,9 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | Non
         single = WeightedSum(problem, float(w), scales)
         r = optimize(single, "ga", pop, gen, seed, n_jobs, client, None, progress=False, plot=False, **run_kw)
         runs.append(r)
-        columns = columns or list(r.front.columns)
+        # the sweep's own total violation is the last column; a problem column of that
+        # name (Le 2013's, the same value as its g_violation) is not written twice
+        columns = columns or [c for c in r.front.columns if c != "violation"]
         if len(r.front):
             rows.append({"weight": float(w), **r.front.iloc[0].to_dict(), "feasible": True, "violation": 0.0})
         else:  # no feasible design for this weight: no optimum, only the least-violating design
@@ -733,13 +900,18 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | Non
     table = pd.DataFrame(rows).reindex(columns=["weight", *columns, "feasible", "violation"])
     table.attrs["sweep"] = info = _sweep_info(problem, runs, table)
     if out is not None:
-        from .plotting import plot_sweep
+        from .plotting import plot_front, plot_sweep
 
-        _io.write_csv(table, out / "sweep.csv")
-        _io.write_json({**front_run.info, "sweep": info}, out / "run.json")
         keep = [*problem.var_names, "violation"]  # every run's final population, for the figure
         population = pd.concat([r.population[keep] for r in runs], ignore_index=True)
-        _io.save_figure(plot_sweep(problem, front_run.front, table, population, info), out / "sweep.png")
+        with _io.output_set(out, manifest) as stage:
+            _io.write_csv(front_run.front, stage / "front.csv")
+            _io.write_csv(front_run.history, stage / "history.csv")
+            _io.write_csv(table, stage / "sweep.csv")
+            _io.write_json({**front_run.info, "sweep": info}, stage / "run.json")
+            _io.save_figure(plot_sweep(problem, front_run.front, table, population, info), stage / "sweep.png")
+            _io.save_figure(plot_front(problem, front_run.front, front_run.history, front_run.population,
+                                       front_run.info), stage / "front.png")
     return table
 
 

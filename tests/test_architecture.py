@@ -22,7 +22,8 @@ LAYERS = [
     ("analysis", ["mechopt.workspace", "mechopt.performance", "mechopt.evaluate"]),
     # the runner drives any pymoo Problem; the problem base class and the weighted sum
     # of a sweep are its machinery, the paper formulations sit above it
-    ("run", ["mechopt.parallel", "mechopt.atlas", "mechopt.plotting", "mechopt.runner",
+    ("run", ["mechopt.parallel", "mechopt.atlas", "mechopt.plotting", "mechopt.runner", "mechopt.checkpoint",
+             "mechopt.budget",
              "mechopt.problems.base", "mechopt.problems.weighted"]),
     ("problems", ["mechopt.problems", "mechopt.design"]),
     ("reproduction", ["mechopt.experiments", "mechopt.reproduce", "mechopt.report"]),

@@ -176,4 +176,4 @@ def test_issue_command_in_a_real_process(tmp_path):
     assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr
     assert LINE.fullmatch(done.stdout.strip()) and done.stdout.count("\n") == 1
     assert json.loads((out / "run.json").read_text())["evaluations"] == 16
-    assert {p.name for p in out.iterdir()} == {"front.csv", "history.csv", "run.json", "front.png"}
+    assert {p.name for p in out.iterdir()} == {"front.csv", "history.csv", "run.json", "front.png", "manifest.json"}

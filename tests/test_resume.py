@@ -31,9 +31,13 @@ def test_killed_run_resumes_to_the_same_front(tmp_path):
         time.sleep(0.05)
     proc.send_signal(signal.SIGKILL)
     proc.wait()
-    # a killed run leaves no output under a final name but the checkpoint
+    # a killed run leaves no output under a final name but the checkpoint, and its
+    # manifest says it is still running
     finals = {p.name for p in run.iterdir() if not p.name.startswith(".")}
-    assert finals == {"checkpoint.pkl"}
+    assert finals == {"checkpoint.pkl", "manifest.json"}
+    import json
+
+    assert json.loads((run / "manifest.json").read_text())["status"] == "running"
 
     done = subprocess.run(_cli("optimize", "--resume", str(run)), capture_output=True, text=True)
     assert done.returncode == 0, done.stderr

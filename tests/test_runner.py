@@ -20,7 +20,15 @@ def _run(tmp_path, name, problem="liu2006-w-gci", **kw):
 
 def test_run_folder_contents(tmp_path):
     out = _run(tmp_path, "a", n_jobs=1)
-    assert {p.name for p in out.iterdir()} == {"front.csv", "history.csv", "run.json", "front.png"}
+    assert {p.name for p in out.iterdir()} == {"front.csv", "history.csv", "run.json", "front.png",
+                                              "manifest.json"}
+    import hashlib
+    import json
+
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert manifest["status"] == "complete" and manifest["kind"] == "optimize"
+    assert manifest["files"] == {n: hashlib.sha256((out / n).read_bytes()).hexdigest()
+                                 for n in ("front.csv", "history.csv", "run.json", "front.png")}
     front = pd.read_csv(out / "front.csv")
     for col in ("r1", "r3", "r_mic", "gci", "g_r_mic_min", "g_gci_min", "gvi_max", "r2"):
         assert col in front.columns

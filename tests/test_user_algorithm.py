@@ -115,7 +115,7 @@ def test_shared_pymoo_defaults_are_not_changed():
 
 
 def test_checkpoint_is_steppable_with_next(tmp_path):
-    """The pickled algorithm continues with ``next()`` alone to the uninterrupted front."""
+    """The saved algorithm continues with ``next()`` alone to the uninterrupted front."""
     ref = optimize(get(PROBLEM), _nsga2(), gen=6, seed=7, n_jobs=1, progress=False, plot=False)
 
     p = get(PROBLEM)
@@ -128,8 +128,9 @@ def test_checkpoint_is_steppable_with_next(tmp_path):
     state = {"algorithm": "NSGA2", "pop": 10, "gen": 6, "seed": 7, "rows": [], "elapsed": 0.0,
              "checkpoint_every": 1}
     _save_checkpoint(algo, state, tmp_path)
-    with open(tmp_path / CHECKPOINT, "rb") as fh:  # plain pickle loads it
-        loaded = pickle.load(fh)["algorithm_state"]
+    from mechopt import checkpoint
+
+    loaded = checkpoint.read(tmp_path / CHECKPOINT)[1]["algorithm_state"]  # authenticated, then loaded
     assert loaded.callback is not None and loaded.display is not None
     while loaded.has_next():
         loaded.next()
@@ -164,8 +165,9 @@ def test_checkpoint_written_by_a_run_resumes_and_steps(tmp_path):
                      checkpoint_every=1, progress=False, plot=False)
     finally:
         R._save_checkpoint = real
-    with open(tmp_path / "saved.pkl", "rb") as fh:
-        loaded = pickle.load(fh)["algorithm_state"]
+    from mechopt import checkpoint
+
+    loaded = checkpoint.read(tmp_path / "saved.pkl")[1]["algorithm_state"]
     while loaded.has_next():
         loaded.next()
     X = loaded.result().opt.get("X")

@@ -35,7 +35,7 @@ TQI. With unit rows, ``J J^T = [[1, c], [c, 1]]`` with ``c = cos(gamma)``, ``gam
 the angle between the struts at ``P``, so ``kappa = sqrt((1+|c|)/(1-|c|))`` and the
 TQI of Stan eq. (9) (``2 kappa / (kappa^2 + 1)``, DESIGN) is ``|sin gamma| = |det J|``.
 Because the area element is ``dA = dq1 dq2 / |det J|``, the integral of TQI over
-the workspace is the area of the admissible actuator region
+the workspace is the area of the admissible actuator region::
 
     Q = [q1_min, q1_max] x [q2_min, q2_max] ^ {|q1 - q2| <= b <= q1 + q2}
 

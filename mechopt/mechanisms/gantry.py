@@ -91,7 +91,7 @@ def dimensional_synthesis(b, h, theta_1S):
     """Workspace-based dimensional synthesis of Wu 2008 sec. 4.2, eq. (10)-(16).
 
     Given the task rectangle ``b x h`` and the smallest link angle ``theta_1S``, with
-    the 1:1 input/output condition of eq. (13) (``theta_1S + theta_2L = pi/2``):
+    the 1:1 input/output condition of eq. (13) (``theta_1S + theta_2L = pi/2``)::
 
         d = b tan(theta_1S) / (1 - tan(theta_1S))            eq. (14)
         l = (b + d) / sin(theta_2L),  d1 = (b + 2 d) / 2     eq. (15)

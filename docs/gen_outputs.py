@@ -1,0 +1,739 @@
+"""Write ``docs/outputs.md``: every file, CSV column and JSON key a ``mechopt`` command writes.
+
+    python docs/gen_outputs.py            # rewrite docs/outputs.md
+    python docs/gen_outputs.py --check    # exit status 1 if docs/outputs.md is not current
+
+The names come from the code wherever the code defines them: the registered
+mechanisms, their declared parameters and ``summary()`` keys,
+:data:`mechopt.evaluate.DISK_KEYS`, every registered problem's variables,
+objectives (with their units), constraints and derived columns (one evaluation of
+the design in the middle of its bounds), the Liu 2006 regions, the atlas columns,
+the design objectives, requirements and mechanism lengths, and the reproduction
+table's columns, kinds and statuses. Meanings and units live in the glossaries
+below; a name the code produces without a glossary entry stops the script, so the
+page cannot silently miss a new column. The keys of dictionaries that the code
+builds inline (``run.json``, ``atlas.json``, ``design.json``, ``manifest.json``)
+are listed here by hand; ``tests/test_docs.py`` runs the commands and checks that
+every file, column and key they write is on the page, and that the page is current.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+PAGE = Path(__file__).resolve().parent / "outputs.md"
+
+# --------------------------------------------------------------------------- glossaries
+#: ``mechopt evaluate`` of a mechanism with ``disk_indices`` (DISK_KEYS)
+EVAL_DISK = {
+    "r_mic": ("radius of the maximal inscribed circle (MIC): the largest disk centred on the y axis "
+              "free of singular points of the working mode (Liu 2006 footnote 2, Le 2013 sec. III)", "L"),
+    "mic_center_y": ("y of the MIC centre `(0, mic_center_y)`", "L"),
+    "gci": ("global conditioning index: mean LCI over the MIC (Liu 2006 eq. 4), `quadrature` rule", "-"),
+    "mci": ("maximum LCI over the MIC (Liu 2006 sec. 2.1)", "-"),
+    "gvi_max": ("mean of `|V|max = 1/s_min` over the disk of radius `r_mic/2` (Liu eq. 10-11)", "L"),
+    "gvi_min": ("mean of `|V|min = 1/s_max` over that disk (Liu eq. 10-11)", "L"),
+    "gpi_max": ("mean of `|tau|max = s_max` over that disk (Liu eq. 13-14)", "1/L"),
+    "gpi_min": ("mean of `|tau|min = s_min` over that disk (Liu eq. 13-14)", "1/L"),
+    "gsi_max": ("mean of `|D|max = 1/s_min^2` over that disk, unit actuator stiffness (Liu eq. 18-19)", "L^2"),
+    "gsi_min": ("mean of `|D|min = 1/s_max^2` over that disk (Liu eq. 18-19)", "L^2"),
+    "usable_area": ("area of the usable workspace: the connected singularity-free region above the base "
+                    "holding the MIC centre (Liu sec. 3.2.1)", "L^2"),
+    "gcw_area": ("area of the good-conditioning workspace (GCW): usable points with LCI >= `gamma` "
+                 "(Liu sec. 3.2.3, Fig. 25); 0 when empty", "L^2"),
+    "gcw_gci": ("mean LCI over the GCW (null when it is empty)", "-"),
+    "gcw_gsi_max": ("mean of `|D|max` over the GCW (null when empty)", "L^2"),
+    "gcw_gsi_min": ("mean of `|D|min` over the GCW (null when empty)", "L^2"),
+    "gcw_square_side": ("side of the largest square centred on the y axis inside the GCW (Liu Fig. 28); "
+                        "0 when none", "L"),
+    "gcw_square_center_y": ("y of that square's centre (null when none)", "L"),
+    "theta1_range_deg": ("`[lo, hi]` of crank angle 1 over the GCW, continuous (Le eq. 17-18); "
+                         "null when the GCW is empty", "deg"),
+    "theta2_range_deg": ("`[lo, hi]` of crank angle 2 over the GCW (Le eq. 17-18)", "deg"),
+    "quadrature": ("rule of the disk means: `area` (true area mean) or `polar` (uniform (r, theta) "
+                   "grid, Liu's)", ""),
+    "mode": ("working mode (signs of Le eq. 17-18, leg 1 first)", ""),
+    "gamma": ("LCI level bounding the GCW", "-"),
+}
+#: ``mechopt evaluate``: the mechanism's own ``summary()`` keys, per mechanism
+EVAL_SUMMARY = {
+    "asymmetric-five-bar": {
+        "workspace_area": ("area of the reachable set (mid-point raster rule)", "L^2"),
+        "mean_lci": ("area mean of the LCI over the reachable set", "-"),
+        "mean_tqi": ("area mean of the TQI (Stan 2008 eq. 9) over the reachable set", "-"),
+        "quadrature": ("the rule of the means: `raster-N` (N cells across the smaller side of the "
+                       "bounding box)", ""),
+    },
+    "biglide": {
+        "workspace_area": ("exact area of the workspace (Stan 2008 eq. 8, the instance's mode)", "L^2"),
+        "gtqi": ("area mean of the TQI over the workspace (Stan eq. 9)", "-"),
+        "tqi_integral": ("integral of the TQI over the workspace (the numerator of `gtqi`)", "L^2"),
+        "k_av_1": ("Wu 2008 eq. (7) velocity output ratio of leg 1 over the x range (null when "
+                   "unbounded, `l2 >= 2 l1`)", "-"),
+        "k_av_2": ("the same for leg 2", "-"),
+        "quadrature": ("the rule of `gtqi`: `adaptive-1d`", ""),
+    },
+    "bipod": {
+        "workspace_area": ("exact area of the workspace (Stan 2008 eq. 8, the instance's branch)", "L^2"),
+        "gtqi": ("exact area mean of the TQI (Stan eq. 9)", "-"),
+        "tqi_integral": ("integral of the TQI over the workspace (the numerator of `gtqi`)", "L^2"),
+        "q1_min_over_b": ("Stan's design variable `q1_min / b` (eq. 11)", "-"),
+        "quadrature": ("how the mean is taken: `exact` (closed form)", ""),
+    },
+    "gantry": {
+        "workspace_area": ("exact area of the reachable set", "length_unit^2"),
+        "k_av": ("global velocity output ratio, literal reading of Wu 2008 eq. (7) over `[-b/2, b/2]`",
+                 "-"),
+        "d": ("Wu eq. (14)", "length_unit"),
+        "d1": ("half the distance of the columns, Wu eq. (15)", "length_unit"),
+        "l": ("link length, Wu eq. (15)", "length_unit"),
+        "stroke": ("actuator stroke `|q_iL - q_iS|`, Wu eq. (16)", "length_unit"),
+        "eta_d": ("global dynamic index: area mean of kappa_D over the task rectangle (Wu eq. 44)", "-"),
+        "gtqi": ("area mean of the TQI over the task rectangle", "-"),
+        "quadrature": ("the rule of the means: `gauss-legendre-NxN`", ""),
+    },
+}
+#: a design of each mechanism for the page's example commands (required parameters)
+EVAL_EXAMPLES = {
+    "asymmetric-five-bar": {"a1": 1.0, "c1": 1.5, "a2": 0.8, "c2": 1.7, "r3": 0.5},
+    "biglide": {"l1": 1.0, "l2": 1.1, "q1_min": 0.0, "q1_max": 1.0},
+    "bipod": {"b": 60.0, "q1_min": 80.0, "q1_max": 130.0},
+    "five-bar": {"r1": 0.85, "r2": 1.6, "r3": 0.55},
+    "gantry": {},
+}
+
+#: unit of the lengths of each problem family
+FAMILY_UNIT = {
+    "le2013": "lengths in units of the crank `l1` (= 1)",
+    "liu2006": "non-dimensional lengths `r1 + r2 + r3 = 3`",
+    "stan2008": "lengths in units of the Bipod's `b` (= 1) or the Biglide's `L1` (= 1)",
+    "wu2008": "lengths in mm (the task is 500 x 400 mm)",
+    "design": "lengths in the task's unit (`--unit`, default mm)",
+}
+#: front.csv columns of the problems, per family (objectives take their unit from the code)
+PROBLEM_COLUMNS = {
+    "le2013": {
+        "rho": ("`l2 / l1`, the distal-to-crank ratio (Le eq. 24)", "-"),
+        "l0": ("half base distance (our `r3`); eq. (24) `l0 = sqrt(2)/2 (l2 - l1)` unless relaxed", "l1"),
+        "gamma": ("LCI level guaranteed on the square (Le eq. 23); a variable and an objective of the "
+                  "`-gamma` problems", "-"),
+        "a_max": ("side of the largest square centred at the MIC centre inside the MIC on which "
+                  "`1/kappa >= gamma` and the joint limits hold (Le eq. 23-26, Fig. 4)", "l1"),
+        "r_mic": ("MIC radius", "l1"),
+        "mic_center_y": ("y of the MIC centre", "l1"),
+        "lci_min": ("smallest LCI inside the square (empty without a square)", "-"),
+        "lci_max": ("largest LCI inside the square (empty without a square)", "-"),
+        "violation": ("the value of `g_square_exists` (a copy among the derived columns)", "-"),
+    },
+    "liu2006": {
+        "u": ("share of `r1` in `r1 + r2`: `r1 = u (3 - r3)`, `r2 = (1 - u)(3 - r3)`", "-"),
+        "r1": ("crank length", "L"),
+        "r2": ("distal link length", "L"),
+        "r3": ("half the base distance", "L"),
+        **{k: EVAL_DISK[k] for k in ("r_mic", "mic_center_y", "gci", "mci", "gvi_max", "gvi_min",
+                                     "gpi_max", "gpi_min", "gsi_max", "gsi_min")},
+    },
+    "stan2008": {
+        "q1_min_over_b": ("Bipod design variable `u = q1_min / b` (Stan eq. 11-12), `q_max = 1.6 q_min`",
+                          "-"),
+        "L2": ("Biglide link length (`L1 = 1`, strokes `[0, 1]`)", "L"),
+        "W": ("exact workspace area (Stan eq. 8)", "L^2"),
+        "T": ("area mean of the TQI over the workspace (Stan eq. 9)", "-"),
+        "W_n": ("`W / W_ref`, `W_ref` the area at the upper bound of the design variable", "-"),
+    },
+    "wu2008": {
+        "theta_1S_deg": ("smallest link angle `theta_1S` (Wu sec. 4.3)", "deg"),
+        "k_av": ("global velocity output ratio, literal reading of Wu eq. (7)", "-"),
+        "l": ("link length (eq. 15)", "mm"),
+        "d": ("eq. (14)", "mm"),
+        "d1": ("half the distance of the columns (eq. 15)", "mm"),
+        "stroke": ("actuator stroke (eq. 16)", "mm"),
+        "eta_d": ("global dynamic index: mean kappa_D over the task (eq. 44)", "-"),
+    },
+    "design": {
+        "size": ("sum of the link lengths (objective `size`)", "unit"),
+        "min-lci": ("minimum LCI over the task (objective)", "-"),
+        "lci_min": ("minimum LCI over the task", "-"),
+        "reach_margin": ("certified clearance of the task inside the reachable set", "unit"),
+        "mode_index": ("index of the working mode in the mechanism's modes", "-"),
+        "mode": ("working mode as an index into the mechanism's modes (with `mode=\"any\"`)", "-"),
+        "task_x_rel": ("task placement in x relative to the design's reach, in [-1, 1] (free placement)",
+                       "-"),
+        "task_y_rel": ("task placement in y relative to the design's reach, in [0, 1] (free placement)",
+                       "-"),
+    },
+}
+#: constraint columns ``g_<name>`` (``G <= 0`` is feasible), per family
+CONSTRAINTS = {
+    "le2013": {
+        "square_exists": "`-a_max / a_in` (< 0, `a_in = sqrt(2) r_MIC`) when a square exists; otherwise "
+                         "how far the design is from having one: 1 without a MIC, else the larger of "
+                         "`(gamma - LCI) / gamma` and the joint-limit excess over pi at the MIC centre",
+    },
+    "liu2006": {"has_mic": "-1 with a MIC, 1 without one (no index is defined)"},
+    "design": {},
+}
+#: requirements of ``mechopt design``: (meaning of margin_<name> / g_<name>, unit of the margin)
+REQUIREMENTS = {
+    "reach": ("the whole task reachable in one working mode: certified clearance (sampled minimum "
+              "minus half the boundary gap)", "unit"),
+    "singular": ("no type-II singularity over the task: smallest sine of the angle between the legs "
+                 "minus the singularity margin", "-"),
+    "lci": ("`--min-lci`: minimum LCI over the task minus the required level", "-"),
+    "joints": ("`--joint-limits`: smallest distance of the crank ranges to their limits", "rad"),
+    "link_angle": ("`--link-angle`: smallest distance of the link angles to their limits", "rad"),
+    "stroke": ("`--max-stroke`: the limit minus the longest stroke", "unit"),
+    "lengths": ("bipod: `--max-length` minus the longest strut at full extension", "unit"),
+    "speed": ("`--min-speed`: guaranteed speed minus the required one (Liu eq. 10)", "unit/s"),
+    "force": ("`--min-force`: guaranteed force minus the required one (Liu eq. 13)", "N"),
+}
+HISTORY = {
+    "generation": ("generation number, from 1", "-"),
+    "evaluations": ("designs evaluated so far", "-"),
+    "n_front": ("designs in the algorithm's current optimum", "-"),
+    "best_<objective>": ("best value of each objective over that optimum, natural sign (empty while no "
+                         "design is feasible)", "of the objective"),
+    "hypervolume": ("with two or more objectives: hypervolume of the feasible optimum in objectives "
+                    "normalised to [0, 1] by their declared bounds, reference point 1.1 in every "
+                    "direction; in [0, 1.1^m], 0 while nothing is feasible, empty if an objective "
+                    "declares no bounds", "-"),
+}
+RUN_JSON = {
+    "problem": ("registry name of the problem", ""),
+    "summary": ("the problem's one-line summary", ""),
+    "settings": ("the problem's options that change the numbers (e.g. `quadrature`)", ""),
+    "single_optimum": ("why the front is a single design, or null", ""),
+    "algorithm": ("`name`, `pop` and `gen` (the generation limit, null if the termination sets none)", ""),
+    "name": ("algorithm name (`ga`, `de`, `nsga2`, `nsga2-mnn`, `nsga3` or a class name)", ""),
+    "pop": ("population size", "-"),
+    "gen": ("generation limit", "-"),
+    "algorithm_settings": ("the pymoo algorithm: `class`, `module`, `pop_size`, `n_offsprings`, its "
+                           "operators `sampling`, `selection`, `crossover`, `mutation` (or DE's `mating`) "
+                           "and `survival`, each with `class` and its settings under pymoo's names, "
+                           "`eliminate_duplicates`, `n_ref_dirs` (NSGA-III), `settings` (a user class)", ""),
+    "termination": ("the pymoo termination: `class` and its parameters (`n_max_gen`, `n_max_evals`, "
+                    "`max_time`, `fmin`, `xtol`, `cvtol`, `ftol`, `period`)", ""),
+    "seed": ("random seed", "-"),
+    "n_jobs": ("worker processes used", "-"),
+    "n_jobs_auto": ("true when `n_jobs` was chosen by timing the first two generations", ""),
+    "seconds_per_generation": ("the timed CPU time of a generation (with `n_jobs_auto`)", "s"),
+    "backend": ("`joblib` or `dask`", ""),
+    "versions": ("`mechopt`, `pymoo` and `numpy` versions", ""),
+    "wall_time_s": ("wall-clock time of the run", "s"),
+    "generations": ("generations run", "-"),
+    "evaluations": ("designs evaluated", "-"),
+    "feasible": ("feasible designs in the final population (0: no feasible design)", "-"),
+    "least_violation": ("with no feasible design: the smallest total violation, sum of max(0, g)", "-"),
+    "least_violating_design": ("with no feasible design: the variables of that design", ""),
+    "constraint_violations": ("with no feasible design: its max(0, g) per `g_*` column", "-"),
+}
+SUBKEYS = {  # names listed under a key of run.json / manifest.json; not re-described
+    "class", "module", "pop_size", "n_offsprings", "sampling", "selection", "crossover", "mutation",
+    "mating", "survival", "eliminate_duplicates", "n_ref_dirs", "n_max_gen", "n_max_evals", "max_time",
+    "fmin", "xtol", "cvtol", "ftol", "period", "mechopt", "pymoo", "numpy",
+}
+SWEEP_JSON = {
+    "weights": ("the weights run", "-"),
+    "feasible_weights": ("weights whose optimum is feasible", "-"),
+    "evaluations": ("designs evaluated by all runs (the NSGA-II front and every weight)", "-"),
+    "feasible": ("feasible designs in the final populations of all runs", "-"),
+    "least_violation": ("with no feasible design anywhere: the smallest total violation", "-"),
+    "least_violating_design": ("with no feasible design anywhere: that design's variables", ""),
+    "constraint_violations": ("with no feasible design anywhere: its max(0, g) per `g_*` column", "-"),
+}
+MANIFEST = {
+    "kind": ("the command that wrote the folder: `optimize`, `sweep`, `atlas`, ...", ""),
+    "key": ("what fixes the result (problem, its settings, algorithm, termination and seed; for an "
+            "atlas its settings): a folder holding another run is refused without `--overwrite`", ""),
+    "run_id": ("random identifier of the run (its checkpoint carries the same)", ""),
+    "status": ("`running` until every file is in place, then `complete`", ""),
+    "files": ("`{file name: sha256}` of every file the run wrote", ""),
+    "started": ("start time, ISO 8601 with the UTC offset", ""),
+    "finished": ("end time, ISO 8601 with the UTC offset", ""),
+    "mechopt": ("mechopt version", ""),
+}
+DESIGN_JSON = {
+    "index": ("row of the design in `front.csv`", "-"),
+    "mechanism_name": ("`five-bar`, `biglide`, `bipod` or `gantry`", ""),
+    "unit": ("the length unit (`--unit`)", ""),
+    "variables": ("the mechanism's lengths by name, `mode`, and `D` with `--shape`", "unit"),
+    "task_placement": ("`task_x`, `task_y`: where the task's reference point is placed", "unit"),
+    "objectives": ("`{objective: value}`, natural sign", "of `objective_units`"),
+    "objective_units": ("`{objective: unit}`", ""),
+    "margins": ("`{requirement: margin}` in natural units (the requirements above), > 0 satisfied",
+                "see below"),
+    "constraints_g": ("`{requirement: g}`, normalised, <= 0 satisfied", "-"),
+    "feasible": ("every `g <= 0` under the fine certification", ""),
+    "values": ("`type2_min` (smallest sine of the leg angle over the task), `lci_min`, `lci_mean` "
+               "(over the interior grid), `size` [unit], and with their options `footprint` [unit], "
+               "`speed` [unit/s], `force` [N], `torque` [N m or N]", ""),
+    "tolerance": ("what the margins rest on: `boundary_gap` [unit], `interior_step` [unit], `reach` and "
+                  "`minima` (sentences); for a point task `points`", ""),
+    "repr": ("the mechanism as Python (`FiveBar(r1=..., ...)`)", ""),
+    "joint_ranges_deg": ("five-bar: `[[lo, hi], [lo, hi]]` crank ranges over the task", "deg"),
+    "strokes": ("sliders: `[[q_min, q_max], ...]` actuator ranges over the task", "unit"),
+    "stroke": ("sliders: the longest stroke", "unit"),
+    "link1_angle_deg": ("gantry, biglide with `--link-angle`: `[lo, hi]` of link 1's angle", "deg"),
+    "link2_angle_deg": ("the same for link 2", "deg"),
+}
+DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque")
+DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points")
+DESIGN_RUN = {
+    "design": ("the sizing problem: `mechanism`, `task` (`kind`, `unit`, `label`, and `vertices`, "
+               "`center`/`radius` or `points`), `requirements` (angles in rad), `objectives`, `mode`, "
+               "`place`, `min_length`, `max_length`, `shape`, `unit`; the same under `settings`", ""),
+    "polished": ("objectives whose best design the local polish improved", ""),
+    "dropped_by_certification": ("front designs that failed the fine certification", "-"),
+    "front_size": ("rows of `front.csv`", "-"),
+    "certification": ("the fine sampling: `n_boundary`, `n_interior`, `refine`", ""),
+    "chosen": ("`index` (row of `front.csv`) and `by` (`knee` or the `--pick` weights) of design.json",
+               ""),
+}
+DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
+                   "max_length", "shape", "unit", "kind", "label", "vertices", "center", "radius", "points",
+                   "n_boundary", "n_interior", "refine", "by")
+ATLAS_CSV = {
+    "r1": ("crank length", "L"),
+    "r2": ("distal link length", "L"),
+    "r3": ("half the base distance", "L"),
+    "s": ("page coordinate `(r1 - r2) / sqrt(2)` (isometric map of `r1 + r2 + r3 = 3`)", "L"),
+    "t": ("page coordinate `sqrt(3/2) r3`", "L"),
+    **{k: EVAL_DISK[k] for k in ("r_mic", "mic_center_y", "gci", "mci", "gvi_max", "gvi_min", "gpi_max",
+                                 "gpi_min", "gsi_max", "gsi_min")},
+}
+ATLAS_JSON = {
+    "mechanism": ("`five-bar`", ""),
+    "step": ("lattice step", "L"),
+    "indices": ("index groups computed (`--index`)", ""),
+    "columns": ("columns of `atlas.csv`", ""),
+    "quadrature": ("rule of the disk means", ""),
+    "mode": ("working mode", ""),
+    "n_designs": ("rows of `atlas.csv`", "-"),
+    "n_degenerate": ("designs without a MIC (`r_mic = 0`, NaN indices)", "-"),
+    "plane": ("the map of the pictures, `s` and `t`", ""),
+    "backend": ("`joblib n_jobs=N` or `dask ADDRESS`", ""),
+    "compiled": ("true when the numba kernels ran", ""),
+    "kernel": ("`numba` or `numpy`", ""),
+    "where": ("the `--where` condition, or null", ""),
+    "n_region": ("designs that satisfy it (rows of `region.csv`), or null", "-"),
+    "seconds": ("`compute`, `figures` and `total` wall-clock times", "s"),
+    "files": ("files written, in order", ""),
+}
+ATLAS_SUBKEYS = ("compute", "figures", "total")
+TABLE_CSV = {
+    "quantity": ("name of the reproduced quantity", ""),
+    "source": ("where the paper prints it (section, table, figure, equation)", ""),
+    "paper": ("the printed value (empty when the paper prints none)", "of `unit`"),
+    "reproduced": ("our value", "of `unit`"),
+    "unit": ("the printed unit (`L` for the non-dimensional lengths, `-` for none)", ""),
+    "rel_error": ("`(reproduced - paper) / |paper|`", "-"),
+    "status": ("one of the statuses below", ""),
+    "kind": ("one of the kinds below", ""),
+    "note": ("tolerance, reading and reason of a difference, evidence of a claim", ""),
+    "design": ("Liu 2006 only: the design `r1/r2/r3` of the row", ""),
+    "quadrature": ("Liu 2006 only: the rule of the disk means of the row (`polar`, `area`, or empty)", ""),
+}
+STATUS = {
+    "match": "within the row's tolerance (stated in the note)",
+    "differs": "outside it; the note says why",
+    "not-reported": "the paper prints no value",
+    "holds": "a claim of the paper that the computation confirms",
+    "fails": "a claim that the computation contradicts",
+}
+KIND = {
+    "computed": "a quantity the paper computed and we recompute: the only rows counted as match/differs",
+    "setting": "an input or setting we echo",
+    "reading": "a value under another reading of the paper or another quadrature, beside the literal row",
+    "claim": "a checkable sentence of the paper (holds/fails)",
+}
+
+
+# --------------------------------------------------------------------------- helpers
+class MissingGlossary(SystemExit):
+    pass
+
+
+def _cell(text) -> str:
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def _table(header, rows) -> str:
+    lines = ["| " + " | ".join(header) + " |", "|" + " --- |" * len(header)]
+    lines += ["| " + " | ".join(_cell(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+def _codes(names) -> str:
+    return ", ".join(f"`{n}`" for n in names)
+
+
+def _lookup(glossary, name, where):
+    if name not in glossary:
+        raise MissingGlossary(f"docs/gen_outputs.py: no glossary entry for {name!r} ({where}); add one")
+    return glossary[name]
+
+
+def _unit(u) -> str:
+    return u if u else ""
+
+
+# --------------------------------------------------------------------------- sections
+def _conventions() -> str:
+    return """# Output reference
+
+Every file, CSV column and JSON key that a `mechopt` command writes, with its
+meaning and unit. The page is generated by `python docs/gen_outputs.py` from the
+code (the names) and the glossaries of that script (meanings and units);
+`tests/test_docs.py` runs the commands and fails if they write a file, a column
+or a key that is not on this page, or if the page is not current.
+
+Units: `L` is the unit of the lengths given (for the non-dimensional problems of
+Liu 2006 and Le 2013, the unit the ratios are counted in: `r1 + r2 + r3 = 3`,
+resp. the crank `l1 = 1`); `L^2` that unit squared; `unit` the length unit of
+`mechopt design --unit` (default mm); `length_unit` the gantry's `--length-unit`
+(default mm); `deg` degrees, `rad` radians, `s` seconds, `N` newton; `-` a
+dimensionless number; an empty unit a name, a flag or a text. Angles are in
+degrees wherever the name ends in `_deg`, in radians otherwise. In the JSON
+files a non-finite number is `null`; in the CSV files an empty cell.
+
+Every command that writes a folder holds it with a lock file `.mechopt.lock`
+(the owner's pid) while it runs and writes each file atomically (a temporary
+name, then a rename).
+"""
+
+
+def _evaluate() -> str:
+    from mechopt.evaluate import DISK_KEYS, DISK_OPTIONS
+    from mechopt.mechanisms import registry
+
+    out = ["## `mechopt evaluate MECHANISM`\n",
+           "Prints one design's numbers; with `--json` one JSON object (standard JSON: NaN and "
+           "infinity as `null`) with the keys below, in this order. It writes no file. Common keys:\n",
+           _table(["key", "meaning", "unit"], [
+               ("`mechanism`", "the mechanism as Python (`FiveBar(r1=0.85, ...)`)", ""),
+               ("`inputs`", "the declared parameters as used (defaults filled in) and, for the "
+                            "five-bar, the evaluation options `quadrature` and `gamma`", "as declared"),
+           ])]
+    for name, cls in registry().items():
+        if name not in EVAL_EXAMPLES:
+            raise MissingGlossary(f"docs/gen_outputs.py: add an example design of {name!r} to EVAL_EXAMPLES")
+        ex = EVAL_EXAMPLES[name]
+        values = {p.name: ex.get(p.name, None if p.required else p.default) for p in cls.parameters}
+        mech = cls.from_parameters(**values)
+        options = DISK_OPTIONS if cls.disk_indices else ()
+        args = " ".join(f"{p.option} {ex[p.name]:g}" for p in cls.parameters if p.name in ex)
+        out.append(f"### `mechopt evaluate {name}`\n")
+        out.append(f"{cls.cli_help[:1].upper()}{cls.cli_help[1:]} (`{cls.__module__}.{cls.__name__}`), e.g. "
+                   f"`mechopt evaluate {name} {args} --json`.".replace("  ", " ") + "\n")
+        rows = []
+        for p in cls.parameters + options:
+            default = "required" if p.required else ("q1 value" if p.default is None else f"`{p.default}`")
+            unit = {"L": "L", "-": "-" if p.kind == "fraction" else "", "length unit": "length_unit"}.get(
+                p.unit, p.unit)
+            rows.append((f"`{p.name}`", p.help, unit, default))
+        out.append("`inputs`:\n")
+        out.append(_table(["key", "meaning", "unit", "default"], rows))
+        keys = (DISK_KEYS if cls.disk_indices else ()) + tuple(k for k in mech.summary()
+                                                               if not (cls.disk_indices and k in DISK_KEYS))
+        gloss = {**(EVAL_DISK if cls.disk_indices else {}), **EVAL_SUMMARY.get(name, {})}
+        rows = []
+        for k in keys:
+            meaning, unit = _lookup(gloss, k, f"mechopt evaluate {name}")
+            rows.append((f"`{k}`", meaning, _unit(unit)))
+        out.append("Values:\n")
+        out.append(_table(["key", "meaning", "unit"], rows))
+    return "\n".join(out)
+
+
+def _family(problem) -> str:
+    return type(problem).__module__.rsplit(".", 1)[-1]
+
+
+def _problem_columns():
+    """``[(name, problem, front columns)]`` of every registered problem."""
+    import numpy as np
+
+    from mechopt.problems import get, names
+
+    rows = []
+    for n in names():
+        p = get(n)
+        x = (np.asarray(p.xl, float) + np.asarray(p.xu, float)) / 2.0
+        rows.append((n, p, list(p.describe(x[None, :]))))
+    return rows
+
+
+def _problem_glossary(fam, problem):
+    """name -> (meaning, unit) of every front.csv column of ``problem``."""
+    gloss = dict(PROBLEM_COLUMNS.get(fam, {}))
+    for v in problem.var_names:
+        if fam == "design" and v.startswith("ln_"):  # the search variables of the lengths
+            gloss[v] = (f"search variable `ln({v[3:]} + min_length)` of the length `{v[3:]}`", "ln(unit)")
+    for ob in problem.objectives:
+        meaning, unit = gloss.get(ob.name, (None, None))
+        sense = "maximised" if ob.sense < 0 else "minimised"
+        gloss[ob.name] = (f"objective, {sense}" + (f": {meaning}" if meaning else ""), ob.unit or unit)
+    for c in problem.constr_names:
+        gloss[f"g_{c}"] = (_constraint_meaning(fam, c), "-")
+    return gloss
+
+
+def _constraint_meaning(fam, c) -> str:
+    if c in CONSTRAINTS.get(fam, {}):
+        return "constraint: " + CONSTRAINTS[fam][c]
+    if fam == "liu2006":
+        from mechopt.problems.liu2006 import REGIONS
+
+        for reg in REGIONS.values():
+            for q, op, t in reg:
+                if f"{q}{'_min' if op == '>' else '_max'}" == c:
+                    form = f"({t:g} - {q}) / {t:g}" if op == ">" else f"({q} - {t:g}) / {t:g}"
+                    return f"constraint `{q} {op} {t:g}` (Liu 2006 sec. 3.1), relative: {form}"
+    if fam == "design" and c in REQUIREMENTS:
+        return f"constraint, normalised: {REQUIREMENTS[c][0]}"
+    raise MissingGlossary(f"docs/gen_outputs.py: no meaning for constraint {c!r} of family {fam!r}")
+
+
+def _optimize(problems) -> str:
+    out = ["## `mechopt optimize PROBLEM`\n",
+           "Runs a registered problem (`mechopt problems` lists them) with a seeded pymoo algorithm and "
+           "writes into `--out`:\n",
+           _table(["file", "content"], [
+               ("`front.csv`", "one row per non-dominated feasible design of the final population: the "
+                               "variables, the objectives with their natural sign (a maximised quantity "
+                               "is positive), the constraint values `g_<name>` (`G <= 0` feasible, "
+                               "normalised by a scale of their quantity) and the derived indices; with "
+                               "no feasible design only the header"),
+               ("`history.csv`", "one row per generation (columns below)"),
+               ("`run.json`", "the run: problem, settings, algorithm, termination, seed, processes, "
+                              "versions, times, counts (keys below)"),
+               ("`front.png`", "the front (a convergence curve for one objective; with no feasible "
+                               "design the population coloured by violation)"),
+               ("`manifest.json`", "the run's record (keys below), rewritten last with `\"status\": "
+                                   "\"complete\"`"),
+               ("`checkpoint.pkl`", "with `--checkpoint-every K`: the algorithm state every K generations "
+                                    "(`mechopt optimize --resume DIR`); removed when the run completes"),
+           ])]
+    out.append("### Columns of `front.csv` and `history.csv`, per problem\n")
+    out.append("`history.csv` has `generation`, `evaluations`, `n_front`, one `best_<objective>` per "
+               "objective and, with two or more objectives, `hypervolume`:\n")
+    out.append(_table(["column", "meaning", "unit"], [(f"`{k}`", m, u) for k, (m, u) in HISTORY.items()]))
+    by_family = {}
+    for n, p, cols in problems:
+        by_family.setdefault(_family(p), []).append((n, p, cols))
+    for fam, items in by_family.items():
+        out.append(f"#### {fam} problems ({FAMILY_UNIT.get(fam, '')})\n")
+        rows = []
+        gloss = {}
+        for n, p, cols in items:
+            g = _problem_glossary(fam, p)
+            for c in cols:
+                gloss.setdefault(c, _lookup(g, c, f"front.csv of {n}"))
+            best = [f"best_{ob.name}" for ob in p.objectives] + (["hypervolume"] if p.n_obj >= 2 else [])
+            rows.append((f"`{n}`", p.summary, _codes(cols), _codes(best)))
+        out.append(_table(["problem", "summary", "front.csv columns", "history.csv: best and hypervolume"],
+                          rows))
+        out.append(_table(["column", "meaning", "unit"],
+                          [(f"`{k}`", m, _unit(u)) for k, (m, u) in gloss.items()]))
+    out.append("### `run.json`\n")
+    out.append(_table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in RUN_JSON.items()]))
+    out.append("### `manifest.json`\n")
+    out.append("Written by `optimize`, `sweep` and `atlas` when the run starts (`\"status\": \"running\"`) "
+               "and rewritten last:\n")
+    out.append(_table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in MANIFEST.items()]))
+    return "\n".join(out)
+
+
+def _sweep(problems) -> str:
+    out = ["## `mechopt sweep PROBLEM`\n",
+           "Weighted-sum optima of a two-objective problem, one GA run per weight, after an NSGA-II "
+           "run of the same seed whose front scales the objectives. It writes `sweep.csv`, `sweep.png` "
+           "(the front and the optima), `run.json` (the keys of `optimize` for the NSGA-II run, and "
+           "`sweep`), `front.csv` and `history.csv` (of the NSGA-II run) and `manifest.json`.\n",
+           "`sweep.csv` has one row per weight: `weight`, then the columns of the GA run's "
+           "`front.csv` (the problem's variables, `z`, the `g_<name>` constraint columns and the "
+           "derived columns, which include both objectives by name), then `feasible` and `violation`:\n",
+           _table(["column", "meaning", "unit"], [
+               ("`weight`", "the weight `w` in [0, 1] of the problem's FIRST objective (the table "
+                            "below names it); `1 - w` weighs the second", "-"),
+               ("`z`", "the weighted sum at the optimum, minimised: `Z = w f1/s1 + (1 - w) f2/s2` "
+                       "with `f` in pymoo's minimisation form (`f = -value` for a maximised objective) "
+                       "and `s` the span of each objective over the NSGA-II front; Stan 2008 uses its "
+                       "own `Z = W1 T + W2 W_n` with `W2 = w`, `W1 = 1 - w`, negated (`z = -Z`)", "-"),
+               ("`feasible`", "true when the weight's GA run found a feasible design; false: the row "
+                              "holds its least-violating design and empty objectives", ""),
+               ("`violation`", "total violation `sum max(0, g)` of the row's design (0 when feasible)",
+                "-"),
+           ]),
+           "`run.json` carries the sweep's totals under `\"sweep\"`:\n",
+           _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in SWEEP_JSON.items()]),
+           "The problems with two objectives, and what the weight weighs:\n"]
+    rows = []
+    for n, p, _ in problems:
+        if p.n_obj != 2:
+            continue
+        own = "Stan's `Z = W1 T + W2 W_n`" if hasattr(p, "weighted_sum") else "normalised weighted sum"
+        rows.append((f"`{n}`", f"`{p.objectives[0].name}`", f"`{p.objectives[1].name}`", own))
+    out.append(_table(["problem", "`weight` weighs", "`1 - weight` weighs", "scalarisation"], rows))
+    return "\n".join(out)
+
+
+def _design() -> str:
+    from mechopt.design import MECHANISMS, OBJECTIVES, Requirements, get_spec
+
+    req_all = Requirements(min_lci=0.5, joint_limits=(0, 1), link_angle=(0, 1), max_stroke=1, min_speed=1,
+                           min_force=1, actuator_speed=1, actuator_torque=1, payload=1)
+    names = []
+    rows = []
+    for m in MECHANISMS:
+        spec = get_spec(m)
+        for n in req_all.names(spec):
+            if n not in names:
+                names.append(n)
+        if spec.angular:
+            derived = [f"theta{i}_{e}_deg" for i in (1, 2) for e in ("min", "max")]
+        else:
+            derived = [f"q{i}_{e}" for i in (1, 2) for e in ("min", "max")] + ["stroke"]
+        if m in ("gantry", "biglide"):
+            derived += [f"link{i}_angle_{e}_deg" for i in (1, 2) for e in ("min", "max")]
+        rows.append((f"`{m}`", _codes(spec.lengths), _codes(spec.modes), _codes(derived)))
+    for n in names:
+        _lookup(REQUIREMENTS, n, "mechopt design requirement")
+    out = ["## `mechopt design MECHANISM`\n",
+           "Sizes a mechanism for a task region. It writes into `--out`, all at once when the run "
+           "succeeds: `front.csv`, `design.json`, `run.json`, `history.csv` (as for `optimize`), "
+           "`front.png` and `design.png` (the chosen mechanism at the task's centre with the task, its "
+           "good-conditioning workspace, the type-II locus, the reachable boundary and the crank "
+           "ranges). Lengths are in `--unit` (`unit` below).\n",
+           "### `front.csv`\n",
+           "One row per certified Pareto design: the mechanism's lengths, `D` (with `--shape`), "
+           "`mode`, `task_x`, `task_y`, one column per objective, `margin_<requirement>` per "
+           "requirement, the derived ranges, `size` and `lci_min`:\n",
+           _table(["mechanism", "lengths [unit]", "modes", "derived columns"], rows),
+           _table(["column", "meaning", "unit"], [
+               ("`D`", "with `--shape R1,R2,R3`: the scale, lengths `D * R_i` (Liu 2006 eq. 20)", "unit"),
+               ("`mode`", "working mode (five-bar `+-` ...; bipod `up`, `down`)", ""),
+               ("`task_x`", "x of the task's reference point (its centre) in the base frame", "unit"),
+               ("`task_y`", "y of the task's reference point", "unit"),
+               ("`theta1_min_deg`, `theta1_max_deg`, `theta2_min_deg`, `theta2_max_deg`",
+                "five-bar: crank ranges over the task", "deg"),
+               ("`q1_min`, `q1_max`, `q2_min`, `q2_max`", "sliders: actuator ranges over the task", "unit"),
+               ("`stroke`", "sliders: the longest stroke", "unit"),
+               ("`link1_angle_min_deg`, `link1_angle_max_deg`, `link2_angle_min_deg`, `link2_angle_max_deg`",
+                "gantry, biglide with `--link-angle`: link angle ranges from the slider axis", "deg"),
+               ("`size`", "sum of the link lengths", "unit"),
+               ("`lci_min`", "minimum LCI over the task", "-"),
+           ]),
+           "Objectives (`--objectives`, each a column of its name):\n",
+           _table(["objective", "sense", "meaning", "unit"],
+                  [(f"`{k}`", "max" if s < 0 else "min", d, u.format(L="unit", T="N m or N"))
+                   for k, (s, u, d) in OBJECTIVES.items()]),
+           "Requirements: `margin_<name>` in `front.csv` and `margins` in `design.json` (natural units, "
+           "> 0 satisfied), `g_<name>` of the search and `constraints_g` (normalised: lengths by the "
+           "task diameter, angles by pi, LCI by its level, speed and force by their required values; "
+           "<= 0 satisfied):\n",
+           _table(["requirement", "margin", "unit of the margin"],
+                  [(f"`{n}` (`margin_{n}`, `g_{n}`)", REQUIREMENTS[n][0], REQUIREMENTS[n][1]) for n in names]),
+           "### `design.json`\n",
+           "The chosen design (the knee of the front, or `--pick`), certified:\n",
+           _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in DESIGN_JSON.items()]),
+           f"Keys under `values`: {_codes(DESIGN_VALUES)}; under `tolerance`: {_codes(DESIGN_TOLERANCE)}.\n",
+           "### `run.json`\n",
+           "The keys of `optimize`'s `run.json` (`problem` is `design`) and:\n",
+           _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in DESIGN_RUN.items()]),
+           f"Keys inside `design`, `settings`, `certification` and `chosen`: {_codes(DESIGN_SETTINGS)}.\n",
+           "The registered problem `design` (`mechopt optimize design`, the five-bar example of "
+           "`problems/design.py`) searches the lengths as `ln_<length> = ln(length + min_length)` "
+           "(`ln_D` with a shape) and the placement as `task_x_rel`, `task_y_rel`; its `front.csv` is "
+           "listed with the other problems above.\n"]
+    return "\n".join(out)
+
+
+def _atlas() -> str:
+    from mechopt.atlas import DEFAULT_INDICES, design_grid, index_columns
+
+    cols = list(design_grid(0.5).columns) + [c for c in index_columns(DEFAULT_INDICES)]
+    rows = [(f"`{c}`", *_lookup(ATLAS_CSV, c, "atlas.csv")) for c in cols]
+    pngs = [f"atlas_{c}.png" for c in index_columns(DEFAULT_INDICES) if c != "mic_center_y"]
+    out = ["## `mechopt atlas five-bar`\n",
+           "Evaluates every design of Liu 2006's space `r1 + r2 + r3 = 3`, `0 <= r3 <= 1.5` on a "
+           "lattice (`--step`, non-dimensional). It writes `atlas.csv`, `region.csv` (with `--where`: "
+           "the rows that satisfy it, same columns), `atlas.json`, `manifest.json` (as for `optimize`) "
+           "and one figure per index column, " + _codes(pngs) + " (with `--index`, those of the chosen "
+           "groups). While it runs, finished chunks are kept in `.atlas_chunks/` (a rerun resumes "
+           "from them); the folder is removed when `atlas.csv` is complete.\n",
+           "`atlas.csv` (a design without a MIC has `r_mic = 0` and empty indices; `--index` keeps "
+           "`r1` to `mic_center_y` and the chosen groups):\n",
+           _table(["column", "meaning", "unit"], rows),
+           "`atlas.json`:\n",
+           _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in ATLAS_JSON.items()]),
+           f"Keys under `seconds`: {_codes(ATLAS_SUBKEYS)}.\n"]
+    return "\n".join(out)
+
+
+def _reproduce() -> str:
+    from mechopt.published import KINDS, STATUSES, TABLE_COLUMNS
+    from mechopt.reproduce import PAPERS
+
+    cols = list(TABLE_COLUMNS) + [c for c in TABLE_CSV if c not in TABLE_COLUMNS]
+    for s in STATUSES:
+        _lookup(STATUS, s, "status")
+    for k in KINDS:
+        _lookup(KIND, k, "kind")
+    out = ["## `mechopt reproduce PAPER`\n",
+           f"Reproduces {', '.join(f'`{p}`' for p in PAPERS)} (or `all`) into `--out` (default "
+           "`results`), one folder per paper, and writes the summary `README.md` (the counts per paper "
+           "and why each computed quantity differs). Per paper:\n",
+           _table(["file", "content"], [
+               ("`table.csv`", "one row per published number, claim or setting (columns below)"),
+               ("`table.md`", "the same table in Markdown, under the paper's title"),
+               ("`reproduce.json`", "how the folder was made: `quick` (true for `--quick`) and `mechopt` "
+                                    "(the version); a finished paper is reused only by a run of the same "
+                                    "kind"),
+               ("`*.png`", "the redrawn figures (e.g. `le2013/fig5_a_max.png`)"),
+               ("`*.csv`", "the paper's own curves and scans behind the figures (e.g. `le2013/curve.csv`, "
+                           "`wu2008/k_av_vs_theta.csv`)"),
+               ("run folders", "fronts and sweeps of the paper's problems (e.g. `le2013/front/`, "
+                               "`le2013/sweep/`) with the files of `optimize` and `sweep` above"),
+           ]),
+           "`table.csv`:\n",
+           _table(["column", "meaning", "unit"], [(f"`{c}`", *_lookup(TABLE_CSV, c, "table.csv")) for c in cols]),
+           _table(["status", "meaning"], [(f"`{s}`", STATUS[s]) for s in STATUSES]),
+           _table(["kind", "meaning"], [(f"`{k}`", KIND[k]) for k in KINDS]),
+           "## `mechopt report [RESULTS_DIR]`\n",
+           "Writes one self-contained HTML page, `RESULTS_DIR/report.html` (or `--out FILE`): the "
+           "summary counts, each paper's `table.csv` (sortable, statuses coloured), every figure, "
+           "front and sweep, all embedded. It prints the path.\n",
+           "## `mechopt problems`\n",
+           "Prints one line per registered problem (`name  summary`); it writes no file.\n"]
+    return "\n".join(out)
+
+
+def render() -> str:
+    problems = _problem_columns()
+    parts = [_conventions(), _evaluate(), _optimize(problems), _sweep(problems), _design(), _atlas(),
+             _reproduce()]
+    text = "\n".join(p.rstrip("\n") + "\n" for p in parts)
+    while "\n\n\n" in text:
+        text = text.replace("\n\n\n", "\n\n")
+    return text
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--check", action="store_true", help="exit 1 if docs/outputs.md is not current")
+    args = ap.parse_args(argv)
+    text = render()
+    if args.check:
+        if not PAGE.exists() or PAGE.read_text() != text:
+            print("docs/outputs.md is not current: run python docs/gen_outputs.py", file=sys.stderr)
+            return 1
+        return 0
+    PAGE.write_text(text)
+    print(f"wrote docs/outputs.md ({len(text.splitlines())} lines)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
