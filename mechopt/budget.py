@@ -97,16 +97,17 @@ def _seconds_per_evaluation(problem) -> float:
     return (time.perf_counter() - t0) / len(X)
 
 
-def estimate(problem, pop: int, n_offsprings: int, max_gen: int, max_evaluations: int | None = None
-             ) -> Estimate:
+def estimate(problem, pop: int, n_offsprings: int, max_gen: int, max_evaluations: int | None = None,
+             sample: bool = True) -> Estimate:
     """Memory and time of ``max_gen`` generations of ``pop`` designs (``n_offsprings``
-    new ones each) on ``problem``; ``max_evaluations`` caps the evaluations."""
+    new ones each) on ``problem``; ``max_evaluations`` caps the evaluations. Without
+    ``sample`` no design is evaluated and the time counts pymoo's own work only."""
     evaluations = pop + max(max_gen - 1, 0) * n_offsprings
     if max_evaluations is not None:
         evaluations = min(evaluations, max_evaluations)
     pairs = float(pop + n_offsprings) ** 2
     memory = BASE_BYTES + BYTES_PER_PAIR * pairs + BYTES_PER_DESIGN * (pop + n_offsprings)
-    per = None if evaluations <= _UNTIMED else _seconds_per_evaluation(problem)
+    per = None if evaluations <= _UNTIMED or not sample else _seconds_per_evaluation(problem)
     gens = max_gen if max_evaluations is None else min(max_gen, max(1, max_evaluations // max(n_offsprings, 1)))
     seconds = (per or 0.0) * evaluations + SECONDS_PER_PAIR * pairs * gens
     return Estimate(memory, seconds, int(evaluations), per)

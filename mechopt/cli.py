@@ -355,7 +355,9 @@ def _remove_if_we_made_it_empty(out_before):
 def _cmd_atlas_five_bar(args):
     from .atlas import run_atlas
 
-    run_atlas(args.out, step=args.step, indices=args.index, quadrature=args.quadrature,
+    from .atlas import DEFAULT_INDICES
+
+    run_atlas(args.out, step=args.step, indices=args.index or DEFAULT_INDICES, quadrature=args.quadrature,
               mode=args.mode, n_jobs=2 if args.n_jobs is None else args.n_jobs, dask=args.dask,
               where=args.where,
               figures=not args.no_figures, chunk_size=args.chunk_size,
@@ -365,8 +367,8 @@ def _cmd_atlas_five_bar(args):
 
 def _add_atlas_parsers(subparsers):
     """``mechopt atlas five-bar`` (:func:`mechopt.atlas.run_atlas`)."""
-    from .atlas import DEFAULT_INDICES
-
+    # the atlas module (and numba with it) is imported by the command only: every other
+    # command starts without it
     at = subparsers.add_parser("atlas", help="performance atlases over a whole design space")
     ats = at.add_subparsers(dest="mechanism", required=True, parser_class=_Parser)
     fb = ats.add_parser(
@@ -374,7 +376,7 @@ def _add_atlas_parsers(subparsers):
         help="Liu 2006 atlases (GCI, MCI, GVI, GPI, GSI, r_MIC) over r1 + r2 + r3 = 3",
         description="Evaluate every design of r1 + r2 + r3 = 3, 0 <= r3 <= 1.5, r1, r2 > 0 "
                     "on a lattice; write atlas.csv, atlas.json and one PNG per index.")
-    fb.add_argument("--index", default=",".join(DEFAULT_INDICES),
+    fb.add_argument("--index", default=None,
                     help="comma-separated index groups: gci, mci, gvi, gpi, gsi, r_mic (default: all)")
     fb.add_argument("--step", type=float, default=0.01, help="lattice step of the non-dimensional "
                     "link ratios (r1 + r2 + r3 = 3), in [0.001, 0.5] (default 0.01)")

@@ -9,20 +9,36 @@ and its values, which are
   the actuator ranges over it (:func:`disk_evaluation`, keys :data:`DISK_KEYS`);
 * and the mechanism's own global numbers (``mech.summary()``: exact areas, means
   of the TQI, Wu's k_av and eta_D, ...), each naming its quadrature.
+
+Units. Every index is scale invariant and lengths, areas, ... scale as ``D``,
+``D^2``, ... when every length of a design is multiplied by ``D`` (Liu 2006 eq. 20),
+so a design is evaluated in units of its size: divided by the power of two nearest
+its ``length_scale`` (:func:`unit_of`), evaluated, and its values multiplied back
+by that unit to their powers (:func:`disk_powers`, :data:`SUMMARY_POWERS`). A power
+of two is exact in floating point and these computations are homogeneous, so the
+values are those of the direct evaluation bit for bit (``tests/test_limits.py``)
+while designs of every admissible size (lengths in [1e-12, 1e12], e.g. all 1e-12 or
+(1e12, 1e12, 0)) are computed on numbers of order 1. What still cannot be evaluated
+(a workspace thinner than double precision or the raster resolves, legs that never
+meet) raises a one-line ValueError naming the design as given and the condition on
+its inputs that fails.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from . import validation as _v
+from . import workspace as _ws
 from .mechanisms.base import Parameter
 from .performance import global_indices, region_indices
-from .quadrature import QUADRATURES
-from .workspace import gcw, joint_ranges, largest_square, mic, usable_region
+from .quadrature import MAX_NODES, QUADRATURES
+from .workspace import gcw, joint_ranges, largest_square
 
-__all__ = ["DISK_KEYS", "DISK_OPTIONS", "Evaluation", "evaluate", "disk_evaluation"]
+__all__ = ["DISK_KEYS", "DISK_OPTIONS", "disk_powers", "SUMMARY_POWERS", "Evaluation", "evaluate",
+           "disk_evaluation", "unit_of"]
 
 DISK_KEYS = (
     "r_mic", "mic_center_y", "gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min",
@@ -37,6 +53,68 @@ DISK_OPTIONS = (
               QUADRATURES),
     Parameter("gamma", "fraction", "-", "LCI level bounding the good-conditioning workspace", 0.5),
 )
+
+
+def disk_powers(mech) -> dict:
+    """``{key: p}``: the value ``key`` of :func:`disk_evaluation` of the design scaled by
+    ``D`` is ``D**p`` times that of the design (the other keys are not numbers). With
+    angular joints J scales as ``1/D`` (velocities as ``D``, efforts as ``1/D``,
+    compliances as ``D^2``); with prismatic ones J is invariant."""
+    a = 1 if mech.angular_joints else 0
+    return {"r_mic": 1, "mic_center_y": 1, "gci": 0, "mci": 0, "gvi_max": a, "gvi_min": a,
+            "gpi_max": -a, "gpi_min": -a, "gsi_max": 2 * a, "gsi_min": 2 * a, "usable_area": 2,
+            "gcw_area": 2, "gcw_gci": 0, "gcw_gsi_max": 2 * a, "gcw_gsi_min": 2 * a,
+            "gcw_square_side": 1, "gcw_square_center_y": 1}
+
+
+#: ``{cli_name: {key: p}}``: powers of the length scale of each number of
+#: ``mech.summary()`` (as :func:`disk_powers`), for the mechanisms whose summary is
+#: homogeneous in their lengths; a mechanism not listed (the gantry: Wu's synthesis and
+#: its inertia law depend on the unit) or a key not listed is evaluated as given.
+SUMMARY_POWERS = {
+    "five-bar": {},
+    "asymmetric-five-bar": {"workspace_area": 2, "mean_lci": 0, "mean_tqi": 0},
+    "bipod": {"workspace_area": 2, "gtqi": 0, "tqi_integral": 2, "q1_min_over_b": 0},
+    "biglide": {"workspace_area": 2, "gtqi": 0, "tqi_integral": 2, "k_av_1": 0, "k_av_2": 0},
+}
+#: the unit of :func:`unit_of` is ``2**k`` with ``|k| <= 39``: its inverse is itself an
+#: admissible scale factor (``validation.LENGTH_MIN <= 2**-39``, ``2**39 <= LENGTH_MAX``)
+_UNIT_EXPONENT_MAX = 39
+
+
+def unit_of(mech) -> float:
+    """The power of two nearest ``mech.length_scale`` (within ``2**+-39``): the unit a
+    design is evaluated in (1.0 for designs of size about 1)."""
+    L = float(mech.length_scale)
+    if not (L > 0.0 and math.isfinite(L)):
+        return 1.0
+    k = max(-_UNIT_EXPONENT_MAX, min(_UNIT_EXPONENT_MAX, round(math.log2(L))))
+    return math.ldexp(1.0, k)
+
+
+def _in_unit(mech, unit):
+    """``mech`` with its lengths divided by ``unit`` (a power of two: exact), or None if
+    the result is not an admissible design (a length below 1e-12 of a mixed design)."""
+    if unit == 1.0:
+        return mech
+    try:
+        return mech.scaled(1.0 / unit)
+    except ValueError:
+        return None
+
+
+def _scale_back(values: dict, powers: dict, unit: float) -> dict | None:
+    """Values in the unit ``unit`` -> values in the design's own units (None if a
+    float value has no declared power)."""
+    out = {}
+    for key, v in values.items():
+        if isinstance(v, float):
+            p = powers.get(key)
+            if p is None:
+                return None
+            v = v * unit ** p if p else v
+        out[key] = v
+    return out
 
 
 @dataclass(frozen=True)
@@ -67,8 +145,26 @@ def evaluate(mech, quadrature: str = "area", gamma: float = 0.5, step=None) -> E
     if mech.disk_indices:
         values.update(disk_evaluation(mech, quadrature, gamma, step))
         inputs.update(quadrature=quadrature, gamma=float(values["gamma"]))
-    values.update(mech.summary())
+    values.update(_summary(mech))
     return Evaluation(repr(mech), inputs, values)
+
+
+def _summary(mech) -> dict:
+    """``mech.summary()``, computed in the unit of :func:`unit_of` where its numbers'
+    powers are declared (:data:`SUMMARY_POWERS`), else as given (and on any error
+    as given, so that the message names the design's own values)."""
+    powers = SUMMARY_POWERS.get(mech.cli_name)
+    unit = unit_of(mech)
+    if powers is not None and unit != 1.0:
+        scaled = _in_unit(mech, unit)
+        if scaled is not None:
+            try:
+                out = _scale_back(scaled.summary(), powers, unit)
+            except ValueError:
+                out = None
+            if out is not None:
+                return out
+    return mech.summary()
 
 
 def disk_evaluation(fb, quadrature: str = "area", gamma: float = 0.5, step=None) -> dict:
@@ -83,7 +179,13 @@ def disk_evaluation(fb, quadrature: str = "area", gamma: float = 0.5, step=None)
     gamma : float
         LCI level bounding the good-conditioning workspace, in (0, 1).
     step : float, optional
-        Raster step [L] of the usable workspace and GCW (default ``length_scale/400``).
+        Raster step [L] of the usable workspace and GCW (default ``length_scale/400``),
+        any positive size giving at most ``quadrature.MAX_NODES`` cells (the error
+        names the smallest step that does).
+
+    Raises ValueError (one line naming the design's inputs) when it has no MIC or a
+    usable workspace too thin for the raster (see :func:`mechopt.workspace.no_mic_message`
+    and :func:`mechopt.workspace.unusable_message`).
 
     Returns a dict with :data:`DISK_KEYS`; ranges are ``[lo, hi]`` in degrees
     over the GCW. An empty GCW (no usable point with LCI >= gamma, e.g. Liu's
@@ -92,13 +194,29 @@ def disk_evaluation(fb, quadrature: str = "area", gamma: float = 0.5, step=None)
     """
     _v.choice("quadrature", quadrature, QUADRATURES)
     gamma = _v.open_unit_interval("gamma", gamma)
-    m = mic(fb)
-    out = global_indices(fb, quadrature, mic=m)
-    usable = usable_region(fb, step=step, center=(0.0, m.center_y))
-    good = gcw(fb, gamma, usable)
+    if step is not None:
+        step = _v.positive_size("step", step)
+        if step > _v.LENGTH_MAX:
+            raise ValueError(f"step must lie in (0, {_v.LENGTH_MAX:g}], got {_v.show(step)}")
+    unit = unit_of(fb)
+    design = _in_unit(fb, unit)
+    if design is None:
+        design, unit = fb, 1.0
+    if step is not None:
+        _check_raster(fb, step)
+    m = _ws._mic(design) if _ws._is_five_bar(design) else _ws._mic(design, "rays")
+    if m is None:
+        raise ValueError(_ws.no_mic_message(fb))
+    out = global_indices(design, quadrature, mic=m)
+    nstep = _ws._default_step(design) if step is None else step / unit
+    usable = _ws._usable_region(design, nstep, (0.0, m.center_y))
+    if usable is None:
+        raise ValueError(_ws.unusable_message(fb, nstep * unit, (0.0, m.center_y * unit),
+                                              given_step=step is not None, r_mic=m.radius * unit))
+    good = gcw(design, gamma, usable)
     side, cy = largest_square(good)
-    (t1lo, t1hi), (t2lo, t2hi) = joint_ranges(fb, good)
-    reg = region_indices(fb, good)
+    (t1lo, t1hi), (t2lo, t2hi) = joint_ranges(design, good)
+    reg = region_indices(design, good)
     out.update(
         usable_area=usable.area,
         gcw_area=good.area,
@@ -107,6 +225,10 @@ def disk_evaluation(fb, quadrature: str = "area", gamma: float = 0.5, step=None)
         gcw_gsi_min=reg["gsi_min"],
         gcw_square_side=side,
         gcw_square_center_y=cy,
+    )
+    out = {k: float(v) for k, v in out.items()}
+    out = _scale_back(out, disk_powers(fb), unit)
+    out.update(
         theta1_range_deg=_range_deg(t1lo, t1hi),
         theta2_range_deg=_range_deg(t2lo, t2hi),
         quadrature=quadrature,
@@ -114,6 +236,27 @@ def disk_evaluation(fb, quadrature: str = "area", gamma: float = 0.5, step=None)
         gamma=gamma,
     )
     return {k: out[k] for k in DISK_KEYS}
+
+
+def _check_raster(fb, step):
+    """A ``step`` giving more than ``MAX_NODES`` cells over the workspace's box is
+    refused here, in the design's own units, with the smallest step that works."""
+    xmin, xmax, _, ymax = fb.bounding_box()
+    w, h = max(xmax - xmin, 0.0), max(ymax, 0.0)
+    fx, fy = w / step, h / step
+    if not (math.isfinite(fx) and math.isfinite(fy)) or \
+            max(math.ceil(fx), 1) * max(math.ceil(fy), 1) > MAX_NODES:
+        # (w/s + 1)(h/s + 1) <= N for s >= ((w + h) + sqrt((w + h)^2 + 4 (N - 1) w h)) / (2 (N - 1))
+        n = MAX_NODES - 1
+        smallest = ((w + h) + math.sqrt((w + h) ** 2 + 4.0 * n * w * h)) / (2.0 * n)
+        raise ValueError(f"step {step!r} gives a raster of more than {MAX_NODES:.0e} cells over the "
+                         f"workspace of {fb!r}: use a step of at least {_round_up(smallest)}")
+
+
+def _round_up(x, digits=3):
+    """``x`` rounded up to ``digits`` significant digits, as text."""
+    q = 10.0 ** (math.floor(math.log10(x)) - digits + 1)
+    return f"{math.ceil(x / q) * q:.{digits}g}"
 
 
 def _range_deg(lo, hi):

@@ -29,14 +29,20 @@ Coordinates are divided by the length scale first so that nothing over- or
 underflows in any unit. Unreachable points (``n < 0``), a base joint at P
 (``q = 0``) and type-I poses (``n = 0``) give 0, as on the generic path.
 
-The numba kernel is used when numba can be imported (the ``fast`` extra) and
-``MECHOPT_NO_NUMBA`` is not set; it is compiled (or loaded from numba's cache) on
-first use. The pure NumPy kernel is always available.
+The pure NumPy kernel is always available. The numba kernel (the ``fast`` extra,
+unless ``MECHOPT_NO_NUMBA`` is set) gives the same values bit for bit (tested in
+``tests/test_workspace.py``) and is 10-25x faster on large arrays, but loading it costs about
+0.5 s per process (numba's start-up and its cache), more than one design's whole
+evaluation spends in this function. :func:`five_bar_lci` therefore starts with the
+NumPy kernel and switches to numba for good once it has spent
+:data:`NUMBA_AFTER_SECONDS` in NumPy (a long run then pays the load once, at most
+twice the better choice's time), or at once if the numba kernel is already loaded.
 """
 from __future__ import annotations
 
 import importlib.util
 import os
+import time
 
 import numpy as np
 
@@ -206,16 +212,28 @@ def five_bar_lci_numba(x, y, r1, r2, r3, s1, s2):
     if not HAVE_NUMBA:
         raise RuntimeError("numba is not available (install the 'fast' extra)")
     shape = np.shape(x)
-    xf = np.ascontiguousarray(x, dtype=float).reshape(-1)
-    yf = np.ascontiguousarray(y, dtype=float).reshape(-1)
+    # the compiled signature takes writable arrays: read-only inputs are copied
+    xf = np.require(np.ascontiguousarray(x, dtype=float).reshape(-1), requirements=["W"])
+    yf = np.require(np.ascontiguousarray(y, dtype=float).reshape(-1), requirements=["W"])
     out = np.empty(xf.size)
     inv_l, r3n, lo2, hi2, kk = _consts(r1, r2, r3)
     _get_loop_jit()(xf, yf, inv_l, r3n, lo2, hi2, kk, float(s1), float(s2), out)
     return out.reshape(shape)
 
 
+#: seconds spent in the NumPy kernel after which :func:`five_bar_lci` loads numba
+NUMBA_AFTER_SECONDS = 0.5
+_numpy_seconds = 0.0
+
+
 def five_bar_lci(x, y, r1, r2, r3, s1, s2):
-    """Five-bar LCI by the fastest kernel available (numba if importable, else NumPy)."""
-    if HAVE_NUMBA:
+    """Five-bar LCI by the kernel that is cheaper for this process (the same values
+    either way): numba once loaded or once :data:`NUMBA_AFTER_SECONDS` of NumPy work
+    have been spent, NumPy before (see the module docstring)."""
+    global _numpy_seconds
+    if HAVE_NUMBA and (_loop_jit is not None or _numpy_seconds >= NUMBA_AFTER_SECONDS):
         return five_bar_lci_numba(x, y, r1, r2, r3, s1, s2)
-    return five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2)
+    t0 = time.perf_counter()
+    out = five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2)
+    _numpy_seconds += time.perf_counter() - t0
+    return out

@@ -22,7 +22,7 @@ import numpy as np
 from . import indices as _ix
 from . import validation as _v
 from .quadrature import QUADRATURES, disk_rule
-from .workspace import MIC, Region, mic as _mic
+from .workspace import MIC, Region, _blocks, mic as _mic
 
 __all__ = ["GLOBAL_INDEX_NAMES", "disk_mean", "global_indices", "region_indices", "max_lci"]
 
@@ -43,7 +43,7 @@ def disk_mean(mech, center_y, radius, quadrature="area", n_r=None, n_theta=None)
     Returns a dict keyed by :data:`mechopt.indices.LOCAL_INDEX_NAMES`.
     """
     kw = {k: v for k, v in (("n_r", n_r), ("n_theta", n_theta)) if v is not None}
-    center_y = _v.coordinate("center_y", center_y)
+    center_y = _v.position("center_y", center_y)
     dx, dy, w = disk_rule(radius, quadrature, **kw)
     loc = mech.local_indices(dx, center_y + dy)
     return {k: float(np.sum(w * v)) for k, v in loc.items()}
@@ -289,7 +289,7 @@ def max_lci(mech, center_y, radius, n_r=64, n_theta=128, iters=40, n_seeds=6):
     (isotropic point found) to 10 ms for a five-bar at the defaults.
     ``iters = 0`` returns the best grid node or rim sample.
     """
-    center_y = _v.coordinate("center_y", center_y)
+    center_y = _v.position("center_y", center_y)
     iters = _v.integer("iters", iters, 0)
     n_seeds = _v.integer("n_seeds", n_seeds, 1)
     n_r = _v.integer("n_r", n_r, 1)
@@ -349,7 +349,13 @@ def region_indices(mech, region: Region) -> dict:
     if not region.mask.any():
         return {"gci": np.nan, "gsi_max": np.nan, "gsi_min": np.nan}
     x, y = region.points()
-    loc = _ix.local_indices(mech.jacobian(x, y))
+    # the local indices are pointwise: computed in blocks (bounded temporaries), then
+    # each mean over the whole array at once (the same sum as without blocks)
+    loc = {k: np.empty(x.size) for k in ("lci", "d_max", "d_min")}
+    for sl in _blocks(x.size):
+        part = _ix.local_indices(mech.jacobian(x[sl], y[sl]))
+        for k, v in loc.items():
+            v[sl] = part[k]
     return {"gci": float(np.mean(loc["lci"])),
             "gsi_max": float(np.mean(loc["d_max"])),
             "gsi_min": float(np.mean(loc["d_min"]))}

@@ -102,8 +102,9 @@ class Grid:
 
 def grid_over(box, step) -> Grid:
     """Cell-centred grid covering ``box = (xmin, xmax, ymin, ymax)`` with cells of ``step``
-    (at most :data:`MAX_NODES` cells)."""
-    step = _v.positive_length("step", step)
+    (at most :data:`MAX_NODES` cells; ``step`` may be of any positive magnitude, as the
+    lengths of a design scale it)."""
+    step = _v.positive_size("step", step)
     xmin, xmax, ymin, ymax = _v.finite_numbers("box", box, 4, "(xmin, xmax, ymin, ymax)")
     if not (xmin <= xmax and ymin <= ymax):
         raise ValueError(f"box must be (xmin, xmax, ymin, ymax) with xmin <= xmax, ymin <= ymax, "

@@ -542,6 +542,8 @@ def _check_budget(problem, algo):
     n_off = int(n_off) if isinstance(n_off, numbers.Integral) and n_off > 0 else int(pop)
     if max_gen is None:
         max_gen = math.ceil(max(max_eval - pop, 0) / n_off) + 1
+    # memory first, with no design evaluated: a run that cannot fit is refused at once
+    budget.check(budget.estimate(problem, int(pop), n_off, max_gen, max_eval, sample=False))
     line = budget.check(budget.estimate(problem, int(pop), n_off, max_gen, max_eval))
     if line:
         print(line, file=sys.stderr)

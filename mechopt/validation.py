@@ -12,7 +12,10 @@ from typing import Iterable, Sequence
 __all__ = [
     "LENGTH_MIN",
     "LENGTH_MAX",
+    "POINT_MAX",
     "positive_length",
+    "positive_size",
+    "position",
     "nonnegative_length",
     "coordinate",
     "choice",
@@ -29,6 +32,9 @@ __all__ = [
 #: precision for lengths far outside this range
 LENGTH_MIN = 1e-12
 LENGTH_MAX = 1e12
+#: no workspace of an admissible design reaches farther from the origin than this
+#: (a sum of a few lengths of at most LENGTH_MAX); a point beyond is out of reach
+POINT_MAX = 1e3 * LENGTH_MAX
 
 
 def show(value, width: int = 80) -> str:
@@ -93,6 +99,27 @@ def nonnegative_length(name: str, value) -> float:
     if out < 0.0:
         raise ValueError(f"{name} must be a non-negative finite length, got {show(value)}")
     return out if out <= LENGTH_MAX else _length_range(name, out, value)
+
+
+def positive_size(name: str, value) -> float:
+    """A derived size (e.g. a raster step): finite and strictly positive, of any
+    magnitude (a step of a design of lengths 1e-12 is smaller still; the callers
+    bound the work it implies)."""
+    out = finite_number(name, value)
+    if not out > 0.0:
+        raise ValueError(f"{name} must be a positive finite length, got {show(value)}")
+    return out
+
+
+def position(name: str, value) -> float:
+    """A point's coordinate used by an analysis (e.g. a disk centre): finite,
+    ``|value| <= POINT_MAX`` (workspaces of admissible designs reach up to a few
+    LENGTH_MAX from the origin)."""
+    out = finite_number(name, value)
+    if abs(out) > POINT_MAX:
+        raise ValueError(f"{name} must lie in [-{POINT_MAX:g}, {POINT_MAX:g}] (farther than any "
+                         f"workspace reaches), got {show(value)}")
+    return out
 
 
 def coordinate(name: str, value) -> float:

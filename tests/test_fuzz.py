@@ -1330,6 +1330,54 @@ def performance(draw):
     return run
 
 
+#: admissible lengths from one end of the range to the other (validation.LENGTH_MIN/MAX)
+EXTREME_LENGTHS = [1e-12, 3.7e-12, 1e-6, 0.5, 1.0, 1.9, 1e6, 4.2e11, 1e12]
+#: what an error of ``evaluate`` may not start with: quantities the user never passed
+INTERNAL_NAMES = ("step", "center_y", "center ", "radius", "box", "factor", "tol", "x and y")
+
+
+@target
+def extreme_designs(draw):
+    """Designs with lengths anywhere in [1e-12, 1e12], mixed ones included, evaluated in
+    full: they return, or raise a ValueError that names the design (its class and
+    inputs) rather than an internal quantity."""
+    from mechopt import Biglide, Bipod, FiveBar
+    from mechopt.evaluate import evaluate
+    from mechopt.mechanisms.asymmetric_five_bar import AsymmetricFiveBar
+
+    what = draw(st.sampled_from(["five-bar", "five-bar", "five-bar", "bipod", "biglide", "asymmetric"]))
+    lengths = [draw(st.sampled_from(EXTREME_LENGTHS)) for _ in range(5)]
+    scale = draw(st.sampled_from(EXTREME_LENGTHS))
+    mode = draw(st.sampled_from(["+-", "-+", "++", "--"]))
+    r3 = draw(st.sampled_from([0.0, 1e-300, *EXTREME_LENGTHS]))
+    coarse = draw(st.booleans())
+
+    def make():
+        a, b, c, d, e = lengths
+        if what == "five-bar":
+            return FiveBar(a, b, r3, mode)
+        if what == "bipod":
+            return Bipod(a, b, b + c)  # strokes [b, b + c]: may round to b (then refused)
+        if what == "biglide":  # one size (mixed sizes: see the report, quad warns)
+            return Biglide(scale, scale * (1.0 + b / 2.0), -scale * min(c, 1.9), scale * min(d, 1.9))
+        # the asymmetric five-bar with its legs of one size (whose workspaces meet)
+        return AsymmetricFiveBar(scale, 1.5 * scale, 0.8 * scale, 1.7 * scale, 0.5 * scale)
+
+    def run():
+        mech = make()
+        kw = {}
+        if coarse and mech.disk_indices:  # a coarse raster keeps most examples cheap
+            kw["step"] = mech.length_scale / 40
+        try:
+            evaluate(mech, **kw)
+        except ValueError as exc:
+            msg = str(exc)
+            assert not msg.startswith(INTERNAL_NAMES), f"{mech!r}: internal limit: {msg}"
+            assert repr(mech).split("(")[0] + "(" in msg, f"{mech!r}: the error does not name it: {msg}"
+            raise
+    return run
+
+
 @target
 def atlas(draw):
     from mechopt import atlas as A

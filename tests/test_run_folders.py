@@ -376,13 +376,17 @@ sys.exit(main(sys.argv[1:]))
 
 
 # ------------------------------------------------------------------ limits from resources
-def test_a_run_that_cannot_fit_in_memory_is_refused_before_it_starts(tmp_path, capsys):
+def test_a_run_that_cannot_fit_in_memory_is_refused_before_it_starts(tmp_path, capsys, monkeypatch):
+    import pymoo.core.problem
+
+    def no_evaluation(*args, **kwargs):
+        raise AssertionError("a design was evaluated")
+
+    monkeypatch.setattr(pymoo.core.problem.Problem, "evaluate", no_evaluation)
     out = tmp_path / "huge"
-    t0 = time.perf_counter()
     assert main(["optimize", "le2013", "--pop", "100000", "--gen", "2", "--out", str(out)]) == 2
     line = _err_line(capsys)
     assert "of memory available; lower --pop" in line and "GB" in line, line
-    assert time.perf_counter() - t0 < 30  # no evaluation of 100000 designs
     assert not out.exists()
 
 

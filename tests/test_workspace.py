@@ -91,3 +91,132 @@ def test_empty_inputs_raise():
         mic(FiveBar(0.1, 0.1, 5.0))
     with pytest.raises(ValueError, match="gamma"):
         gcw(FiveBar(0.85, 1.6, 0.55), 1.5)
+
+
+# --- the one-design path: same values as the compiled kernels, no scipy or numba -------------
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+
+from mechopt import fast_lci, workspace as W  # noqa: E402
+
+MODES = ("+-", "-+", "++", "--")
+
+
+def _random_designs(seed, n):
+    rng = np.random.default_rng(seed)
+    r = rng.uniform(0.05, 2.5, (n, 3))
+    r[:, 2] = rng.uniform(0.0, 1.5, n)
+    r[::11, 2] = 0.0  # coincident base joints
+    r[3::13, 1] = r[3::13, 0]  # equal links
+    r[5::17, 2] = r[5::17, 0]  # crank = half base
+    r[7::19] *= 10.0 ** rng.uniform(-3, 3, (len(r[7::19]), 1))  # other sizes (scale invariant)
+    return r
+
+
+def test_mic_port_sizes_are_the_kernels():
+    from mechopt import kernels as K
+
+    assert W._MIC_SIZES == K.MIC_SIZES
+    assert W._N_SUB_BRANCH == K._N_SUB_BRANCH and W._GOLD == K._GOLD
+
+
+@pytest.mark.skipif(not fast_lci.HAVE_NUMBA, reason="numba not installed")
+@pytest.mark.parametrize("mode", MODES)
+def test_mic_port_equals_the_compiled_kernel_bit_for_bit(mode):
+    """The NumPy port of one design (what ``mic`` uses first in a process) gives the
+    compiled kernel's radius and centre exactly, so that which one runs never shows."""
+    from mechopt import kernels as K
+
+    d = _random_designs(7 + MODES.index(mode), 400)
+    R, Y = K.mic_batch(d[:, 0], d[:, 1], d[:, 2], mode=mode, compiled=True)
+    port = np.array([W._mic_one_port(*map(float, row), mode) for row in d])
+    np.testing.assert_array_equal(port[:, 0], R)
+    np.testing.assert_array_equal(port[:, 1], Y)
+
+
+def test_mic_switches_to_the_compiled_kernel_with_the_same_values(monkeypatch):
+    fb = FiveBar(0.85, 1.6, 0.55)
+    monkeypatch.setattr(W, "_port_seconds", 0.0)
+    first = mic(fb)
+    monkeypatch.setattr(W, "_port_seconds", W.MIC_NUMBA_AFTER_SECONDS)
+    assert mic(fb) == first
+
+
+@pytest.mark.skipif(not fast_lci.HAVE_NUMBA, reason="numba not installed")
+@pytest.mark.parametrize("mode", MODES)
+def test_fast_lci_numpy_and_numba_agree_bit_for_bit(mode):
+    rng = np.random.default_rng(MODES.index(mode))
+    s1, s2 = (1.0 if c == "+" else -1.0 for c in mode)
+    for r1, r2, r3 in _random_designs(3, 12):
+        L = r1 + r2 + r3
+        x, y = rng.uniform(-L, L, 30001), rng.uniform(-L, L, 30001)
+        np.testing.assert_array_equal(fast_lci.five_bar_lci_numba(x, y, r1, r2, r3, s1, s2),
+                                      fast_lci.five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2))
+
+
+def test_reach_filter_never_drops_a_finite_type2_value():
+    """The usable region evaluates ``type2_function`` only where the filter lets it:
+    wherever the filter says no, the value is NaN (also next to the annuli's circles
+    and for extreme link ratios)."""
+    rng = np.random.default_rng(5)
+    for k, r in enumerate(_random_designs(9, 60)):
+        r = r * 10.0 ** rng.uniform(-4, 4, 3) if k % 3 == 0 else r
+        fb = FiveBar(*r, mode=MODES[k % 4])
+        L = r.sum()
+        x, y = rng.uniform(-1.1 * L, 1.1 * L, 20000), rng.uniform(0.0, 1.1 * L, 20000)
+        phi = rng.uniform(0.0, np.pi, 2000)
+        for radius in (abs(r[0] - r[1]), r[0] + r[1]):
+            for ax in (-r[2], r[2]):
+                rr = radius * (1.0 + rng.normal(0.0, 1e-9, phi.size))
+                x, y = np.r_[x, ax + rr * np.cos(phi)], np.r_[y, rr * np.sin(phi)]
+        near = W._five_bar_reach_filter(fb)(x, y)
+        assert not np.isfinite(fb.type2_function(x[~near], y[~near])).any()
+
+
+def test_component_is_scipys_4_connected_label():
+    from scipy import ndimage
+
+    rng = np.random.default_rng(1)
+    for k in range(200):
+        ny, nx = (int(v) for v in rng.integers(1, 50, 2))
+        free = rng.random((ny, nx)) < rng.uniform(0.3, 0.9)
+        if k % 2:
+            free = ndimage.binary_opening(free)
+        cells = np.argwhere(free)
+        if not len(cells):
+            continue
+        i, j = (int(v) for v in cells[rng.integers(len(cells))])
+        labels, _ = ndimage.label(free)
+        np.testing.assert_array_equal(W._component(free, i, j), labels == labels[i, j])
+
+
+@pytest.mark.parametrize("r", [(0.85, 1.6, 0.55), (1.6, 0.9, 0.5), (1.2, 1.8, 0.0), (0.4, 2.33, 0.27)])
+def test_usable_region_is_the_whole_raster_labelling(r):
+    """Blocks, the reach filter and the run labelling give the mask of the direct
+    route: ``type2_function`` on the whole raster, then ``scipy.ndimage.label``."""
+    from scipy import ndimage
+
+    fb = FiveBar(*r)
+    m = mic(fb)
+    u = usable_region(fb, center=(0.0, m.center_y))
+    X, Y = u.grid.points()
+    free = np.sign(fb.type2_function(X, Y)) == np.sign(fb.type2_function(0.0, m.center_y))
+    labels, _ = ndimage.label(free)
+    i = int(np.clip(np.searchsorted(u.grid.y, m.center_y), 0, u.grid.y.size - 1))
+    j = int(np.clip(np.searchsorted(u.grid.x, 0.0), 0, u.grid.x.size - 1))
+    np.testing.assert_array_equal(u.mask, labels == labels[i, j])
+    g = gcw(fb, 0.5, u)
+    np.testing.assert_array_equal(g.mask, u.mask & (fb.lci(X, Y) >= 0.5))
+    x, y = g.points()
+    np.testing.assert_array_equal(x, X[g.mask])
+    np.testing.assert_array_equal(y, Y[g.mask])
+    assert not x.flags.writeable
+
+
+def test_one_evaluation_imports_neither_scipy_nor_numba():
+    code = ("import sys; from mechopt.evaluate import evaluate; from mechopt import FiveBar; "
+            "evaluate(FiveBar(0.85, 1.6, 0.55)); "
+            "print(sorted(m for m in ('scipy', 'numba', 'mechopt.kernels', 'matplotlib', 'pandas') "
+            "if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
