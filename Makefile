@@ -20,7 +20,7 @@ run: $(STAMP)
 	$(BIN)/mechopt report results --out results/report.html
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n 2
 
 # the API reference (autodoc + numpydoc), the tutorials and the output reference
 # (myst-parser), warnings as errors; the docs extra is installed when missing

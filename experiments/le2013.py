@@ -44,7 +44,7 @@ from mechopt.published import claim_row, compare, comparison_row, lookup
 from mechopt.runner import optimize, parse_weights, sweep
 from mechopt.workspace import mic
 
-__all__ = ["run", "A_ABS_TOL", "FLOWCHART_STEPS", "flowchart_a_max", "golden_section_max",
+__all__ = ["run", "run_part", "PARTS", "A_ABS_TOL", "FLOWCHART_STEPS", "flowchart_a_max", "golden_section_max",
            "contact_side", "corner_side", "corner_switch_rho", "lower_switch_rho", "joint_limits_hold",
            "square_feasible"]
 
@@ -458,7 +458,23 @@ def _claim_rows(curve, fa, lower, at_paper):
     return rows
 
 
-def run(out: Path, quick: bool = False) -> pd.DataFrame:
+#: pieces of :func:`run` that only write files (no row depends on them), which
+#: ``mechopt reproduce`` may run in another process beside the rest (:func:`run_part`)
+PARTS = ("sweep",)
+
+
+def run_part(out: Path, quick: bool, name: str) -> None:
+    """One piece of :data:`PARTS` into ``out``: ``"sweep"``, the (square side, gamma)
+    front and its weighting sweep (``sweep/``)."""
+    if name != "sweep":
+        raise ValueError(f"le2013 has no part {name!r} (parts: {', '.join(PARTS)})")
+    sweep(get("le2013-gamma"), parse_weights("0,0.5,1" if quick else "0:1:0.1"), seed=1,
+          out=Path(out) / "sweep", progress=False, overwrite=True, **(dict(pop=6, gen=2) if quick else {}))
+
+
+def run(out: Path, quick: bool = False, parts: bool = True) -> pd.DataFrame:
+    """Every row of Le 2013 and its files into ``out``; ``parts=False`` leaves out the
+    files of :data:`PARTS` (written by :func:`run_part`)."""
     out = Path(out)
     rho_rec, a_rec = _rec("rho_star"), _rec("a_max")
     paper_rho, paper_a = rho_rec.value, a_rec.value
@@ -470,8 +486,8 @@ def run(out: Path, quick: bool = False) -> pd.DataFrame:
     best = optimize(get("le2013"), seed=1, out=out / "front", progress=False, overwrite=True, **ga).front.iloc[0]
     relaxed = optimize(get("le2013-relaxed"), seed=1, out=out / "relaxed", progress=False, overwrite=True,
                        **ga).front.iloc[0]
-    sweep(get("le2013-gamma"), parse_weights("0,0.5,1" if quick else "0:1:0.1"), seed=1,
-          out=out / "sweep", progress=False, overwrite=True, **(dict(pop=6, gen=2) if quick else {}))
+    if parts:
+        run_part(out, quick, "sweep")
     at_paper = square_side(1.0, paper_rho, tied_half_base(paper_rho))
 
     fa = _flowchart_analysis(curve)

@@ -13,7 +13,8 @@ from mechopt.performance import global_indices, region_indices
 from mechopt.published import claim_row, compare, comparison_row, load, lookup
 from mechopt.workspace import gcw, joint_ranges, largest_square, mic, usable_region
 
-__all__ = ["reproduce_section3", "dimension_rows", "paper_d_rows", "claim_rows", "run", "REL_TOL",
+__all__ = ["reproduce_section3", "dimension_rows", "paper_d_rows", "claim_rows", "run", "run_part",
+           "PARTS", "REL_TOL",
            "NOTES"]
 
 #: acceptance tolerance per quantity class (issue "Foundation"): the paper does not
@@ -266,8 +267,16 @@ def claim_rows(out) -> pd.DataFrame:
     return pd.DataFrame([{"design": "", "quadrature": "", **r} for r in rows])
 
 
-def run(out, quick: bool = False) -> pd.DataFrame:
-    """All of Liu 2006 section 3 (both quadratures) and its figures into ``out``."""
+#: pieces of :func:`run` that only write files (no row depends on them), which
+#: ``mechopt reproduce`` may run in another process beside the rest (:func:`run_part`)
+PARTS = ("figures", "runs")
+
+
+def run_part(out, quick: bool, name: str) -> None:
+    """One piece of :data:`PARTS` into ``out``: ``"figures"``, the figures of single
+    designs (Figs. 8-28, :func:`liu2006_figures.design_figures`); ``"runs"``, the
+    (r_MIC, GCI) front inside Omega_W-GCI, the many-objective front and the weighting
+    sweep (``front/``, ``front_many/``, ``sweep/``)."""
     from pathlib import Path
 
     from . import liu2006_figures as figs
@@ -276,15 +285,34 @@ def run(out, quick: bool = False) -> pd.DataFrame:
     from mechopt.runner import optimize, parse_weights, sweep
 
     out = Path(out)
-    figs.draw_all(out, quick=quick)
+    if name == "figures":
+        figs.design_figures(out, quick=quick)
+    elif name == "runs":
+        sizes = dict(pop=8, gen=3) if quick else {}
+        optimize(get("liu2006-w-gci"), seed=1, out=out / "front", progress=False, overwrite=True, **sizes)
+        optimize(get("liu2006-many"), seed=1, out=out / "front_many", progress=False, overwrite=True, **sizes)
+        sweep(get("liu2006-w-gci"), parse_weights("0,0.5,1" if quick else "0:1:0.1"), seed=1,
+              out=out / "sweep", progress=False, overwrite=True, **sizes)
+    else:
+        raise ValueError(f"liu2006 has no part {name!r} (parts: {', '.join(PARTS)})")
+
+
+def run(out, quick: bool = False, parts: bool = True) -> pd.DataFrame:
+    """All of Liu 2006 section 3 (both quadratures) and its figures into ``out``;
+    ``parts=False`` leaves out the files of :data:`PARTS` (written by :func:`run_part`)."""
+    from pathlib import Path
+
+    from . import liu2006_figures as figs
+
+    out = Path(out)
+    figs.atlas_figures(out, quick)
+    if parts:
+        run_part(out, quick, "figures")
     table = pd.concat([reproduce_section3(), dimension_rows(), paper_d_rows(), claim_rows(out)],
                       ignore_index=True)
     # the (r_MIC, GCI) trade-off inside Omega_W-GCI: front and weighting sweep
-    sizes = dict(pop=8, gen=3) if quick else {}
-    optimize(get("liu2006-w-gci"), seed=1, out=out / "front", progress=False, overwrite=True, **sizes)
-    optimize(get("liu2006-many"), seed=1, out=out / "front_many", progress=False, overwrite=True, **sizes)
-    sweep(get("liu2006-w-gci"), parse_weights("0,0.5,1" if quick else "0:1:0.1"), seed=1,
-          out=out / "sweep", progress=False, overwrite=True, **sizes)
+    if parts:
+        run_part(out, quick, "runs")
     return table
 
 

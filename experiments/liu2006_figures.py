@@ -17,7 +17,7 @@ from mechopt import io as _io
 from mechopt.plotting import INDEX_LABELS, labelled_colorbar, workspace_axes
 from mechopt.workspace import gcw, largest_square, mic, usable_region
 
-__all__ = ["draw_all", "EXAMPLES"]
+__all__ = ["draw_all", "atlas_figures", "design_figures", "EXAMPLES"]
 
 #: sec. 3.1.1-3.1.5: the example design of each optimum region
 EXAMPLES = {
@@ -177,6 +177,12 @@ def draw_all(out, quick: bool = False):
     """Write every figure of this module into ``out``."""
     out = Path(out)
     atlas_figures(out, quick)
+    design_figures(out, quick)
+
+
+def design_figures(out, quick: bool = False):
+    """Figs. 8-28 of single designs (everything but the atlases and their regions)."""
+    out = Path(out)
     step = 0.02 if quick else 0.005
     opt = FiveBar(0.85, 1.6, 0.55)
     _io.save_figure(fig_examples(step), out / "figs08-16_examples.png")

@@ -39,7 +39,7 @@ from mechopt.mechanisms.gantry import (Gantry, dimensional_synthesis, k_av_liter
                                        wu2008_gantry)
 from mechopt.published import TABLE_COLUMNS, claim_row, compare, comparison_row, load, lookup
 
-__all__ = ["run", "REL_TOL", "ALTERNATIVE_READING", "QUANTITIES"]
+__all__ = ["run", "run_part", "PARTS", "REL_TOL", "ALTERNATIVE_READING", "QUANTITIES"]
 
 #: acceptance levels per quantity class (never tuned per row): the synthesis is closed
 #: form, so only the printed digits limit it; k_av is a mean whose quadrature is unstated
@@ -497,11 +497,25 @@ def _runs(out: Path, quick: bool):
     runner.sweep(problems.get("wu2008"), weights, out=out / "sweep", **small, **kw)
 
 
-def run(out: Path, quick: bool = False) -> pd.DataFrame:
+#: pieces of :func:`run` that only write files (no row depends on them), which
+#: ``mechopt reproduce`` may run in another process beside the rest (:func:`run_part`)
+PARTS = ("runs",)
+
+
+def run_part(out: Path, quick: bool, name: str) -> None:
+    """One piece of :data:`PARTS` into ``out``: ``"runs"``, the fronts of ``wu2008`` and
+    ``wu2008-dynamic`` and the weighting sweep (``front/``, ``front_dynamic/``, ``sweep/``)."""
+    if name != "runs":
+        raise ValueError(f"wu2008 has no part {name!r} (parts: {', '.join(PARTS)})")
+    _runs(_io.prepare_out_dir(out), quick)
+
+
+def run(out: Path, quick: bool = False, parts: bool = True) -> pd.DataFrame:
     """Reproduce Wu 2008 into ``out``; returns the table (columns :data:`TABLE_COLUMNS`).
 
     ``quick`` shrinks the optimiser runs, the sweep and the figure grids; every row and
-    every file is still produced (the rows' values do not depend on it).
+    every file is still produced (the rows' values do not depend on it). ``parts=False``
+    leaves out the files of :data:`PARTS` (written by :func:`run_part`).
     """
     out = _io.prepare_out_dir(out)
     rows = _synthesis_rows()
@@ -511,7 +525,8 @@ def run(out: Path, quick: bool = False) -> pd.DataFrame:
     rows += _claim_rows(pd.read_csv(out / "k_av_vs_theta.csv"))
     _io.save_figure(_plot_workspace(), out / "fig2_workspace.png")
     _figures_5_to_7(out, quick)
-    _runs(out, quick)
+    if parts:
+        run_part(out, quick, "runs")
     table = pd.DataFrame(rows, columns=list(TABLE_COLUMNS))
     if tuple(table["quantity"]) != QUANTITIES:  # pragma: no cover (a programming error)
         raise RuntimeError(f"wu2008 rows out of order: {list(table['quantity'])}")

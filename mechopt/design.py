@@ -110,6 +110,7 @@ import pandas as pd
 
 from . import indices as _ix
 from . import validation as _v
+from .numerics import golden_section_max
 
 __all__ = ["Task", "Requirements", "OBJECTIVES", "MECHANISMS", "PLACEMENTS", "DesignEvaluator",
            "design", "DesignResult", "NoFeasibleDesign", "certify", "parse_task", "knee_index",
@@ -772,8 +773,8 @@ class _GantrySpec(_SliderSpec):
         return 2.0 * mech.d1 + 3.0 * mech.l
 
     def joints(self, mech, x, y):
-        c1, c2 = mech._offsets(x)
-        return [(np.full_like(x, -mech.d1), y - c1), (np.full_like(x, mech.d1), y - c2), (x, y)]
+        q1, q2 = mech.slider_positions(x, y)  # the built gantries have l2 = 0: q_i = y - c_i
+        return [(np.full_like(x, -mech.d1), q1), (np.full_like(x, mech.d1), q2), (x, y)]
 
     def link_angles(self, mech, x, y):
         return (np.arcsin(np.clip(np.abs(x + mech.d1) / mech.l, 0, 1)),
@@ -1657,7 +1658,6 @@ def _peak(problem, evals, x, need=False, known=None, h0=0.005, tol=2e-4):
     best = (known[0], known[1], x.copy())
     if not idx or (need and best[0] >= 0):
         return best[2], best[0], best[1]
-    golden = (math.sqrt(5.0) - 1.0) / 2.0
     for i in idx * (1 if len(idx) == 1 else 2):
         lo, hi = float(problem.xl[i]), float(problem.xu[i])
         base = best[2]
@@ -1709,17 +1709,7 @@ def _peak(problem, evals, x, need=False, known=None, h0=0.005, tol=2e-4):
                     break
                 prev, cur, pc = cur, nxt, pn
             L, R = min(prev, nxt), max(prev, nxt)
-        c, e = R - golden * (R - L), L + golden * (R - L)
-        pc, pe = P(c), P(e)
-        while R - L > tol * (hi - lo) and not stop(L, R):
-            if pc >= pe:
-                R, e, pe = e, c, pc
-                c = R - golden * (R - L)
-                pc = P(c)
-            else:
-                L, c, pc = c, e, pe
-                e = L + golden * (R - L)
-                pe = P(e)
+        golden_section_max(P, L, R, tol=tol * (hi - lo), stop=stop)  # P keeps the best seen
         if need and best[0] >= 0:
             break
     return best[2], best[0], best[1]
@@ -2180,7 +2170,7 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
         bases = [(-mech.b / 2, 0), (mech.b / 2, 0)]
     else:
         q1, q2, _ = mech.ik(pmx, pmy)
-        gxs = mech.guides if spec.name == "biglide" else mech.column_x
+        gxs = mech.guides
         chain = [[(gxs[0], float(q1)), (px, py)], [(gxs[1], float(q2)), (px, py)]]
         bases = [(gxs[0], float(q1)), (gxs[1], float(q2))]
         for (gxx, (lo, hi)) in zip(gxs, rec.get("strokes", [])):

@@ -1,5 +1,10 @@
 """Rigid-body dynamics of the Wu 2008 gantry: inertia matrices, kappa_D, eta_D, driving forces.
 
+The motion profiles (:func:`trapezoidal_profile`, :func:`wu2008_trajectory`) live in
+:mod:`mechopt.motion` and Wu's printed numbers (Table 2 inertias, Table 3 motion) in
+``mechopt/data/wu2008.csv`` (:func:`mechopt.data.published_values`); both names stay
+importable from here.
+
 Model (Wu 2008 sec. 5, Table 2). Moving bodies of :class:`mechopt.Gantry`:
 
 =====================  ===========  =====================================================
@@ -65,15 +70,15 @@ Asada H (1983), J. Dyn. Syst. Meas. Control 105:131-135 (generalized inertia ell
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, fields, replace
-from importlib import resources
 
 import numpy as np
 
 from . import indices as _ix
 from . import validation as _v
+from .data import published_values
 from .mechanisms.base import as_points
+from .motion import trapezoidal_profile, wu2008_trajectory  # noqa: F401 (importable from here too)
 
 __all__ = [
     "GantryInertia",
@@ -87,28 +92,21 @@ __all__ = [
     "G_WU2008",
 ]
 
-#: gravitational acceleration of Wu sec. 5.2 [m/s^2]
-G_WU2008 = 9.8
+#: gravitational acceleration of Wu sec. 5.2 [m/s^2] (``mechopt/data/wu2008.csv``)
+G_WU2008 = published_values("wu2008")[("table2", "g")][0]
 ELLIPSE_KINDS = ("acceleration", "kinetic")
+
+
+def wu2008_published() -> dict:
+    """Rows of ``mechopt/data/wu2008.csv`` as ``{(design, quantity): (value, unit, digits, source)}``
+    (:func:`mechopt.data.published_values`)."""
+    return published_values("wu2008")
 
 
 def _mass(name, value, unit="kg"):
     out = _v.finite_number(name, value)
     if out < 0.0:
         raise ValueError(f"{name} must be a non-negative finite value [{unit}], got {value!r}")
-    return out
-
-
-def wu2008_published() -> dict:
-    """Rows of ``mechopt/data/wu2008.csv`` as ``{(design, quantity): (value, unit, digits, source)}``."""
-    import csv
-
-    out = {}
-    with resources.files("mechopt.data").joinpath("wu2008.csv").open("r") as fh:
-        rows = (line for line in fh if not line.startswith("#"))
-        for r in csv.DictReader(rows):
-            out[(r["design"], r["quantity"])] = (
-                float(r["value"]), r["unit"], int(r["digits"]), r["source"])
     return out
 
 
@@ -164,7 +162,7 @@ class GantryInertia:
     @classmethod
     def wu2008(cls) -> "GantryInertia":
         """Wu 2008 Table 2 (from ``mechopt/data/wu2008.csv``); offsets at mid-link."""
-        pub = wu2008_published()
+        pub = published_values("wu2008")
         names = ("m11", "m21", "m12", "m22", "m13", "m23", "m4", "mN", "I12", "I22")
         kw = {k: pub[("table2", k)][0] for k in names}
         return cls(**kw, g=pub[("table2", "g")][0])
@@ -250,7 +248,7 @@ class GantryDynamics:
     """
 
     def __init__(self, gantry, inertia: GantryInertia):
-        if not (hasattr(gantry, "legs") and hasattr(gantry, "column_x")):  # a mechopt.Gantry
+        if not (hasattr(gantry, "link_tangents") and hasattr(gantry, "column_x")):  # a mechopt.Gantry
             raise ValueError(f"gantry must be a mechopt.Gantry, got {type(gantry).__name__}")
         if not isinstance(inertia, GantryInertia):
             raise ValueError(
@@ -301,16 +299,9 @@ class GantryDynamics:
 
     # --- kinematic helpers ---------------------------------------------------------
     def _tan(self, x, y):
-        """``(t1, t2, c1, c2, ok)``: tan and ``l cos`` of the link angles, NaN where unreachable."""
-        x, y = as_points(x, y)
-        g = self.gantry
-        _, _, c1, c2, ok = g.legs(x, y)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            t1 = (x + g.d1) / c1
-            t2 = (x - g.d1) / c2
-        nan = np.nan
-        return (np.where(ok, t1, nan), np.where(ok, t2, nan), np.where(ok, c1, nan),
-                np.where(ok, c2, nan), ok)
+        """``(t1, t2, c1, c2, ok)``: tan and ``l cos`` of the link angles, NaN where
+        unreachable (:meth:`mechopt.Gantry.link_tangents`)."""
+        return self.gantry.link_tangents(x, y)
 
     # --- inertia matrices --------------------------------------------------------------
     def mass_matrix(self, x, y):
@@ -501,69 +492,6 @@ def _inv_t(J):
     with np.errstate(divide="ignore", invalid="ignore"):
         det = a * d - b * c
         return np.stack([np.stack([d, -c], -1), np.stack([-b, a], -1)], -2) / det[..., None, None]
-
-
-def trapezoidal_profile(p0, p1, v_max, a_max, t):
-    """Straight-line point-to-point motion: accelerate, cruise, decelerate (Wu sec. 6.2).
-
-    Acceleration and deceleration last ``T0 = v_max / a_max`` each, the total time is
-    ``Tf = T0 + |p1 - p0| / v_max`` (Wu eq. 45). If the path is too short to reach
-    ``v_max`` the profile is triangular (peak speed ``sqrt(a_max |p1 - p0|)``).
-
-    Parameters
-    ----------
-    p0, p1 : (float, float)
-        Start and end points [m].
-    v_max : float
-        Cruise speed [m/s], > 0.
-    a_max : float
-        Acceleration magnitude [m/s^2], > 0.
-    t : array_like
-        Times [s]; clipped to ``[0, Tf]``.
-
-    Returns
-    -------
-    dict with ``t``, ``x``, ``y``, ``xd``, ``yd``, ``xdd``, ``ydd`` (arrays) and ``T0``,
-    ``Tf`` (floats).
-    """
-    v = _v.positive_length("v_max", v_max)
-    a = _v.positive_length("a_max", a_max)
-    x0, y0 = (_v.coordinate("p0", c) for c in _v.finite_numbers("p0", p0, 2, "a point (x, y)"))
-    x1, y1 = (_v.coordinate("p1", c) for c in _v.finite_numbers("p1", p1, 2, "a point (x, y)"))
-    L = math.hypot(x1 - x0, y1 - y0)
-    if L == 0.0:
-        raise ValueError(f"p1 must differ from p0 = {(x0, y0)!r}, got {(x1, y1)!r}")
-    ex, ey = (x1 - x0) / L, (y1 - y0) / L
-    if L < v * v / a:  # triangular
-        v = math.sqrt(a * L)
-    T0 = v / a
-    Tf = T0 + L / v
-    try:
-        t = np.asarray(t)
-    except (TypeError, ValueError):  # e.g. ragged lists
-        t = np.asarray(None)
-    if t.dtype.kind not in "biuf":
-        raise ValueError(f"t must be a number or an array of numbers [s], got {_v.show(t)}")
-    t = np.clip(t.astype(float), 0.0, Tf)
-    s = np.where(t < T0, 0.5 * a * t * t,
-                 np.where(t <= Tf - T0, 0.5 * a * T0 * T0 + v * (t - T0),
-                          L - 0.5 * a * (Tf - t) ** 2))
-    sd = np.where(t < T0, a * t, np.where(t <= Tf - T0, v, a * (Tf - t)))
-    sdd = np.where(t < T0, a, np.where(t <= Tf - T0, 0.0, -a))
-    return dict(t=t, x=x0 + ex * s, y=y0 + ey * s, xd=ex * sd, yd=ey * sd, xdd=ex * sdd,
-                ydd=ey * sdd, T0=T0, Tf=Tf)
-
-
-def wu2008_trajectory(n: int = 651):
-    """The motion of Wu Table 3 (``(-0.25, 0.5) -> (0.25, 0.5)`` m, 1 m/s, 6.67 m/s^2) at
-    ``n`` equally spaced times over ``[0, Tf]``; ``T0 = 0.150 s``, ``Tf = 0.650 s``."""
-    pub = wu2008_published()
-    val = {k: pub[("table3", k)][0] for k in ("x0", "y0", "x1", "y1", "v_max", "a_s")}
-    n = _v.integer("n", n, 2)
-    L = math.hypot(val["x1"] - val["x0"], val["y1"] - val["y0"])
-    Tf = val["v_max"] / val["a_s"] + L / val["v_max"]
-    return trapezoidal_profile((val["x0"], val["y0"]), (val["x1"], val["y1"]), val["v_max"],
-                               val["a_s"], np.linspace(0.0, Tf, n))
 
 
 def wu2008_driving_forces(gantry, n: int = 651, inertia: GantryInertia | None = None) -> dict:

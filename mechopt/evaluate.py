@@ -14,7 +14,8 @@ Units. Every index is scale invariant and lengths, areas, ... scale as ``D``,
 ``D^2``, ... when every length of a design is multiplied by ``D`` (Liu 2006 eq. 20),
 so a design is evaluated in units of its size: divided by the power of two nearest
 its ``length_scale`` (:func:`unit_of`), evaluated, and its values multiplied back
-by that unit to their powers (:func:`disk_powers`, :data:`SUMMARY_POWERS`). A power
+by that unit to their powers (:func:`disk_powers`, the mechanism's declared
+``summary_powers``). A power
 of two is exact in floating point and these computations are homogeneous, so the
 values are those of the direct evaluation bit for bit (``tests/test_limits.py``)
 while designs of every admissible size (lengths in [1e-12, 1e12], e.g. all 1e-12 or
@@ -37,7 +38,7 @@ from .performance import global_indices, region_indices
 from .quadrature import MAX_NODES, QUADRATURES
 from .workspace import gcw, joint_ranges, largest_square
 
-__all__ = ["DISK_KEYS", "DISK_OPTIONS", "disk_powers", "SUMMARY_POWERS", "Evaluation", "evaluate",
+__all__ = ["DISK_KEYS", "DISK_OPTIONS", "disk_powers", "Evaluation", "evaluate",
            "disk_evaluation", "unit_of"]
 
 DISK_KEYS = (
@@ -67,16 +68,6 @@ def disk_powers(mech) -> dict:
             "gcw_square_side": 1, "gcw_square_center_y": 1}
 
 
-#: ``{cli_name: {key: p}}``: powers of the length scale of each number of
-#: ``mech.summary()`` (as :func:`disk_powers`), for the mechanisms whose summary is
-#: homogeneous in their lengths; a mechanism not listed (the gantry: Wu's synthesis and
-#: its inertia law depend on the unit) or a key not listed is evaluated as given.
-SUMMARY_POWERS = {
-    "five-bar": {},
-    "asymmetric-five-bar": {"workspace_area": 2, "mean_lci": 0, "mean_tqi": 0},
-    "bipod": {"workspace_area": 2, "gtqi": 0, "tqi_integral": 2, "q1_min_over_b": 0},
-    "biglide": {"workspace_area": 2, "gtqi": 0, "tqi_integral": 2, "k_av_1": 0, "k_av_2": 0},
-}
 #: the unit of :func:`unit_of` is ``2**k`` with ``|k| <= 39``: its inverse is itself an
 #: admissible scale factor (``validation.LENGTH_MIN <= 2**-39``, ``2**39 <= LENGTH_MAX``)
 _UNIT_EXPONENT_MAX = 39
@@ -151,9 +142,9 @@ def evaluate(mech, quadrature: str = "area", gamma: float = 0.5, step=None) -> E
 
 def _summary(mech) -> dict:
     """``mech.summary()``, computed in the unit of :func:`unit_of` where its numbers'
-    powers are declared (:data:`SUMMARY_POWERS`), else as given (and on any error
+    powers are declared (``mech.summary_powers``), else as given (and on any error
     as given, so that the message names the design's own values)."""
-    powers = SUMMARY_POWERS.get(mech.cli_name)
+    powers = mech.summary_powers
     unit = unit_of(mech)
     if powers is not None and unit != 1.0:
         scaled = _in_unit(mech, unit)
@@ -204,7 +195,7 @@ def disk_evaluation(fb, quadrature: str = "area", gamma: float = 0.5, step=None)
         design, unit = fb, 1.0
     if step is not None:
         _check_raster(fb, step)
-    m = _ws._mic(design) if _ws._is_five_bar(design) else _ws._mic(design, "rays")
+    m = _ws._mic(design, "explicit" if design.explicit_mic else "rays")
     if m is None:
         raise ValueError(_ws.no_mic_message(fb))
     out = global_indices(design, quadrature, mic=m)

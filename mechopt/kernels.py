@@ -494,8 +494,78 @@ def _radius_nb(r1, r2, r3, qx, qy, n, ay, y):
 
 
 @_njit
+def _sort_cloud_nb(qx, qy, n, sx2, sy):
+    """The first ``n`` points of ``(qx, qy)`` that can be nearest (finite), ordered by
+    y: their ``x * x`` in ``sx2`` and their y in ``sy``; returns how many. A point with
+    an infinite or NaN coordinate never passes ``d2 < best`` in :func:`_radius_nb`."""
+    m = 0
+    for k in range(n):
+        if qx[k] < np.inf and qx[k] > -np.inf and qy[k] < np.inf and qy[k] > -np.inf:
+            sy[m] = qy[k]
+            sx2[m] = qx[k]
+            m += 1
+    if m == 0:
+        return 0
+    order = np.argsort(sy[:m])
+    ys_ = sy[:m].copy()
+    xs_ = sx2[:m].copy()
+    for i in range(m):
+        j = order[i]
+        sy[i] = ys_[j]
+        sx2[i] = xs_[j] * xs_[j]
+    return m
+
+
+@_njit
+def _radius_sorted_nb(r1, r2, r3, sx2, sy, m, ay, y, hint):
+    """:func:`_radius_nb` of a cloud sorted by :func:`_sort_cloud_nb`, the same value
+    bit for bit, and the index of a nearest cloud point (-1 if none is nearer than
+    the serial clearance). Each point's ``d2 = x * x + dy * dy`` is computed as
+    there; the point ``hint`` (the nearest one of a centre nearby) is tried first,
+    then the points outwards from ``y`` until ``dy * dy`` alone reaches the smallest
+    ``d2`` so far (``d2 >= dy * dy`` in floating point, and ``dy * dy`` only grows
+    outwards), so that no point that could lower the minimum is skipped; a minimum
+    does not depend on the order of its terms."""
+    s = _serial_nb(r1, r2, r3, y)
+    if s <= 0.0:
+        return 0.0, hint
+    best = s * s
+    kb = -1
+    if 0 <= hint < m:
+        dy = sy[hint] - y
+        d2 = sx2[hint] + dy * dy
+        if d2 < best:
+            best = d2
+            kb = hint
+    j = np.searchsorted(sy[:m], y)
+    for k in range(j, m):
+        dy = sy[k] - y
+        dd = dy * dy
+        if not dd < best:
+            break
+        d2 = sx2[k] + dd
+        if d2 < best:
+            best = d2
+            kb = k
+    for k in range(j - 1, -1, -1):
+        dy = sy[k] - y
+        dd = dy * dy
+        if not dd < best:
+            break
+        d2 = sx2[k] + dd
+        if d2 < best:
+            best = d2
+            kb = k
+    for i in range(4):
+        dy = ay[i] - y  # NaN compares False
+        if dy * dy < best:
+            best = dy * dy
+    return math.sqrt(best), kb
+
+
+@_njit
 def _mic_one_nb(r1, r2, r3, s1, s2, ugrid, n_y, n_sub, n_seed_y, n_golden, n_cand,
-                qx, qy, ys, rs, dqx, dqy, ay, tr):
+                qx, qy, ys, rs, dqx, dqy, ay, tr, sx2, sy, dsx2, dsy):
     """MIC ``(radius, center_y)`` of one design (work arrays passed in)."""
     nu = ugrid.size
     # centres worth trying: the serial clearance is positive for
@@ -530,9 +600,11 @@ def _mic_one_nb(r1, r2, r3, s1, s2, ugrid, n_y, n_sub, n_seed_y, n_golden, n_can
                 qy[idx] = py
     n = _N_SUB_BRANCH * nu
     _axis_points_nb(r1, r2, r3, s1, s2, ay)
+    ns = _sort_cloud_nb(qx, qy, n, sx2, sy)
+    hint = -1
     for j in range(n_y):
         ys[j] = ylo + (yhi - ylo) * j / (n_y - 1)
-        rs[j] = _radius_nb(r1, r2, r3, qx, qy, n, ay, ys[j])
+        rs[j], hint = _radius_sorted_nb(r1, r2, r3, sx2, sy, ns, ay, ys[j], hint)
     best_r = 0.0
     best_y = 0.0
     used0 = -10
@@ -584,14 +656,15 @@ def _mic_one_nb(r1, r2, r3, s1, s2, ugrid, n_y, n_sub, n_seed_y, n_golden, n_can
                         dqy[m] = py
                         m += 1
         # golden-section maximisation of min(serial, T_dense) over [lo, hi]
+        md = _sort_cloud_nb(dqx, dqy, m, dsx2, dsy)
         yb = ys[jb]
-        fb = _radius_nb(r1, r2, r3, dqx, dqy, m, ay, yb)
+        fb, h0 = _radius_sorted_nb(r1, r2, r3, dsx2, dsy, md, ay, yb, -1)
         a = lo
         c = hi
         x1 = c - _GOLD * (c - a)
         x2 = a + _GOLD * (c - a)
-        f1 = _radius_nb(r1, r2, r3, dqx, dqy, m, ay, x1)
-        f2 = _radius_nb(r1, r2, r3, dqx, dqy, m, ay, x2)
+        f1, h1 = _radius_sorted_nb(r1, r2, r3, dsx2, dsy, md, ay, x1, h0)
+        f2, h2 = _radius_sorted_nb(r1, r2, r3, dsx2, dsy, md, ay, x2, h0)
         for _ in range(n_golden):
             if f1 >= f2:
                 if f1 > fb:
@@ -601,7 +674,8 @@ def _mic_one_nb(r1, r2, r3, s1, s2, ugrid, n_y, n_sub, n_seed_y, n_golden, n_can
                 x2 = x1
                 f2 = f1
                 x1 = c - _GOLD * (c - a)
-                f1 = _radius_nb(r1, r2, r3, dqx, dqy, m, ay, x1)
+                h2 = h1
+                f1, h1 = _radius_sorted_nb(r1, r2, r3, dsx2, dsy, md, ay, x1, h1)
             else:
                 if f2 > fb:
                     fb = f2
@@ -610,7 +684,8 @@ def _mic_one_nb(r1, r2, r3, s1, s2, ugrid, n_y, n_sub, n_seed_y, n_golden, n_can
                 x1 = x2
                 f1 = f2
                 x2 = a + _GOLD * (c - a)
-                f2 = _radius_nb(r1, r2, r3, dqx, dqy, m, ay, x2)
+                h1 = h2
+                f2, h2 = _radius_sorted_nb(r1, r2, r3, dsx2, dsy, md, ay, x2, h2)
         if f1 > fb:
             fb = f1
             yb = x1
@@ -636,10 +711,14 @@ def _mic_batch_nb(r1, r2, r3, s1, s2, ugrid, n_y, n_sub, n_seed_y, n_golden, n_c
     dqy = np.empty(md)
     ay = np.empty(4)
     tr = np.empty((2, 2))
+    sx2 = np.empty(n)
+    sy = np.empty(n)
+    dsx2 = np.empty(md)
+    dsy = np.empty(md)
     for i in range(r1.size):
         out_r[i], out_y[i] = _mic_one_nb(r1[i], r2[i], r3[i], s1, s2, ugrid, n_y, n_sub,
                                          n_seed_y, n_golden, n_cand,
-                                         qx, qy, ys, rs, dqx, dqy, ay, tr)
+                                         qx, qy, ys, rs, dqx, dqy, ay, tr, sx2, sy, dsx2, dsy)
 
 
 # --- the same algorithm in NumPy, vectorised over a block of designs ----------

@@ -15,12 +15,11 @@ and is reported with every result.
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from . import indices as _ix
 from . import validation as _v
+from .numerics import golden_section_max
 from .quadrature import QUADRATURES, disk_rule
 from .workspace import MIC, Region, _blocks, mic as _mic
 
@@ -49,8 +48,6 @@ def disk_mean(mech, center_y, radius, quadrature="area", n_r=None, n_theta=None)
     return {k: float(np.sum(w * v)) for k, v in loc.items()}
 
 
-#: golden-section ratio of the rim search
-_GOLD = 0.5 * (math.sqrt(5.0) - 1.0)
 #: ``g`` below which a point counts as isotropic (``1 - LCI ~ sqrt(g) ~ 1e-13``)
 _G_ISO = 1e-26
 #: most Newton iterations of the isotropy search (it converges quadratically or not at all)
@@ -223,18 +220,8 @@ def _rim_search(mech, cy, radius, n_rim, n_best, n_iter):
     k = np.flatnonzero((v >= np.roll(v, 1)) & (v >= np.roll(v, -1)))
     k = k[np.argsort(-v[k], kind="stable")][:n_best]
     dph = 2.0 * np.pi / n_rim
-    a, c = ph[k] - dph, ph[k] + dph
-    x1, x2 = c - _GOLD * (c - a), a + _GOLD * (c - a)
-    f1, f2 = f(x1), f(x2)
-    for _ in range(n_iter):
-        left = f1 >= f2
-        a, c = np.where(left, a, x1), np.where(left, x2, c)
-        n1 = np.where(left, c - _GOLD * (c - a), x2)
-        n2 = np.where(left, x1, a + _GOLD * (c - a))
-        fn = f(np.where(left, n1, n2))
-        f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
-        x1, x2 = n1, n2
-    return max(best, float(np.max(f1)), float(np.max(f2)))
+    g = golden_section_max(f, ph[k] - dph, ph[k] + dph, max_iter=n_iter)
+    return max(best, float(np.max(g.f1)), float(np.max(g.f2)))
 
 
 def _grid_local_maxima(v, n_r, n_theta):

@@ -6,11 +6,14 @@ that computes its rows (columns :data:`mechopt.published.TABLE_COLUMNS`) and
 writes its figures, front and sweep into ``out``. This module runs them, writes
 ``table.csv`` and ``table.md`` per paper and the summary ``README.md`` over all,
 each file atomically (:mod:`mechopt.io`). A paper whose ``table.csv`` exists is
-skipped unless ``force``.
+skipped unless ``force``. The papers are independent: ``reproduce("all")`` runs them
+side by side in worker processes (one per CPU, :func:`default_jobs`), with the same
+files as one after the other.
 """
 from __future__ import annotations
 
 import importlib
+import os
 import time
 from pathlib import Path
 
@@ -21,7 +24,7 @@ from . import io as _io
 from . import validation as _v
 from .published import KINDS, STATUSES, TABLE_COLUMNS, counts
 
-__all__ = ["PAPERS", "reproduce", "markdown_table", "write_summary", "summary_table", "counts_line"]
+__all__ = ["PAPERS", "reproduce", "default_jobs", "markdown_table", "write_summary", "summary_table", "counts_line"]
 
 PAPERS = ("le2013", "stan2008", "liu2006", "wu2008")
 TITLES = {
@@ -61,42 +64,150 @@ def _check_table(paper: str, df: pd.DataFrame):
         raise RuntimeError(f"experiments/{paper}.py returned kinds {sorted(bad)}")
 
 
+#: relative cost (CPU seconds on 2 cores, ``benchmarks/bench_pipeline.py``) of each
+#: work unit of a parallel reproduction, full and quick: a paper's table (``None``)
+#: and each of its independent parts (``experiments.<paper>.PARTS``). The units start
+#: longest first, so that the workers finish together; no file depends on the order
+COST = {
+    False: {("le2013", None): 17, ("le2013", "sweep"): 35, ("stan2008", None): 36,
+            ("liu2006", None): 22, ("liu2006", "figures"): 6, ("liu2006", "runs"): 31,
+            ("wu2008", None): 7, ("wu2008", "runs"): 11},
+    True: {("le2013", None): 3, ("le2013", "sweep"): 1, ("stan2008", None): 5,
+           ("liu2006", None): 16, ("liu2006", "figures"): 6, ("liu2006", "runs"): 3,
+           ("wu2008", None): 2, ("wu2008", "runs"): 1},
+}
+
+
+def default_jobs(n_units: int) -> int:
+    """Worker processes for ``n_units`` work units: one per unit up to the CPU count (2
+    on the 2-core machine the targets are measured on); 1 for a single unit."""
+    return max(1, min(int(n_units), os.cpu_count() or 1))
+
+
 def reproduce(paper: str, out="results", quick: bool = False, force: bool = False,
-              log=print) -> pd.DataFrame:
-    """Reproduce one paper (or ``"all"``) into ``out/<paper>/``; returns the table(s)."""
+              log=print, n_jobs: int | None = None) -> pd.DataFrame:
+    """Reproduce one paper (or ``"all"``) into ``out/<paper>/``; returns the table(s).
+
+    The papers are independent, and so are the parts of a paper that only write files
+    (``experiments.<paper>.PARTS``, e.g. a weighting sweep whose front no row uses):
+    with several papers to run and ``n_jobs`` > 1 (default :func:`default_jobs` of the
+    papers to run), each paper's table and each of its parts is a work unit mapped over
+    ``n_jobs`` worker processes (:func:`mechopt.parallel.parallel_map`), longest first
+    (:data:`COST`). Every file is the one a serial run writes, byte for byte (the units
+    write disjoint files; ``tests/test_reproduce.py``); a paper's ``table.csv`` is
+    written once all its units are done. ``n_jobs=1``, or a single paper, runs in this
+    process one paper after the other. A paper's line is logged when it is done; the
+    returned table is in the order of :data:`PAPERS`."""
+    from .parallel import parallel_map
+
     _v.choice("paper", paper, PAPERS + ("all",))
+    if n_jobs is not None:
+        n_jobs = _v.integer("n_jobs", n_jobs, 1)
     out = _io.prepare_out_dir(out)
     papers = PAPERS if paper == "all" else (paper,)
-    tables = []
+    n = len(papers)
+    stamp = {"quick": bool(quick), "mechopt": __version__}
+    tables = {}
+    todo = []
     for i, name in enumerate(papers, 1):
         folder = out / name
         table_csv = folder / "table.csv"
-        stamp = {"quick": bool(quick), "mechopt": __version__}
         if table_csv.exists() and not force:
             old = _read_stamp(folder)
             if old == stamp:
-                log(f"[{i}/{len(papers)}] {name}: done before, skipped (use --force to redo)")
-                tables.append(pd.read_csv(table_csv).assign(paper=name))
+                log(f"[{i}/{n}] {name}: done before, skipped (use --force to redo)")
+                tables[name] = pd.read_csv(table_csv).assign(paper=name)
                 continue
-            log(f"[{i}/{len(papers)}] {name}: the finished run was "
+            log(f"[{i}/{n}] {name}: the finished run was "
                 f"{_describe_stamp(old)}, this one is {_describe_stamp(stamp)}: recomputing")
-        _io.prepare_out_dir(folder)
-        log(f"[{i}/{len(papers)}] {name}: running{' (quick)' if quick else ''} ...")
-        t0 = time.perf_counter()
-        module = importlib.import_module(f"mechopt.experiments.{name}")
-        df = module.run(folder, quick=quick)
-        _check_table(name, df)
-        cols = list(TABLE_COLUMNS) + [c for c in df.columns if c not in TABLE_COLUMNS]
-        df = df[cols]
-        _io.write_text(folder / "table.md", f"# {TITLES[name]}\n\n" + markdown_table(df))
-        _io.write_json(stamp, folder / STAMP)
-        _io.write_csv(df, table_csv)  # last: its presence marks the paper as finished
-        log(f"[{i}/{len(papers)}] {name}: {counts_line(counts(df))} "
-            f"({time.perf_counter() - t0:.1f} s)")
-        tables.append(df.assign(paper=name))
-    table = pd.concat(tables, ignore_index=True)
+        todo.append((i, name))
+    workers = default_jobs(len(todo)) if n_jobs is None else min(n_jobs, max(len(todo), 1))
+    if workers > 1:
+        _run_parallel(todo, n, out, quick, stamp, workers, tables, log, parallel_map)
+    else:
+        for i, name in todo:
+            log(f"[{i}/{n}] {name}: running{' (quick)' if quick else ''} ...")
+            t0 = time.perf_counter()
+            df = _finish_paper(name, out / name, stamp, _run_paper((name, str(out / name), bool(quick), None)))
+            log(f"[{i}/{n}] {name}: {counts_line(counts(df))} ({time.perf_counter() - t0:.1f} s)")
+            tables[name] = df.assign(paper=name)
+    table = pd.concat([tables[name] for name in papers], ignore_index=True)
     write_summary(out)
     return table
+
+
+#: the work unit of a paper's table without its parts (parallel reproduction)
+TABLE = "table"
+
+
+def _units(name):
+    """The work units of a paper: its table (:data:`TABLE`) and its independent parts."""
+    module = importlib.import_module(f"mechopt.experiments.{name}")
+    return [TABLE, *getattr(module, "PARTS", ())]
+
+
+def _run_parallel(todo, n, out, quick, stamp, workers, tables, log, parallel_map):
+    cost = COST[bool(quick)]
+    units = [(i, name, part) for i, name in todo for part in _units(name)]
+    units.sort(key=lambda u: -cost.get((u[1], None if u[2] == TABLE else u[2]), 0))  # stable
+    left = {name: sum(1 for u in units if u[1] == name) for _, name in todo}
+    seconds = dict.fromkeys(left, 0.0)
+    result = {}
+    log(f"running {', '.join(name for _, name in todo)}{' (quick)' if quick else ''} as "
+        f"{len(units)} work units on {workers} processes ...")
+
+    def _done(k, res):
+        i, name, part = units[k]
+        value, sec = res
+        seconds[name] += sec
+        if part == TABLE:
+            result[name] = value
+        left[name] -= 1
+        if left[name] == 0:  # every unit of the paper is done: its table, written last
+            df = _finish_paper(name, out / name, stamp, result.pop(name))
+            log(f"[{i}/{n}] {name}: {counts_line(counts(df))} ({seconds[name]:.1f} s in "
+                f"{sum(1 for u in units if u[1] == name)} work units)")
+            tables[name] = df.assign(paper=name)
+
+    jobs = [(name, str(out / name), bool(quick), part) for _, name, part in units]
+    parallel_map(_timed_unit, jobs, n_jobs=workers, on_item=_done)
+
+
+def _timed_unit(job):
+    """One work unit of a parallel reproduction (module level, so that it pickles):
+    ``(table or None, seconds)``."""
+    t0 = time.perf_counter()
+    return _run_paper(job), time.perf_counter() - t0
+
+
+def _run_paper(job):
+    """``job = (name, folder, quick, part)``: with ``part`` None the whole paper
+    (``experiments.<name>.run``), :data:`TABLE` its table without its parts
+    (``run(..., parts=False)``), else one of its parts (``run_part``, returns None)."""
+    name, folder, quick, part = job
+    folder = _io.prepare_out_dir(Path(folder))
+    module = importlib.import_module(f"mechopt.experiments.{name}")
+    if part is None:
+        return module.run(folder, quick=quick)
+    if part == TABLE:
+        if getattr(module, "PARTS", ()):
+            return module.run(folder, quick=quick, parts=False)
+        return module.run(folder, quick=quick)
+    module.run_part(folder, quick, part)
+    return None
+
+
+def _finish_paper(name, folder, stamp, df):
+    """Check a paper's table and write ``table.md``, the stamp and ``table.csv`` (last:
+    its presence marks the paper as finished); returns the table with its columns in
+    order."""
+    _check_table(name, df)
+    cols = list(TABLE_COLUMNS) + [c for c in df.columns if c not in TABLE_COLUMNS]
+    df = df[cols]
+    _io.write_text(folder / "table.md", f"# {TITLES[name]}\n\n" + markdown_table(df))
+    _io.write_json(stamp, folder / STAMP)
+    _io.write_csv(df, folder / "table.csv")
+    return df
 
 
 #: how a paper's folder was produced (quick or full, mechopt version), written before

@@ -30,6 +30,7 @@ from functools import cached_property
 import numpy as np
 
 from . import validation as _v
+from .numerics import INV_PHI, golden_section_max
 from .quadrature import Grid, grid_over
 
 __all__ = [
@@ -43,7 +44,6 @@ __all__ = [
     "joint_ranges",
 ]
 
-_GOLDEN = (np.sqrt(5.0) - 1.0) / 2.0
 #: cells per block of a raster evaluation (the kinematics' temporaries stay small)
 RASTER_BLOCK = 1 << 15
 
@@ -146,17 +146,16 @@ def mic(mech, method: str = "auto", n_y: int = 48, tol: float = 1e-6) -> MIC:
     reachable point (``radius`` would be 0); the message names the inputs and,
     for the five-bar, which condition on them fails.
     """
-    from .mechanisms.five_bar import FiveBar
-
     _v.choice("method", method, ("auto", "explicit", "rays"))
     n_y = _v.integer("n_y", n_y, 1)
     tol = _v.finite_number("tol", tol)
     if not tol > 0.0:
         raise ValueError(f"tol must be a positive relative tolerance, got {_v.show(tol)}")
     if method == "auto":
-        method = "explicit" if isinstance(mech, FiveBar) else "rays"
-    if method == "explicit" and not isinstance(mech, FiveBar):
-        raise ValueError(f"method 'explicit' needs a FiveBar, got {type(mech).__name__}")
+        method = "explicit" if mech.explicit_mic else "rays"
+    if method == "explicit" and not mech.explicit_mic:
+        raise ValueError(f"method 'explicit' needs a FiveBar (a mechanism with explicit_mic), "
+                         f"got {type(mech).__name__}")
     out = _mic(mech, method, n_y, tol)
     if out is None:
         raise ValueError(no_mic_message(mech))
@@ -179,21 +178,10 @@ def _mic(mech, method="explicit", n_y=48, tol=1e-6):
     a = ys[j - 1] if j > 0 else 0.0
     b = ys[j + 1] if j + 1 < n_y else ymax
     # golden-section maximisation of the (locally unimodal) radius over [a, b]
-    x1 = b - _GOLDEN * (b - a)
-    x2 = a + _GOLDEN * (b - a)
-    f1, f2 = _mic_radius_at(mech, [x1, x2])
-    for _ in range(200):  # 0.618^200: below any tol in double precision
-        if not b - a > tol * mech.length_scale:
-            break
-        if f1 >= f2:
-            b, x2, f2 = x2, x1, f1
-            x1 = b - _GOLDEN * (b - a)
-            f1 = float(_mic_radius_at(mech, x1)[0])
-        else:
-            a, x1, f1 = x1, x2, f2
-            x2 = a + _GOLDEN * (b - a)
-            f2 = float(_mic_radius_at(mech, x2)[0])
-    best = max((rs[j], ys[j]), (f1, x1), (f2, x2))
+    # (0.618^200: below any tol in double precision)
+    g = golden_section_max(lambda y: float(_mic_radius_at(mech, y)[0]), a, b,
+                           tol=tol * mech.length_scale, max_iter=200)
+    best = max((rs[j], ys[j]), (g.f1, g.x1), (g.f2, g.x2))
     return MIC(radius=float(best[0]), center_y=float(best[1]))
 
 
@@ -208,10 +196,8 @@ def no_mic_message(mech) -> str:
       ``min(r1, r2)`` and a radius below 1e-9 of the length scale is not resolved
       in double precision (the test of :func:`mic`).
     """
-    from .mechanisms.five_bar import FiveBar
-
     head = f"{mech!r} has no singularity-free disk centred on the y axis (MIC radius 0)"
-    if not isinstance(mech, FiveBar):
+    if not mech.explicit_mic:
         return head
     r1, r2, r3 = mech.r1, mech.r2, mech.r3
     scale = (r1 + r2 + r3) / 3.0
@@ -236,8 +222,9 @@ def no_mic_message(mech) -> str:
 # for bit (tests/test_workspace.py checks it on 1600 designs, every mode). Its sizes are
 # ``kernels.MIC_SIZES`` (the same test checks that they are equal).
 _MIC_SIZES = dict(n_crank=128, n_y=128, n_sub=16, n_seed_y=9, n_golden=42, n_cand=2)
+#: the ratio of the port's golden-section search (:data:`mechopt.kernels._GOLD`)
+_GOLD = INV_PHI
 _N_SUB_BRANCH = 8
-_GOLD = (math.sqrt(5.0) - 1.0) / 2.0
 #: seconds spent in the NumPy port after which :func:`five_bar_mic` loads the compiled
 #: kernel (its first load costs about 0.5 s per process; see :mod:`mechopt.fast_lci`)
 MIC_NUMBA_AFTER_SECONDS = 0.5
@@ -399,30 +386,11 @@ def _mic_one(r1, r2, r3, s1, s2):
         def rad(y):
             return float(_cloud_radius(r1, r2, r3, dqx, dqy, ay, np.array([y]))[0])
 
-        # golden-section maximisation of min(serial, T_dense) over [lo, hi]
+        # golden-section maximisation of min(serial, T_dense) over [lo, hi], the best
+        # point seen (from the coarse one) kept
         yb = float(ys[jb])
-        fb = rad(yb)
-        a, c = lo, hi
-        x1 = c - _GOLD * (c - a)
-        x2 = a + _GOLD * (c - a)
-        f1, f2 = rad(x1), rad(x2)
-        for _ in range(n_golden):
-            if f1 >= f2:
-                if f1 > fb:
-                    fb, yb = f1, x1
-                c, x2, f2 = x2, x1, f1
-                x1 = c - _GOLD * (c - a)
-                f1 = rad(x1)
-            else:
-                if f2 > fb:
-                    fb, yb = f2, x2
-                a, x1, f1 = x1, x2, f2
-                x2 = a + _GOLD * (c - a)
-                f2 = rad(x2)
-        if f1 > fb:
-            fb, yb = f1, x1
-        if f2 > fb:
-            fb, yb = f2, x2
+        g = golden_section_max(rad, lo, hi, max_iter=n_golden, start=(yb, rad(yb)))
+        yb, fb = g.x_best, g.f_best
         if fb > best_r:
             best_r, best_y = fb, yb
     return best_r, best_y
@@ -535,7 +503,7 @@ def _usable_region(mech, step, center):
     free = np.zeros(grid.shape, dtype=bool)
     ny, nx = grid.shape
     rows = max(1, RASTER_BLOCK // nx)
-    near = _five_bar_reach_filter(mech) if _is_five_bar(mech) else None
+    near = _five_bar_reach_filter(mech) if mech.explicit_mic else None
     for r0 in range(0, ny, rows):
         r1 = min(r0 + rows, ny)
         X = np.broadcast_to(grid.x, (r1 - r0, nx))
@@ -634,7 +602,7 @@ def unusable_message(mech, step, center, given_step=False, r_mic=None) -> str:
     if not (np.isfinite(s0) and s0 != 0):
         return (f"{mech!r}: the centre {_v.show(tuple(center))} is singular or unreachable, so it lies "
                 "in no singularity-free region")
-    five_bar = _is_five_bar(mech)
+    five_bar = mech.explicit_mic
     scale = "(r1 + r2 + r3)/1200" if five_bar else "its length scale/400"
     what = f"the raster step {step:.6g}" if given_step else f"the raster step {scale} = {step:.6g}"
     bound = ""
@@ -646,12 +614,6 @@ def unusable_message(mech, step, center, given_step=False, r_mic=None) -> str:
     return (f"{mech!r}: its usable workspace is too thin for {what}: the raster cell next to the "
             f"MIC centre{radius} lies outside it; the MIC radius must be at least about 1.5 raster "
             f"steps{bound}")
-
-
-def _is_five_bar(mech):
-    from .mechanisms.five_bar import FiveBar
-
-    return isinstance(mech, FiveBar)
 
 
 def gcw(mech, gamma: float = 0.5, usable: Region | None = None) -> Region:

@@ -56,14 +56,8 @@ def square_side(l1, l2, l0, gamma=GAMMA, theta_limits=THETA_LIMITS) -> dict:
         return dict(a_max=0.0, r_mic=0.0, mic_center_y=np.nan, lci_min=np.nan, lci_max=np.nan,
                     violation=1.0)
     lo, hi = theta_limits
-
-    def feasible(x, y):
-        t1, t2, ok = fb.ik(x, y)
-        with np.errstate(invalid="ignore"):
-            return ok & (fb.lci(x, y) >= gamma) & (t1 >= lo) & (t1 <= hi) & (t2 >= lo) & (t2 <= hi)
-
     # the square inscribed in the MIC has half side r_MIC / sqrt(2) (Le sec. III)
-    a = largest_square_at(feasible, m.center_y, m.radius / np.sqrt(2.0))
+    a = largest_square_at(_SquareTest(fb, gamma, lo, hi), m.center_y, m.radius / np.sqrt(2.0))
     s = np.linspace(-a / 2, a / 2, 81)
     X, Y = np.meshgrid(s, m.center_y + s)
     L = fb.lci(X, Y)
@@ -76,6 +70,48 @@ def square_side(l1, l2, l0, gamma=GAMMA, theta_limits=THETA_LIMITS) -> dict:
     return dict(a_max=a, r_mic=m.radius, mic_center_y=m.center_y,
                 lci_min=float(L.min()) if a > 0 else np.nan, lci_max=float(L.max()) if a > 0 else np.nan,
                 violation=violation)
+
+
+class _SquareTest:
+    """The constraints (23), (25)-(26) at a square's sample points for
+    :func:`mechopt.workspace.largest_square_at`, which only asks whether *all* of them
+    hold: ``ok & (LCI >= gamma) & (theta_i in [lo, hi])`` point by point, with the
+    same kinematics calls (``fb.lci``, ``fb.ik``) on the same points, so the bisection
+    takes the same steps and returns the same side bit for bit. Only the order of the
+    work differs: a square fails as soon as one point fails, so the cheap LCI is
+    checked at every point first (it binds on Le's squares), and the inverse
+    kinematics (two arccos and two arctan2 per point) is computed only for a square
+    whose LCI holds everywhere, at the point that failed the joint limits last time
+    alone first (the evaluators are element-wise: a point gives the same values alone
+    as among all)."""
+
+    def __init__(self, fb, gamma, lo, hi):
+        self.fb, self.gamma, self.lo, self.hi = fb, gamma, lo, hi
+        self.last = None  # index of the point that failed the joint limits last
+
+    def _holds(self, x, y, lci):
+        t1, t2, ok = self.fb.ik(x, y)
+        lo, hi = self.lo, self.hi
+        with np.errstate(invalid="ignore"):
+            return ok & (lci >= self.gamma) & (t1 >= lo) & (t1 <= hi) & (t2 >= lo) & (t2 <= hi)
+
+    def __call__(self, x, y):
+        """Element-wise truth of the constraints, or ``[False]`` once one point fails."""
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        lci = self.fb.lci(x, y)
+        with np.errstate(invalid="ignore"):
+            if not np.all(lci >= self.gamma):
+                return _FAILS
+        i = self.last
+        if i is not None and not self._holds(x[i:i + 1], y[i:i + 1], lci[i:i + 1])[0]:
+            return _FAILS
+        out = self._holds(x, y, lci)
+        if not out.all():
+            self.last = int(np.argmin(out))
+        return out
+
+
+_FAILS = np.zeros(1, dtype=bool)
 
 
 def _evaluate(rows, gamma_col=None, l0_col=None, tied=True):

@@ -89,14 +89,41 @@ def liu_indices(r1, r2, r3, quadrature: str = "polar") -> dict:
     (the explicit-locus MIC and the compiled disk means; agreement with
     :func:`mechopt.performance.global_indices` is tested in ``tests/test_atlas.py``).
     """
-    from mechopt.atlas import RESULT_COLUMNS, evaluate_designs
+    from mechopt.atlas import RESULT_COLUMNS
 
     r1, r2, r3 = (np.atleast_1d(np.asarray(v, float)) for v in (r1, r2, r3))
-    res = evaluate_designs(r1, r2, r3, quadrature=quadrature)
+    res = _evaluate_memo(r1, r2, r3, quadrature)
     out = {name: res[:, j] for j, name in enumerate(RESULT_COLUMNS) if name in _INDEX_KEYS}
     out["r_mic"] = np.where(out["r_mic"] > 0, out["r_mic"], np.nan)
     out.update(r1=r1, r2=r2, r3=r3)
     return out
+
+
+#: designs evaluated by this process: (quadrature, r1, r2, r3) -> row of
+#: :func:`mechopt.atlas.evaluate_designs`. A GA meets the same designs again (the
+#: weighting sweep's NSGA-II run is the front run of the same seed, every weight's GA
+#: starts from the same population); the kernels evaluate each design on its own, so
+#: a remembered row is the row a new evaluation would give, bit for bit
+_MEMO: dict = {}
+#: rows kept at most (about 150 bytes each); beyond, the memo starts afresh
+MEMO_SIZE = 400_000
+
+
+def _evaluate_memo(r1, r2, r3, quadrature):
+    from mechopt.atlas import RESULT_COLUMNS, evaluate_designs
+
+    # keyed by the bits (so that -0.0 and 0.0 stay apart)
+    keys = list(map(tuple, np.column_stack([r1, r2, r3]).astype(float).view(np.uint64).tolist()))
+    rows = [_MEMO.get((quadrature, *k)) for k in keys]
+    todo = [i for i, row in enumerate(rows) if row is None]
+    if todo:
+        new = evaluate_designs(r1[todo], r2[todo], r3[todo], quadrature=quadrature)
+        if len(_MEMO) + len(todo) > MEMO_SIZE:
+            _MEMO.clear()
+        for i, row in zip(todo, new):
+            rows[i] = row
+            _MEMO[(quadrature, *keys[i])] = row
+    return np.vstack(rows) if rows else np.empty((0, len(RESULT_COLUMNS)))
 
 
 #: upper bound of r3: at r3 = 1.5 exactly, r1 + r2 = r3 and the arms meet only on the

@@ -19,11 +19,9 @@ which ``wu2008-dynamic`` exposes through ``eta_D``.
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from mechopt.mechanisms.gantry import dimensional_synthesis, k_av_literal_of_design, summary
+from mechopt.mechanisms.gantry import Gantry, dimensional_synthesis, k_av_literal_of_design
 
 from .base import MechoptProblem, Objective
 
@@ -86,7 +84,9 @@ class WuGantryDynamic(WuGantry):
 
     def evaluate_designs(self, X):
         ex = self._synthesis(X)
+        # the machine of Wu's synthesis in mm (platform of Table 1, which eta_D does not
+        # depend on), its dynamics in metres with Table 2 carried over to its link length
         ex["eta_d"] = np.array([
-            summary(self.b, self.h, math.radians(t))["eta_d"] for t in X[:, 0]])
+            Gantry.from_parameters(self.b, self.h, float(t)).eta_d() for t in X[:, 0]])
         F = np.column_stack([-ex["k_av"], ex["l"], ex["eta_d"]])
         return {"F": F, "extra": ex}

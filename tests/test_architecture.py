@@ -17,8 +17,8 @@ SOURCES = {"mechopt": ROOT / "mechopt", "mechopt.problems": ROOT / "problems",
 LAYERS = [
     ("core", ["mechopt.validation", "mechopt.indices", "mechopt.quadrature", "mechopt.geometry",
               "mechopt.kernels", "mechopt.fast_lci", "mechopt.progress", "mechopt.conditions",
-              "mechopt.io", "mechopt.published", "mechopt.data"]),
-    ("mechanisms", ["mechopt.mechanisms", "mechopt.dynamics"]),
+              "mechopt.io", "mechopt.published", "mechopt.data", "mechopt.numerics"]),
+    ("mechanisms", ["mechopt.mechanisms", "mechopt.dynamics", "mechopt.motion"]),
     ("analysis", ["mechopt.workspace", "mechopt.performance", "mechopt.evaluate"]),
     # the runner drives any pymoo Problem; the problem base class and the weighted sum
     # of a sweep are its machinery, the paper formulations sit above it

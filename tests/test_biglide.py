@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import integrate
 
-from mechopt.mechanisms.biglide import ASSEMBLY_MODES, MODES, SUMMARY_KEYS, Biglide, summary
+from mechopt.mechanisms.biglide import ASSEMBLY_MODES, MODES, SUMMARY_KEYS, Biglide
 
 HYP = settings(max_examples=60, deadline=None, derandomize=True)
 
@@ -258,34 +258,33 @@ def test_k_v_is_cot_theta_and_k_av_closed_form():
     np.testing.assert_allclose(k2, 1 / np.abs(J[:, 1, 0]), rtol=1e-12)
     f = lambda t: float(np.sqrt(616.4**2 - (t - 357) ** 2) / abs(t - 357))  # noqa: E731
     ref = integrate.quad(f, -250, 250, epsrel=1e-12)[0] / 500
-    assert m.k_av(1, -250, 250) == pytest.approx(ref, rel=1e-10)
-    assert m.k_av(2, -250, 250) == pytest.approx(ref, rel=1e-10)  # symmetric
+    assert m.k_av(-250, 250, leg=1) == pytest.approx(ref, rel=1e-10)
+    assert m.k_av(-250, 250, leg=2) == pytest.approx(ref, rel=1e-10)  # symmetric
     # with Wu's Table 1 dimensions (l = 616.4, d1 = 357, x in [-b/2, b/2]) the literal
     # eq. (7) gives 1.7875, not the printed 1.05 (as recorded in wu2008.csv)
-    assert m.k_av(1, -250, 250) == pytest.approx(1.7875, abs=5e-5)
+    assert m.k_av(-250, 250) == pytest.approx(1.7875, abs=5e-5)
     # a range containing the guide diverges
     m2 = Biglide(20.0, 100.0, 0.0, 100.0)
-    assert m2.k_av(1) == np.inf
-    with pytest.raises(ValueError, match="leg must be 1 or 2"):
-        m.k_av(3)
+    assert m2.k_av(leg=1) == np.inf
+    with pytest.raises(ValueError, match="leg must be one of 1, 2"):
+        m.k_av(leg=3)
     with pytest.raises(ValueError, match="x_max must be greater"):
-        m.k_av(1, 10, 10)
+        m.k_av(10, 10)
     with pytest.raises(ValueError, match="x range"):
-        m.k_av(1, -300, 250)
+        m.k_av(-300, 250)
 
 
 def test_summary():
     m = Biglide(1.0, 1.1, 0.0, 1.0)
-    s = summary(m)
-    assert tuple(s) == SUMMARY_KEYS
+    s = m.summary()
+    assert tuple(s) == SUMMARY_KEYS == Biglide.summary_keys
     assert all(isinstance(v, float) for k, v in s.items() if k != "quadrature")
     assert s["quadrature"] == "adaptive-1d"
     assert s["workspace_area"] == pytest.approx(m.workspace_area(), rel=1e-15)
     assert s["gtqi"] == pytest.approx(m.gtqi(), rel=1e-12)
     assert 0 < s["gtqi"] < 1
     assert s["k_av_1"] == pytest.approx(s["k_av_2"], rel=1e-12)
-    with pytest.raises(ValueError, match="mech must be a Biglide"):
-        summary(object())
+    assert s["k_av_1"] == m.k_av(*m.x_range, leg=1)  # the whole x range by default
 
 
 def test_empty_workspace():

@@ -19,7 +19,6 @@ from mechopt.mechanisms.bipod import (
     Bipod,
     bipod_tqi_integral,
     bipod_workspace_area,
-    summary,
 )
 from mechopt.published import load, printed_half_unit
 
@@ -276,16 +275,14 @@ def test_gtqi_nan_for_empty_workspace():
 
 
 def test_summary():
-    s = summary(stan())
-    assert tuple(s) == SUMMARY_KEYS
+    s = stan().summary()
+    assert tuple(s) == SUMMARY_KEYS == Bipod.summary_keys
     assert all(isinstance(v, float) for k, v in s.items() if k != "quadrature")
     assert s["quadrature"] == "exact"
     assert s["workspace_area"] == pytest.approx(4863.877990351752, rel=1e-14)
     assert s["tqi_integral"] == pytest.approx(2500.0, rel=1e-14)
     assert s["gtqi"] == pytest.approx(0.5139931562755, rel=1e-12)
     assert s["q1_min_over_b"] == pytest.approx(4 / 3)
-    with pytest.raises(ValueError, match="mech must be a Bipod"):
-        summary("bipod")
 
 
 # --- validation ------------------------------------------------------------------

@@ -331,6 +331,29 @@ def test_scale_invariance(case):
         mech.scaled(float("nan"))
 
 
+def test_summary_is_the_declared_one(case):
+    """``summary()`` returns :attr:`summary_keys` in order; where ``summary_powers`` is
+    declared, every float of it has a power, and the design scaled by ``D`` gives the
+    numbers times ``D**p`` (what ``mechopt.evaluate`` relies on to evaluate a design in
+    units of its size)."""
+    cid, mech, _ = case
+    try:
+        s = mech.summary()
+    except ValueError:  # a gantry not made by Wu's synthesis has no summary
+        assert mech.summary_powers is None
+        return
+    assert tuple(s) == mech.summary_keys
+    if mech.summary_powers is None:
+        return
+    floats = {k for k, v in s.items() if isinstance(v, float)}
+    assert floats <= set(mech.summary_powers), floats - set(mech.summary_powers)
+    D = 2.0 ** 5  # exact: the scaled numbers equal bit for bit
+    big = mech.scaled(D).summary()
+    for k in floats:
+        want = s[k] * D ** mech.summary_powers[k]
+        assert big[k] == want or (np.isnan(want) and np.isnan(big[k])), k
+
+
 # --- errors on wrong shapes ------------------------------------------------------
 @pytest.mark.parametrize(
     "method",

@@ -6,17 +6,18 @@ import math
 import numpy as np
 import pytest
 
+from mechopt import dynamics, motion
+from mechopt.data import published_values
 from mechopt.dynamics import (
     ELLIPSE_KINDS,
     GantryDynamics,
     GantryInertia,
     rectangle_rule,
-    trapezoidal_profile,
     wu2008_driving_forces,
     wu2008_published,
-    wu2008_trajectory,
 )
 from mechopt.mechanisms.gantry import MODES, Gantry, wu2008_gantry
+from mechopt.motion import trapezoidal_profile, wu2008_trajectory
 from mechopt.quadrature import grid_over
 
 PUB = wu2008_published()
@@ -52,6 +53,16 @@ def test_table2_loaded_from_the_data_file():
     assert p.g == 9.8
     # sec. 6.2: "each [counterweight] is half of the masses of all moving parts"
     assert p.moving_mass == 924.0 and p.m13 == p.m23 == p.moving_mass / 2
+
+
+def test_data_and_motion_live_apart_and_stay_importable_from_dynamics():
+    """Wu's printed numbers come from mechopt/data/wu2008.csv (with their source), the
+    motion profile from mechopt.motion; the old names still import from mechopt.dynamics."""
+    assert dynamics.trapezoidal_profile is motion.trapezoidal_profile
+    assert dynamics.wu2008_trajectory is motion.wu2008_trajectory
+    assert PUB == published_values("wu2008") and PUB is not published_values("wu2008")
+    assert PUB[("table2", "g")] == (dynamics.G_WU2008, "m/s^2", 1, "sec. 5.2, text after eq. (29)")
+    assert all(source for _, _, _, source in PUB.values())
 
 
 def test_symmetric_variant():

@@ -9,7 +9,6 @@ mechanism alone: our own literal loop of Le Fig. 4 with the LCI from numpy's SVD
 from __future__ import annotations
 
 import re
-import time
 
 import numpy as np
 import pandas as pd
@@ -17,7 +16,6 @@ import pytest
 from scipy.optimize import brentq
 
 from mechopt import FiveBar
-from mechopt.experiments import le2013
 from mechopt.problems.le2013 import square_side
 from mechopt.published import KINDS, TABLE_COLUMNS, load, printed_half_unit
 from mechopt.workspace import mic
@@ -34,11 +32,11 @@ READINGS = ["a_max[flowchart step=0.1]", "a_max[flowchart step=0.01]",
 
 
 @pytest.fixture(scope="module")
-def quick_run(tmp_path_factory):
-    out = tmp_path_factory.mktemp("le2013")
-    t0 = time.perf_counter()
-    table = le2013.run(out, quick=True)
-    return out, table.set_index("quantity", drop=False), time.perf_counter() - t0
+def quick_run(quick_reproduction):
+    """``le2013.run(out, quick=True)`` as the quick reproduction ran it (tests/conftest.py):
+    its folder, its table and its time."""
+    out, table, seconds = quick_reproduction.runs["le2013"]
+    return out, table.set_index("quantity", drop=False), seconds
 
 
 # ----------------------------------------------------------------------------- our own Le
@@ -251,3 +249,42 @@ def test_shape_of_a_max_claims(quick_run):
         x, y = np.meshgrid(np.linspace(-h, h, 41), yc + np.linspace(-h, h, 41))
         t1, t2, ok = tied(r).ik(x, y)
         assert ok.all() and np.all((t1 >= lo) & (t1 <= hi) & (t2 >= lo) & (t2 <= hi))
+
+
+def test_square_side_equals_the_plain_all_points_test_bit_for_bit():
+    """square_side checks a square's points in a cheaper order (LCI first, the inverse
+    kinematics only when it holds, the last failing point first): the bisection of
+    ``largest_square_at`` must take the same steps as with the plain element-wise test
+    of (23), (25)-(26), on tied, relaxed and gamma designs and on joint limits that bind."""
+    from mechopt.workspace import largest_square_at
+
+    from mechopt.problems import le2013 as P
+
+    def plain(rho, l0, gamma, limits):
+        fb = FiveBar(1.0, rho, l0)
+        m = mic(fb)
+        lo, hi = limits
+
+        def feasible(x, y):
+            t1, t2, ok = fb.ik(x, y)
+            with np.errstate(invalid="ignore"):
+                return ok & (fb.lci(x, y) >= gamma) & (t1 >= lo) & (t1 <= hi) & (t2 >= lo) & (t2 <= hi)
+
+        return largest_square_at(feasible, m.center_y, m.radius / np.sqrt(2.0))
+
+    rng = np.random.default_rng(2013)
+    bound = 0
+    for k in range(120):
+        rho = float(rng.uniform(*P.RHO_BOUNDS))
+        l0 = P.tied_half_base(rho) if k % 3 == 0 else float(rng.uniform(0.05, 2.0))
+        gamma = GAMMA if k % 3 < 2 else float(rng.uniform(0.05, 0.95))
+        limits = THETA if k % 4 else (-float(rng.uniform(0.0, 1.5)), float(rng.uniform(2.5, 4.5)))
+        try:
+            ref = plain(rho, l0, gamma, limits)
+        except ValueError:  # no MIC: square_side reports a_max = 0
+            assert square_side(1.0, rho, l0, gamma, limits)["a_max"] == 0.0
+            continue
+        got = square_side(1.0, rho, l0, gamma, limits)["a_max"]
+        assert np.float64(got).tobytes() == np.float64(ref).tobytes(), (rho, l0, gamma, limits)
+        bound += limits != THETA
+    assert bound >= 20

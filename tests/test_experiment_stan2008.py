@@ -29,9 +29,10 @@ TOP_FILES = ("fig29_tqi_bipod.png", "fig30_tqi_biglide.png", "tradeoff_bipod.png
 
 
 @pytest.fixture(scope="module")
-def quick(tmp_path_factory):
-    out = tmp_path_factory.mktemp("stan2008")
-    return out, stan2008.run(out, quick=True)
+def quick(quick_reproduction):
+    """``stan2008.run(out, quick=True)`` as the quick reproduction ran it (tests/conftest.py)."""
+    out, table, _ = quick_reproduction.runs["stan2008"]
+    return out, table
 
 
 def test_table_columns_and_quantities(quick):
@@ -126,3 +127,40 @@ def test_full_run_uses_table1_sizes(tmp_path):
     assert _row(df, "q1_over_b[W1=0,W2=1]")["reproduced"] == pytest.approx(1.35, abs=1e-6)
     assert _row(df, "ga_crossover_rate")["status"] == "match"
     assert _row(df, "workspace_area[b=62mm]")["status"] == "match"
+
+
+@pytest.mark.parametrize("setup", [{}, {"l1": 0.5}, {"l1": 0.3, "q_max": 0.25}, {"l1": 1.0, "q_max": 4.0},
+                                   {"l1": 0.64, "q_max": 2.0}])
+def test_biglide_population_evaluation_equals_one_design_at_a_time(setup):
+    """problems/stan2008.py evaluates a whole population at once (the GA runs' cost): W
+    and T must equal Biglide(...).workspace_area() and .gtqi(method="gauss") of each
+    design bit for bit, for the literal setup and those of the L1 reading and scan."""
+    from mechopt.mechanisms.biglide import Biglide
+    from mechopt.problems.stan2008 import StanBiglide
+
+    p = StanBiglide(**{"q_min": 0.0, **setup})
+    rng = np.random.default_rng(2008)
+    l2 = np.concatenate([rng.uniform(p.xl[0], p.xu[0], 150), np.linspace(p.xl[0], p.xu[0], 41)])
+    W, T = p._indices(l2)
+    for v, w, t in zip(l2, W, T):
+        m = Biglide(p.l1, v, p.q_min, p.q_max)
+        assert np.float64(w).tobytes() == np.float64(m.workspace_area()).tobytes(), v
+        assert np.float64(t).tobytes() == np.float64(m.gtqi(method="gauss")).tobytes(), v
+    # the problem's columns (describe) come from the same numbers, and W_n from the cached W_ref
+    cols = p.describe(l2[:5, None])
+    np.testing.assert_array_equal(cols["W"], W[:5])
+    assert p.w_ref == Biglide(p.l1, p.xu[0], p.q_min, p.q_max).workspace_area()
+
+
+def test_bipod_population_evaluation_equals_one_design_at_a_time():
+    from mechopt.mechanisms.bipod import Bipod
+    from mechopt.problems.stan2008 import Q_MAX_OVER_Q_MIN, StanBipod
+
+    p = StanBipod()
+    rng = np.random.default_rng(5)
+    u = np.concatenate([rng.uniform(p.xl[0], p.xu[0], 300), [p.xl[0], p.xu[0]]])
+    W, T = p._indices(u[::-1].copy()[::-1])  # a strided view too
+    for v, w, t in zip(u, W, T):
+        m = Bipod(1.0, v, Q_MAX_OVER_Q_MIN * v)
+        assert np.float64(w).tobytes() == np.float64(m.workspace_area()).tobytes(), v
+        assert np.float64(t).tobytes() == np.float64(m.gtqi()).tobytes(), v

@@ -33,9 +33,9 @@ FILES = [
 
 
 @pytest.fixture(scope="module")
-def quick_run(tmp_path_factory):
-    out = tmp_path_factory.mktemp("wu2008")
-    table = wu2008.run(out, quick=True)
+def quick_run(quick_reproduction):
+    """``wu2008.run(out, quick=True)`` as the quick reproduction ran it (tests/conftest.py)."""
+    out, table, _ = quick_reproduction.runs["wu2008"]
     return out, table, None
 
 

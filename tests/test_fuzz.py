@@ -1030,8 +1030,6 @@ def biglide(draw):
     asm = draw(name_of(("up", "down")))
 
     def run():
-        from mechopt.mechanisms.biglide import summary
-
         m = Biglide(l1, l2, *q, mode=mode)
         repr(m)
         if what == "area":
@@ -1041,11 +1039,11 @@ def biglide(draw):
         elif what == "gtqi":
             m.gtqi(method=method, step=step)
         elif what == "k_av":
-            m.k_av(leg, *xr)
+            m.k_av(*xr, leg=leg)
         elif what == "fk":
             m.fk(xr[0] if xr[0] is not None else 0.0, q[0], assembly=asm)
         else:
-            summary(m)
+            m.summary()
     return run
 
 
@@ -1107,8 +1105,10 @@ def gantry_synthesis(draw):
         elif what == "wu2008":
             G.wu2008_gantry(deg, unit=unit)
         else:
-            G.summary(b * 100 if isinstance(b, float) else b, h * 100 if isinstance(h, float) else h,
-                      th, d2=d2, l2=l2, length_unit=unit, n=n)
+            G.Gantry.from_parameters(b=b * 100 if isinstance(b, float) else b,
+                                     h=h * 100 if isinstance(h, float) else h,
+                                     theta_1s_deg=math.degrees(th) if isinstance(th, float) else th,
+                                     d2=d2, l2=l2, length_unit=unit).summary(n=n)
     return run
 
 

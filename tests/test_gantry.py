@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 from scipy import integrate
 
 import mechopt
+from mechopt import Biglide
 from mechopt.dynamics import wu2008_published
 from mechopt.mechanisms.gantry import (
     ASSEMBLY_MODES,
@@ -19,7 +20,6 @@ from mechopt.mechanisms.gantry import (
     Gantry,
     dimensional_synthesis,
     k_av_literal_of_design,
-    summary,
     wu2008_gantry,
 )
 
@@ -429,8 +429,8 @@ def test_table1_k_av_is_not_reproduced():
 
 # --- summary ---------------------------------------------------------------------------------
 def test_summary_for_table1():
-    s = summary()
-    assert tuple(s) == SUMMARY_KEYS
+    s = Gantry.from_parameters().summary()
+    assert tuple(s) == SUMMARY_KEYS == Gantry.summary_keys
     assert all(isinstance(v, float) for k, v in s.items() if k != "quadrature")
     assert s["quadrature"] == "gauss-legendre-48x48"
     g = wu2008_gantry()
@@ -439,8 +439,77 @@ def test_summary_for_table1():
     assert s["d1"] == pytest.approx(357.0, abs=0.5) and s["l"] == pytest.approx(616.4, abs=0.05)
     assert s["stroke"] == pytest.approx(900.0, abs=0.5)
     assert 1.0 < s["eta_d"] < 5.0 and 0.0 < s["gtqi"] <= 1.0
-    s_m = summary(0.5, 0.4, math.radians(10.0), 0.1, 0.2, length_unit="m")
+    s_m = Gantry.from_parameters(0.5, 0.4, 10.0, 0.1, 0.2, length_unit="m").summary()
     assert s_m["eta_d"] == pytest.approx(s["eta_d"], rel=1e-12)
     assert s_m["workspace_area"] == pytest.approx(s["workspace_area"] * 1e-6, rel=1e-12)
     with pytest.raises(ValueError, match="length_unit"):
-        summary(length_unit="km")
+        Gantry.from_parameters(length_unit="km")
+    with pytest.raises(ValueError, match="from_parameters"):
+        wu2008_gantry().summary()
+
+
+# --- one topology with the Biglide -----------------------------------------------------------
+@pytest.mark.parametrize("mode", MODES)
+def test_the_gantry_is_the_biglide_with_a_platform_offset(mode):
+    """Both are the two-slider topology of mechopt.mechanisms.slider: the gantry numbers its
+    legs from the left, the Biglide from the right, and reports a point l2/2 above the link
+    joint. The same machine as a Biglide (legs and mode swapped; its point is the link
+    joint, l2/2 below the gantry's) has the same area, slider positions, Jacobian,
+    assembly modes, forward kinematics and k_av."""
+    g = Gantry(300.0, 600.0, 700.0, q_min=-100.0, l2=50.0, mode=mode)
+    b = Biglide(300.0, 600.0, -100.0, 600.0, mode=mode[::-1])
+    assert g.workspace_area() == pytest.approx(b.workspace_area(), rel=1e-12)
+    assert g.x_range == b.x_range and g.guides == b.guides[::-1]
+    rng = np.random.default_rng(7)
+    x, y = rng.uniform(-299.0, 299.0, 400), rng.uniform(-500.0, 900.0, 400)
+    np.testing.assert_array_equal(g.reachable(x, y + 25.0), b.reachable(x, y))
+    qg, qb = g.slider_positions(x, y + 25.0), b.slider_positions(x, y)
+    np.testing.assert_allclose(qg, qb[::-1], rtol=1e-12, atol=1e-9)
+    ok = g.reachable(x, y + 25.0)
+    np.testing.assert_allclose(g.jacobian(x, y + 25.0)[ok], b.jacobian(x, y)[ok][:, ::-1], rtol=1e-9)
+    np.testing.assert_array_equal(g.assembly_of(x, y + 25.0), b.assembly_of(x, y))
+    np.testing.assert_allclose(g.chord(x), b.chord(x), rtol=1e-12, atol=1e-9)
+    for reading in K_AV_READINGS:
+        for leg in (1, 2):
+            assert g.k_av(-100.0, 150.0, leg=leg, reading=reading) == pytest.approx(
+                b.k_av(-100.0, 150.0, leg=3 - leg, reading=reading), rel=1e-12)
+    xg, yg, vg = g.fk(qg[0][ok], qg[1][ok], "up")
+    xb, yb, vb = b.fk(qb[0][ok], qb[1][ok], "up")
+    np.testing.assert_array_equal(vg, vb)
+    np.testing.assert_allclose(xg, xb, atol=1e-9)
+    np.testing.assert_allclose(yg - 25.0, yb, atol=1e-9)
+
+
+def test_max_speed_reading_follows_the_mode():
+    """``2 / |tan theta_1 - tan theta_2|`` with the signed link angles: the mirror modes
+    agree, the mixed modes (links on both sides) give a larger speed."""
+    g = wu2008_gantry()
+    k = {m: g.with_mode(m).k_av(reading="max_speed") for m in MODES}
+    assert k["--"] == k["++"] and k["-+"] == pytest.approx(k["+-"], rel=1e-12)
+    assert k["-+"] > k["--"]
+
+
+def test_empty_workspace_has_a_degenerate_box():
+    g = Gantry(0.3, 0.5, 0.1, q_min=2.0, l2=0.2, mode="+-")  # |c1 - c2| > stroke everywhere
+    assert g.workspace_area() == 0.0
+    xmin, xmax, ymin, ymax = g.bounding_box()
+    assert xmin < xmax and ymin == ymax
+
+
+def test_dynamics_and_eta_d_of_a_synthesized_gantry():
+    """``eta_D`` is a method of the gantry: its dynamics in metres, Wu's Table 2 carried
+    over to its link length; Table 2 itself for the Table 1 design."""
+    from mechopt.dynamics import GantryDynamics, GantryInertia
+
+    g = Gantry.from_parameters()
+    assert g.eta_d() == g.summary()["eta_d"]
+    dyn = g.dynamics()
+    assert isinstance(dyn, GantryDynamics) and dyn.gantry.l == pytest.approx(g.l * 1e-3, rel=1e-15)
+    table2 = GantryInertia.wu2008()
+    assert dyn.inertia.m12 == pytest.approx(table2.m12, rel=1e-12)
+    assert dyn.inertia.I12 == pytest.approx(table2.I12, rel=1e-12)
+    w = wu2008_gantry()
+    assert w.dynamics(length_unit="mm").eta_d() == pytest.approx(g.eta_d(), rel=1e-12)
+    assert w.eta_d(inertia=table2, length_unit="mm") == GantryDynamics(w.scaled(1e-3), table2).eta_d()
+    with pytest.raises(ValueError, match="length_unit must be given"):
+        w.dynamics()

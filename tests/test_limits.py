@@ -15,6 +15,8 @@ in units of the design's size (a power of two, ``mechopt.evaluate.unit_of``), so
 """
 import json
 import math
+import re
+import warnings
 
 import pytest
 
@@ -204,17 +206,54 @@ def test_bad_inputs_still_name_the_input(capsys):
     assert "r2 must lie" in _cli_error(capsys, "five-bar", "--r1", "1", "--r2", "2e12", "--r3", "0")
 
 
-# --- known limits of other modules (xfail strict: remove the mark when fixed) -----------------
-@pytest.mark.xfail(strict=True, reason="mechanisms/gantry.py: Wu's synthesis makes d1, l out of "
-                                       "[1e-12, 1e12] and the error names them, not b, h, theta")
-def test_gantry_synthesis_limits_name_the_users_inputs(capsys):
-    err = _cli_error(capsys, "gantry", "--b", "1e-12", "--h", "1e-12", "--d2", "1e-12", "--l2", "1e-12")
-    assert not any(w in err for w in ("d1 must", "l must"))
+# --- limits of the other mechanisms, in the user's terms ------------------------------------
+@pytest.mark.parametrize("args, too", [
+    (["--b", "1e-12", "--h", "1e-12", "--d2", "1e-12", "--l2", "1e-12"], "below"),
+    (["--b", "1e12", "--h", "1"], "above"),
+    (["--b", "500", "--h", "1e12"], "above"),
+    (["--b", "1e-12", "--h", "1", "--length-unit", "m"], "below"),
+])
+def test_gantry_synthesis_limits_name_the_users_inputs(capsys, args, too):
+    """Wu's synthesis derives d1, l and the stroke from b, h, theta_1S: a task whose
+    machine has a length out of [1e-12, 1e12] (in the dynamics' metres too) is refused
+    in terms of b, h, theta_1S, with the range of b that works, and that range works."""
+    err = _cli_error(capsys, "gantry", *args)
+    assert not any(w in err for w in ("d1 must", "l must", "stroke must"))
+    b = args[args.index("--b") + 1]
+    assert f"b = {float(b):g}" in err and "theta_1S = 10 deg" in err and too in err
+    lo, hi = (float(v) for v in re.search(r"b must lie in \[([^,]+), ([^\]]+)\]", err).groups())
+    unit = args[args.index("--length-unit") + 1] if "--length-unit" in args else "mm"
+    for ok in (1.01 * lo, 0.99 * hi):
+        assert main(["evaluate", "gantry", "--b", repr(ok), "--h", "1", "--length-unit", unit,
+                     "--json"]) == 0
+        assert json.loads(capsys.readouterr().out)["workspace_area"] > 0
 
 
-@pytest.mark.xfail(strict=True, reason="mechanisms/asymmetric_five_bar.py: summary() of legs that "
-                                       "never meet (empty bounding box) fails on a raster step <= 0")
 def test_asymmetric_five_bar_whose_legs_never_meet(capsys):
+    """Unit links 10 apart: the legs' reaches do not overlap, an empty workspace is a
+    result (as the five-bar's empty GCW), not an error about a raster step."""
     assert main(["evaluate", "asymmetric-five-bar", "--a1", "1", "--c1", "1", "--a2", "1", "--c2", "1",
                  "--r3", "5", "--json"]) == 0
-    capsys.readouterr()
+    out = json.loads(capsys.readouterr().out)
+    assert out["workspace_area"] == 0.0 and out["mean_lci"] is None and out["mean_tqi"] is None
+
+
+def test_biglide_empty_to_rounding_has_area_zero_not_negative(capsys):
+    """Strokes [0, 1e-12] with l2 = 1.1: the closed form's terms are of size l2^2, its
+    -2.2e-16 is round-off about a true 2e-25; the area is 0, the GTQI undefined (null)."""
+    assert main(["evaluate", "biglide", "--l1", "1", "--l2", "1.1", "--q1-min", "0", "--q1-max", "1e-12",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["workspace_area"] == 0.0 and out["gtqi"] is None
+    assert Biglide(1.0, 1.1, 0.0, 1e-12).workspace_area() == 0.0
+
+
+@pytest.mark.parametrize("l1, l2, q_max", [
+    (1e-12, 1e-3, 1.0), (1e-12, 1.0, 1e3), (1e-3, 1e-3 + 1e-15, 1e6), (1.0, 1.0 + 1e-12, 1e9),
+    (1e3, 1e3 + 1e-6, 1e12), (1.0, 1.1, 1e6),
+])
+def test_biglide_of_mixed_sizes_evaluates_without_a_scipy_warning(l1, l2, q_max):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        v = _values(Biglide(l1, l2, 0.0, q_max))
+    assert v["workspace_area"] > 0 and 0 < v["gtqi"] <= 1

@@ -40,20 +40,11 @@ FIGURES = []
 
 
 @pytest.fixture(scope="module")
-def results(tmp_path_factory):
-    from mechopt import io as _io
-
-    out = tmp_path_factory.mktemp("results")
-    save = _io.save_figure
-
-    def capture(fig, path, dpi=120):
-        FIGURES.append((str(path), fig))
-        return save(fig, path, dpi)
-
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(_io, "save_figure", capture)
-        assert main(["reproduce", "all", "--quick", "--out", str(out)]) == 0
-    return out
+def results(quick_reproduction):
+    """``mechopt reproduce all --quick`` (tests/conftest.py: run once per session, in
+    this process, every figure it saves captured)."""
+    FIGURES[:] = quick_reproduction.figures
+    return quick_reproduction.out
 
 
 def _text_boxes(fig):
@@ -237,3 +228,122 @@ def test_a_quick_paper_is_recomputed_by_a_full_run(tmp_path, capsys, monkeypatch
     rep.reproduce("wu2008", out=out, quick=False, log=log.append)
     assert calls == [True, False]
     assert any("was quick" in m and "recomputing" in m for m in log)
+
+
+# --- the reproduction's fast paths give the same numbers, bit for bit ---------------------
+def test_papers_in_worker_processes_write_the_same_files(results, tmp_path, monkeypatch):
+    """``reproduce all`` maps the papers over worker processes (default_jobs): every
+    file of a paper run in a worker equals the serial run's (tables, fronts, sweeps,
+    curves, figures), byte for byte; only run.json / manifest.json (wall times, run
+    ids) and the log differ."""
+    from mechopt import reproduce as rep
+
+    two = ("le2013", "wu2008")
+    monkeypatch.setattr(rep, "PAPERS", two)
+    log = []
+    table = rep.reproduce("all", out=tmp_path, quick=True, n_jobs=2, log=log.append)
+    assert any("on 2 processes" in m for m in log)
+    assert sorted(m.split(":")[0] for m in log if m.startswith("[")) == ["[1/2] le2013", "[2/2] wu2008"]
+    assert list(dict.fromkeys(table["paper"])) == list(two)
+    for paper in two:
+        ours = {p.relative_to(results / paper) for p in (results / paper).rglob("*") if p.is_file()}
+        theirs = {p.relative_to(tmp_path / paper) for p in (tmp_path / paper).rglob("*") if p.is_file()}
+        assert ours == theirs, paper
+        for rel in sorted(ours):
+            if rel.name in ("run.json", "manifest.json"):
+                continue
+            assert (results / paper / rel).read_bytes() == (tmp_path / paper / rel).read_bytes(), (paper, rel)
+
+
+def test_default_jobs_and_bad_n_jobs(tmp_path):
+    import os
+
+    from mechopt import reproduce as rep
+
+    assert rep.default_jobs(1) == 1 and rep.default_jobs(0) == 1
+    assert rep.default_jobs(4) == min(4, os.cpu_count() or 1)
+    units = {(paper, None if part == rep.TABLE else part) for paper in rep.PAPERS for part in rep._units(paper)}
+    assert set(rep.COST[True]) == set(rep.COST[False]) == units
+    with pytest.raises(ValueError, match="no part"):
+        rep._run_paper(("wu2008", str(tmp_path / "w"), True, "nope"))
+    with pytest.raises(ValueError, match="n_jobs"):
+        rep.reproduce("wu2008", out=tmp_path, quick=True, n_jobs=0, log=lambda m: None)
+
+
+def test_liu_indices_remembered_equal_new_evaluations():
+    """problems/liu2006.py remembers the designs a GA meets again: a remembered row is
+    the kernels' row of a fresh evaluation, bit for bit, whatever the batch around it."""
+    import numpy as np
+
+    from mechopt.atlas import RESULT_COLUMNS, evaluate_designs
+    from mechopt.problems import liu2006 as P
+
+    rng = np.random.default_rng(2006)
+    X = np.column_stack([rng.uniform(P.U_MIN, 1 - P.U_MIN, 120), rng.uniform(0.0, P.R3_MAX, 120)])
+    X = np.vstack([X, X[:40], X[80:20:-1], [[0.5, 0.0]], [[0.5, -0.0]]])
+    for quadrature in ("polar", "area"):
+        P._MEMO.clear()
+        first = P.liu_indices(*P.designs(X[:60]), quadrature)
+        again = P.liu_indices(*P.designs(X), quadrature)
+        fresh = evaluate_designs(*P.designs(X), quadrature=quadrature)
+        for j, name in enumerate(RESULT_COLUMNS):
+            if name not in again:
+                continue
+            ref = np.where(fresh[:, j] > 0, fresh[:, j], np.nan) if name == "r_mic" else fresh[:, j]
+            assert np.asarray(again[name]).tobytes() == ref.tobytes(), (quadrature, name)
+            assert np.asarray(first[name]).tobytes() == ref[:60].tobytes(), (quadrature, name)
+        assert len(P._MEMO) == 122  # 120 designs, r3 = 0.0 and -0.0 apart
+
+
+def test_atlas_figures_reuse_the_triangulation(tmp_path):
+    """Every atlas figure is drawn on the same points: the Delaunay triangulation is
+    computed once (mechopt.atlas._triangulation) and the PNG is the same bytes as with
+    a fresh triangulation."""
+    import matplotlib.tri as mtri
+
+    from mechopt import atlas
+    from mechopt import io as _io
+
+    table = atlas.compute_atlas(step=0.1, indices="gci", n_jobs=1)
+    atlas._TRIANGULATIONS.clear()
+    _io.save_figure(atlas.draw_atlas(table, "gci"), tmp_path / "a.png")
+    assert len(atlas._TRIANGULATIONS) == 1
+    cached = atlas._triangulation(table["s"].to_numpy(), table["t"].to_numpy())
+    fresh = mtri.Triangulation(table["s"].to_numpy(), table["t"].to_numpy())
+    assert (cached.triangles == fresh.triangles).all() and (cached.neighbors == fresh.neighbors).all()
+    assert cached.is_delaunay and cached is not atlas._triangulation(table["s"].to_numpy(), table["t"].to_numpy())
+    _io.save_figure(atlas.draw_atlas(table, "gci"), tmp_path / "b.png")
+    atlas._TRIANGULATIONS.clear()
+    _io.save_figure(atlas.draw_atlas(table, "gci", region=table["gci"] > 0.5, where="gci > 0.5"), tmp_path / "c.png")
+    _io.save_figure(atlas.draw_atlas(table, "gci", region=table["gci"] > 0.5, where="gci > 0.5"), tmp_path / "d.png")
+    assert (tmp_path / "a.png").read_bytes() == (tmp_path / "b.png").read_bytes()
+    assert (tmp_path / "c.png").read_bytes() == (tmp_path / "d.png").read_bytes()
+
+
+def test_mic_radius_on_the_sorted_cloud_equals_the_full_scan():
+    """mechopt.kernels: the MIC's coarse and golden-section radii visit the type-II cloud
+    sorted by y and stop where dy^2 alone exceeds the best distance; the value must be
+    the full scan's, bit for bit (clouds with invalid points, ties, empty clouds)."""
+    import numpy as np
+
+    from mechopt import kernels as K
+
+    if not K.HAVE_NUMBA:
+        pytest.skip("the compiled kernels")
+    rng = np.random.default_rng(3)
+    ay = np.array([np.nan, 1.3, np.nan, -0.2])
+    for trial in range(60):
+        n = int(rng.integers(0, 300))
+        qx = rng.normal(0.0, rng.uniform(0.05, 2.0), n)
+        qy = rng.normal(1.0, rng.uniform(0.05, 2.0), n)
+        if n:
+            qx[rng.random(n) < 0.2] = np.inf
+            qy[: n // 10] = qy[0]  # ties in y
+        sx2, sy = np.empty(max(n, 1)), np.empty(max(n, 1))
+        m = K._sort_cloud_nb(qx, qy, n, sx2, sy)
+        assert m == int(np.isfinite(qx).sum())
+        hint = -1
+        for y in np.linspace(-0.5, 3.0, 37):
+            ref = K._radius_nb(1.1, 1.4, 0.3, qx, qy, n, ay, y)
+            got, hint = K._radius_sorted_nb(1.1, 1.4, 0.3, sx2, sy, m, ay, y, hint)
+            assert np.float64(got).tobytes() == np.float64(ref).tobytes(), (trial, y)

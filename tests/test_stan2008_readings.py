@@ -21,9 +21,10 @@ LABELS = ("W1=0.7,W2=0.3", "W1=0.3,W2=0.7", "W1=1,W2=0", "W1=0,W2=1")
 
 
 @pytest.fixture(scope="module")
-def quick(tmp_path_factory):
-    out = tmp_path_factory.mktemp("stan2008_readings")
-    return out, stan2008.run(out, quick=True)
+def quick(quick_reproduction):
+    """``stan2008.run(out, quick=True)`` as the quick reproduction ran it (tests/conftest.py)."""
+    out, table, _ = quick_reproduction.runs["stan2008"]
+    return out, table
 
 
 def _row(df, q):

@@ -60,6 +60,10 @@ class AsymmetricFiveBar(PlanarMechanism):
     assembly_modes = ASSEMBLY_MODES
     joint_names = ("theta1", "theta2")
     angular_joints = True
+    #: the keys of :meth:`summary`, in order
+    summary_keys = ("workspace_area", "mean_lci", "mean_tqi", "quadrature")
+    #: the area scales as ``D^2``, the means of indices not at all
+    summary_powers = {"workspace_area": 2, "mean_lci": 0, "mean_tqi": 0}
 
     def __init__(self, a1, c1, a2, c2, r3, mode: str = "+-"):
         self.a1, self.c1 = _v.positive_length("a1", a1), _v.positive_length("c1", c1)
@@ -180,17 +184,22 @@ class AsymmetricFiveBar(PlanarMechanism):
     def summary(self) -> dict:
         """Reachable area [L^2] and the area means of the LCI and the TQI over it, by the
         mid-point rule on a raster of ``_CELLS`` cells across the bounding box's smaller
-        side (first-order error in the cell size)."""
+        side (first-order error in the cell size). An empty workspace is a result:
+        area 0 and NaN means, also for legs that never meet (an empty bounding box,
+        e.g. ``r3`` beyond both legs' reach)."""
         from ..quadrature import grid_over
 
+        empty = {"workspace_area": 0.0, "mean_lci": float("nan"), "mean_tqi": float("nan"),
+                 "quadrature": f"raster-{_CELLS}"}
         box = self.bounding_box()
+        if not (box[1] > box[0] and box[3] > box[2]):  # the legs' reaches do not overlap
+            return empty
         step = min(box[1] - box[0], box[3] - box[2]) / _CELLS
         grid = grid_over(box, step)
         X, Y = grid.points()
         mask = self.reachable(X, Y)
         area = grid.area(mask)
         if not mask.any():
-            return {"workspace_area": 0.0, "mean_lci": float("nan"), "mean_tqi": float("nan"),
-                    "quadrature": f"raster-{_CELLS}"}
+            return empty
         return {"workspace_area": area, "mean_lci": self.raster_mean(self.lci, step),
                 "mean_tqi": self.raster_mean(self.tqi, step), "quadrature": f"raster-{_CELLS}"}

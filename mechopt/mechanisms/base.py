@@ -118,9 +118,21 @@ class PlanarMechanism(ABC):
     parameters: tuple[Parameter, ...] = ()
     #: the options of :meth:`summary` (e.g. a quadrature)
     summary_options: tuple[Parameter, ...] = ()
+    #: the keys of :meth:`summary`, in order
+    summary_keys: tuple[str, ...] = ()
+    #: ``{key: p}``: the number ``key`` of :meth:`summary` of the design scaled by ``D``
+    #: (:meth:`scaled`) is ``D**p`` times the design's, so that
+    #: :func:`mechopt.evaluate.evaluate` computes it in units of the design's size; None
+    #: when the summary is not homogeneous in the lengths (then evaluated as given)
+    summary_powers: dict | None = None
     #: True when the Liu 2006 indices over the MIC (a disk centred on the y axis)
     #: apply: the mechanism is symmetric about the y axis
     disk_indices: bool = False
+    #: True for the symmetric five-bar's lengths ``r1, r2, r3`` and ``mode``:
+    #: :mod:`mechopt.workspace` then finds the MIC in closed form
+    #: (:func:`~mechopt.workspace.five_bar_mic`), filters the usable region by the legs'
+    #: reach and says why a MIC is missing in terms of those lengths
+    explicit_mic: bool = False
     #: working modes (inverse-kinematics branches) the mechanism supports
     modes: tuple[str, ...] = ()
     #: assembly modes of the forward problem (``fk(q1, q2, assembly)``)
@@ -143,8 +155,10 @@ class PlanarMechanism(ABC):
 
     def summary(self, **options) -> dict:
         """The mechanism's own global numbers (areas, means over its workspace) for
-        ``mechopt evaluate``, as ``{name: float or str}``; options of
-        :attr:`summary_options`. Default: none."""
+        ``mechopt evaluate``, as ``{name: float or str}`` with the keys
+        :attr:`summary_keys`; options of :attr:`summary_options`. Default: none.
+        The one entry point of a mechanism's numbers (:func:`mechopt.evaluate.evaluate`
+        calls it)."""
         return {}
 
     @abstractmethod

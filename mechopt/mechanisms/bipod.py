@@ -71,7 +71,6 @@ __all__ = [
     "GTQI_METHODS",
     "bipod_workspace_area",
     "bipod_tqi_integral",
-    "summary",
     "SUMMARY_KEYS",
 ]
 
@@ -81,8 +80,6 @@ BRANCHES = ("up", "down", "full")
 ASSEMBLY_MODES = ("up", "down")
 #: how :meth:`Bipod.gtqi` integrates: closed form, or mid-point raster
 GTQI_METHODS = ("exact", "raster")
-#: keys of :func:`summary`
-SUMMARY_KEYS = ("workspace_area", "gtqi", "tqi_integral", "q1_min_over_b", "quadrature")
 
 #: default raster resolution: cells across the smaller side of the bounding box
 RASTER_CELLS = 400
@@ -170,6 +167,10 @@ class Bipod(PlanarMechanism):
     assembly_modes = ASSEMBLY_MODES
     joint_names = ("q1", "q2")
     angular_joints = False
+    #: the keys of :meth:`summary`, in order
+    summary_keys = ("workspace_area", "gtqi", "tqi_integral", "q1_min_over_b", "quadrature")
+    #: areas scale as ``D^2``, the mean and the ratio not at all (prismatic actuators)
+    summary_powers = {"workspace_area": 2, "gtqi": 0, "tqi_integral": 2, "q1_min_over_b": 0}
 
     def __init__(self, b, q1_min, q1_max, q2_min=None, q2_max=None, branch: str = "up"):
         self.b = _v.positive_length("b", b)
@@ -199,8 +200,20 @@ class Bipod(PlanarMechanism):
         return self.with_branch(mode)
 
     def summary(self) -> dict:
-        """:data:`SUMMARY_KEYS` (see :func:`summary`)."""
-        return summary(self)
+        """Floats of :attr:`summary_keys` for ``mechopt evaluate bipod``.
+
+        ``workspace_area`` [L^2] exact (Stan eq. 8, branch of the design), ``gtqi`` the
+        exact area mean of the TQI (Stan eq. 9), ``tqi_integral`` [L^2] its
+        numerator, ``q1_min_over_b`` Stan's design variable (eq. 11); ``quadrature`` names
+        how the mean is taken: ``"exact"`` (closed form, no quadrature).
+        """
+        return {
+            "workspace_area": self.workspace_area(),
+            "gtqi": self.gtqi("exact"),
+            "tqi_integral": self.tqi_integral(),
+            "q1_min_over_b": self.q1_min / self.b,
+            "quadrature": "exact",
+        }
 
     def scaled(self, factor: float) -> "Bipod":
         """``b`` and the strokes multiplied by ``factor`` (the Jacobian of these
@@ -347,20 +360,5 @@ class Bipod(PlanarMechanism):
         return self.raster_mean(self.tqi, step, RASTER_CELLS)
 
 
-def summary(mech: Bipod) -> dict:
-    """Floats of :data:`SUMMARY_KEYS` for ``mechopt evaluate bipod``.
-
-    ``workspace_area`` [L^2] exact (Stan eq. 8, branch of ``mech``), ``gtqi`` the
-    exact area mean of the TQI (Stan eq. 9), ``tqi_integral`` [L^2] its
-    numerator, ``q1_min_over_b`` Stan's design variable (eq. 11); ``quadrature`` names
-    how the mean is taken: ``"exact"`` (closed form, no quadrature).
-    """
-    if not isinstance(mech, Bipod):
-        raise ValueError(f"mech must be a Bipod, got {type(mech).__name__}")
-    return {
-        "workspace_area": mech.workspace_area(),
-        "gtqi": mech.gtqi("exact"),
-        "tqi_integral": mech.tqi_integral(),
-        "q1_min_over_b": mech.q1_min / mech.b,
-        "quadrature": "exact",
-    }
+#: the keys of :meth:`Bipod.summary`
+SUMMARY_KEYS = Bipod.summary_keys

@@ -63,6 +63,9 @@ class FiveBar(PlanarMechanism):
         Parameter("mode", "choice", "-", "working mode of Le 2013 eq. (17)-(18)", "+-", MODES),
     )
     disk_indices = True
+    explicit_mic = True
+    #: no summary numbers of its own (the disk evaluation gives them)
+    summary_powers: dict = {}
     modes = MODES
     assembly_modes = ASSEMBLY_MODES
     joint_names = ("theta1", "theta2")

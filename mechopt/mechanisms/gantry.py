@@ -49,7 +49,8 @@ import math
 import numpy as np
 
 from .. import validation as _v
-from .base import Parameter, PlanarMechanism, as_points
+from .base import Parameter, as_points
+from .slider import ASSEMBLY_MODES, K_AV_READINGS, TwoSliderMechanism
 
 __all__ = [
     "Gantry",
@@ -59,14 +60,11 @@ __all__ = [
     "dimensional_synthesis",
     "k_av_literal_of_design",
     "wu2008_gantry",
-    "summary",
+    "check_synthesis",
     "SUMMARY_KEYS",
 ]
 
 MODES = ("--", "++", "-+", "+-")
-ASSEMBLY_MODES = ("up", "down")
-K_AV_READINGS = ("literal", "displacement", "max_speed")
-_SIGN = {"+": 1.0, "-": -1.0}
 _LENGTH_UNITS = {"mm": 1e-3, "m": 1.0}
 
 #: abscissa of the task rectangle's lower edge of the Wu machine, placed so that
@@ -75,16 +73,26 @@ _LENGTH_UNITS = {"mm": 1e-3, "m": 1.0}
 WU2008_TASK_Y_MIN_MM = 300.0
 
 
-def _w(u, l):
-    """``sqrt(l^2 - u^2)``; NaN where ``|u| > l``."""
-    with np.errstate(invalid="ignore"):
-        return np.sqrt(l * l - u * u)
-
-
 def _arc_primitive(u, l):
     """``int_0^u sqrt(l^2 - t^2) dt`` for ``|u| <= l`` (clipped)."""
     u = np.clip(u, -l, l)
     return 0.5 * (u * np.sqrt(max(l * l - u * u, 0.0)) + l * l * math.asin(u / l))
+
+
+def _wu2008_design() -> dict:
+    """Wu's Table 1 machine as printed (``mechopt/data/wu2008.csv``): the task ``b``,
+    ``h`` [mm], ``theta_1S`` [deg] and the platform ``d2``, ``l2`` [mm]."""
+    from ..data import published_values
+
+    pub = published_values("wu2008")
+    return {k: pub[("table1", k)][0] for k in ("b", "h", "theta_1S", "d2", "l2")}
+
+
+def _wu2008_link_length_m() -> float:
+    """Link length [m] of Wu's Table 1 design (eq. 15), the machine Table 2's inertias
+    belong to (:meth:`mechopt.dynamics.GantryInertia.wu2008_scaled`)."""
+    t1 = _wu2008_design()
+    return dimensional_synthesis(t1["b"], t1["h"], math.radians(t1["theta_1S"]))[2] * _LENGTH_UNITS["mm"]
 
 
 def dimensional_synthesis(b, h, theta_1S):
@@ -133,6 +141,61 @@ def dimensional_synthesis(b, h, theta_1S):
     return d, d1, l, stroke
 
 
+def _per_unit_width(theta_1S):
+    """``(k1, k2, k3)``: ``d1``, ``l`` and ``y_d1`` of :func:`dimensional_synthesis` for
+    ``b = 1`` (the synthesis is linear in ``b``, and the stroke is ``y_d1 + h``)."""
+    _, d1, l, stroke = dimensional_synthesis(1.0, 1.0, theta_1S)
+    return d1, l, stroke - 1.0
+
+
+def check_synthesis(b, h, theta_1S, scales=(1.0,), unit: str = "") -> None:
+    """ValueError (one line, in terms of ``b``, ``h``, ``theta_1S``) when the gantry of
+    :func:`dimensional_synthesis` has a length outside the admissible
+    ``[LENGTH_MIN, LENGTH_MAX]`` of :mod:`mechopt.validation`, in its own unit or
+    multiplied by one of ``scales`` (e.g. ``1e-3``: the dynamics run in metres).
+
+    For a fixed ``theta_1S`` the machine is linear in the task (``d1 = k1 b``,
+    ``l = k2 b``, stroke ``k3 b + h``), so the message names the range of ``b`` that
+    works for this ``theta_1S``, the largest ``b + h``, and the range of ``theta_1S``
+    that works for this ``b`` (``k1``, ``k2`` grow with ``theta_1S``).
+    """
+    _, d1, l, stroke = dimensional_synthesis(b, h, theta_1S)
+    lo = _v.LENGTH_MIN / min(min(scales), 1.0)
+    hi = _v.LENGTH_MAX / max(max(scales), 1.0)
+    lengths = (("the half column distance d1", d1), ("the link length l", l), ("the stroke", stroke))
+    bad = [(name, v) for name, v in lengths if not lo <= v <= hi]
+    if not bad:
+        return
+    k1, k2, k3 = _per_unit_width(theta_1S)
+    u = f" {unit}" if unit else ""
+    name, v = bad[0]
+    limit, default = (lo, _v.LENGTH_MIN) if v < lo else (hi, _v.LENGTH_MAX)
+    where = "below the smallest" if v < lo else "above the largest"
+    note = "" if limit == default else " (the dynamics run in metres)"
+    shown = f"{v:.3g}" if f"{v:.3g}" != f"{limit:.3g}" else repr(v)
+    deg = f"{math.degrees(theta_1S):.10g}"
+    b_lo, b_hi = max(lo / k1, (lo - h) / k3, _v.LENGTH_MIN), hi / k2
+    msg = (f"Wu's synthesis (eq. 14-16) of the task b = {b:g}, h = {h:g}{u} with theta_1S = "
+           f"{deg} deg gives {name} = {shown}{u}, {where} admissible length {limit:g}{u}{note}: "
+           f"for theta_1S = {deg} deg, b must lie in [{b_lo:.3g}, {b_hi:.3g}]{u} and b + h be "
+           f"at most {hi:g}{u}")
+
+    def first(holds):  # the smallest theta_1S in (0, pi/4) from which holds(theta_1S) does
+        t0, t1 = 0.0, math.pi / 4
+        for _ in range(48):  # to 1e-14 rad, every midpoint inside the open interval
+            m = 0.5 * (t0 + t1)
+            t0, t1 = (t0, m) if holds(m) else (m, t1)
+        return t1
+
+    t_min = first(lambda t: b * _per_unit_width(t)[0] >= lo)  # d1 large enough from here
+    t_max = first(lambda t: b * _per_unit_width(t)[1] > hi)  # l too large from here
+    if t_min < t_max:
+        t_lo = "(0" if t_min < 1e-12 else f"[{math.degrees(t_min):.4g}"
+        t_hi = "45)" if t_max > math.pi / 4 - 1e-12 else f"{math.degrees(t_max):.4g}]"
+        msg += f"; for b = {b:g}{u}, theta_1S must lie in {t_lo}, {t_hi} deg"
+    raise ValueError(msg)
+
+
 def k_av_literal_of_design(theta_1S):
     """Literal ``k_av`` (eq. 6-7) of a design of :func:`dimensional_synthesis`, vectorised.
 
@@ -163,7 +226,7 @@ def k_av_literal_of_design(theta_1S):
     return (F(s1) - F(s0)) / (s1 - s0)
 
 
-class Gantry(PlanarMechanism):
+class Gantry(TwoSliderMechanism):
     """Wu 2008 gantry ``Gantry(d1, l, stroke, q_min=0, l2=0, d2=0, mode="--")``.
 
     Parameters
@@ -188,7 +251,9 @@ class Gantry(PlanarMechanism):
 
     Lengths may be in any consistent unit [L]; angles are in rad. The actuator
     coordinates are lengths, so the Jacobian is dimensionless and invariant under a
-    change of length unit (see :meth:`scaled`).
+    change of length unit (see :meth:`scaled`). The kinematics, the exact area and
+    ``k_av`` are those of the two-slider topology (:mod:`mechopt.mechanisms.slider`)
+    with the columns as guides (leg 1 on the left) and the platform offset ``l2/2``.
     """
 
     cli_name = "gantry"
@@ -203,9 +268,11 @@ class Gantry(PlanarMechanism):
                   tuple(_LENGTH_UNITS)),
     )
     modes = MODES
-    assembly_modes = ASSEMBLY_MODES
-    joint_names = ("q1", "q2")
-    angular_joints = False
+    #: the keys of :meth:`summary`, in order
+    summary_keys = ("workspace_area", "k_av", "d", "d1", "l", "stroke", "eta_d", "gtqi", "quadrature")
+    #: not homogeneous in the lengths (Wu's synthesis and the inertia law of eta_D
+    #: depend on the unit): evaluated as given
+    summary_powers = None
     #: the inputs of :meth:`from_parameters` when the gantry was synthesized from them
     synthesis_inputs: dict | None = None
     #: the boundary of the reachable set includes stroke-limit arcs (joint limits),
@@ -223,7 +290,6 @@ class Gantry(PlanarMechanism):
         self.l2 = _v.nonnegative_length("l2", l2)
         self.d2 = _v.nonnegative_length("d2", d2)
         self.mode = _v.choice("mode", mode, MODES)
-        self._s = (_SIGN[mode[0]], _SIGN[mode[1]])
         if task_workspace is not None:
             try:
                 tw = tuple(_v.coordinate("task_workspace", v) for v in task_workspace)
@@ -238,6 +304,9 @@ class Gantry(PlanarMechanism):
                 )
             task_workspace = tw
         self.task_workspace = task_workspace
+        stroke_limits = (self.q_min, self.q_max)
+        self._set_sliders(self.d1, self.l, False, mode, (stroke_limits, stroke_limits),
+                          (self.stroke, self.stroke), self.l2 / 2.0)
 
     # --- constructors ---------------------------------------------------------
     @classmethod
@@ -248,8 +317,11 @@ class Gantry(PlanarMechanism):
         The lower stroke limit follows from Wu Fig. 2: at ``Q2 = (-b/2, task_y_min)``
         slider 1 is at ``q_1S`` with ``theta_1 = theta_1S``, so
         ``q_min = task_y_min - l2/2 - l cos(theta_1S)``; the corners ``Q1``-``Q4`` then lie
-        on the boundary of the reachable set.
+        on the boundary of the reachable set. A task whose machine has a length outside
+        the admissible range is refused in terms of ``b``, ``h``, ``theta_1S``
+        (:func:`check_synthesis`).
         """
+        check_synthesis(b, h, theta_1S)
         d, d1, l, stroke = dimensional_synthesis(b, h, theta_1S)
         y0 = _v.coordinate("task_y_min", task_y_min)
         l2 = _v.nonnegative_length("l2", l2)
@@ -261,11 +333,13 @@ class Gantry(PlanarMechanism):
     def from_parameters(cls, b=500.0, h=400.0, theta_1s_deg=10.0, d2=100.0, l2=200.0,
                         length_unit="mm") -> "Gantry":
         """The design of Wu's synthesis (eq. 10-16) for a ``b x h`` task and ``theta_1S``
-        [deg], task rectangle at its place (:meth:`from_synthesis`)."""
+        [deg], task rectangle at its place (:meth:`from_synthesis`), lengths in
+        ``length_unit``; its lengths in metres (the dynamics' unit) must be admissible too."""
         unit = _v.choice("length_unit", length_unit, tuple(_LENGTH_UNITS))
         deg = _v.finite_number("theta_1s_deg", theta_1s_deg)
         if not 0.0 < deg < 45.0:
             raise ValueError(f"theta_1s_deg must lie in (0, 45) deg (eq. 14), got {_v.show(theta_1s_deg)}")
+        check_synthesis(b, h, math.radians(deg), scales=(1.0, _LENGTH_UNITS[unit]), unit=unit)
         g = cls.from_synthesis(b, h, math.radians(deg), l2=l2, d2=d2)
         g.synthesis_inputs = dict(b=float(b), h=float(h), theta_1s_deg=deg, d2=float(d2),
                                   l2=float(l2), length_unit=unit)
@@ -276,14 +350,6 @@ class Gantry(PlanarMechanism):
         if self.synthesis_inputs is None:
             return {k: getattr(self, k) for k in ("d1", "l", "stroke", "q_min", "l2", "d2", "mode")}
         return dict(self.synthesis_inputs)
-
-    def summary(self) -> dict:
-        """:data:`SUMMARY_KEYS` of the synthesized design (see :func:`summary`)."""
-        if self.synthesis_inputs is None:
-            raise ValueError("summary needs a gantry made by Gantry.from_parameters (Wu's synthesis)")
-        kw = dict(self.synthesis_inputs)
-        deg = kw.pop("theta_1s_deg")
-        return summary(theta_1S=math.radians(deg), **kw)
 
     def __repr__(self):
         return (f"Gantry(d1={self.d1!r}, l={self.l!r}, stroke={self.stroke!r}, "
@@ -311,119 +377,15 @@ class Gantry(PlanarMechanism):
 
     @property
     def column_x(self):
-        """``(x_B1, x_B2) = (-d1, d1)``."""
-        return (-self.d1, self.d1)
+        """``(x_B1, x_B2) = (-d1, d1)``: the guides of the two-slider topology."""
+        return self.guides
 
-    @property
-    def length_scale(self) -> float:
-        return self.l
-
-    @property
-    def x_range(self):
-        """``(d1 - l, l - d1)``: abscissae where both links reach their columns."""
-        return (self.d1 - self.l, self.l - self.d1)
-
-    def _offsets(self, x):
-        """``c_i = y - l2/2 - q_i = l cos(theta_i)`` as a function of x only, per leg."""
-        s1, s2 = self._s
-        c1 = -s1 * _w(x + self.d1, self.l)
-        c2 = -s2 * _w(x - self.d1, self.l)
-        return c1, c2
-
-    def link_angles(self, x, y):
-        """``(theta_1, theta_2)`` of eq. (1) [rad], in (-pi, pi]; NaN where unreachable."""
-        x, y = as_points(x, y)
-        ok = self.reachable(x, y)
-        c1, c2 = self._offsets(x)
-        t1 = np.arctan2(x + self.d1, c1)
-        t2 = np.arctan2(x - self.d1, c2)
-        return np.where(ok, t1, np.nan), np.where(ok, t2, np.nan)
-
-    def y_interval(self, x):
-        """``(y_lo, y_hi)`` of the reachable set at abscissa ``x`` (NaN where empty).
-
-        Leg i admits ``y in [q_min + l2/2 + c_i(x), q_max + l2/2 + c_i(x)]`` (eq. 8-9).
-        """
-        x = np.asarray(x, dtype=float)
-        c1, c2 = self._offsets(x)
-        base = self.l2 / 2.0
-        lo = self.q_min + base + np.maximum(c1, c2)
-        hi = self.q_max + base + np.minimum(c1, c2)
-        empty = ~(lo <= hi)
-        return np.where(empty, np.nan, lo), np.where(empty, np.nan, hi)
-
-    # --- protocol ------------------------------------------------------------------
-    def legs(self, x, y):
-        """``(q1, q2, c1, c2, reachable)`` without masking: slider positions (eq. 2) and
-        ``c_i = l cos(theta_i)`` [L] of both legs (for the dynamics' ``tan theta_i``)."""
-        c1, c2 = self._offsets(x)
-        y_a = y - self.l2 / 2.0
-        q1 = y_a - c1
-        q2 = y_a - c2
-        # the task rectangle of a synthesized design touches the stroke ends exactly
-        # (eq. 16), so accept rounding-level excursions past them
-        tol = 1e-12 * max(abs(self.q_min), abs(self.q_max), self.length_scale)
-        lo, hi = self.q_min - tol, self.q_max + tol
-        with np.errstate(invalid="ignore"):
-            ok = (q1 >= lo) & (q1 <= hi) & (q2 >= lo) & (q2 <= hi)
-        return q1, q2, c1, c2, ok
-
-    def reachable(self, x, y):
-        x, y = as_points(x, y)
-        return self.legs(x, y)[4]
-
-    def ik(self, x, y):
-        """Slider heights ``(q1, q2, reachable)`` of eq. (2) in the working mode [L]."""
-        x, y = as_points(x, y)
-        q1, q2, _, _, ok = self.legs(x, y)
-        return np.where(ok, q1, np.nan), np.where(ok, q2, np.nan), ok
-
-    def closure(self, x, y):
-        """``A p_dot = B q_dot`` with ``a_i = A_i - B_i`` and ``B_ii = c_i = l cos(theta_i)``.
-
-        Rows of ``J = B^-1 A`` are ``(tan theta_i, 1)`` (Wu eq. 4-5).
-        """
-        x, y = as_points(x, y)
-        _, _, c1, c2, ok = self.legs(x, y)
-        u1 = x + self.d1
-        u2 = x - self.d1
-        A = np.stack([np.stack([u1, c1], -1), np.stack([u2, c2], -1)], -2)
-        b = np.stack([c1, c2], -1)
-        A = np.where(ok[..., None, None], A, np.nan)
-        b = np.where(ok[..., None], b, np.nan)
-        return A, b, ok
-
-    def fk(self, q1, q2, assembly: str = "up"):
-        """Forward kinematics: intersect the circles of radius ``l`` about ``B1``, ``B2``.
-
-        The lower platform joint ``A = (x, y - l2/2)`` is at distance ``l`` from both
-        ``B1 = (-d1, q1)`` and ``B2 = (d1, q2)`` (eq. 8-9). ``assembly="up"`` puts ``A``
-        on the left of the vector ``B1 -> B2`` (above the line ``B1 B2``), ``"down"`` on
-        its right. ``valid`` is False (and ``x``, ``y`` NaN) where the circles do not
-        meet or a slider is outside its stroke ``[q_min, q_max]``.
-        """
-        _v.choice("assembly", assembly, ASSEMBLY_MODES)
-        q1, q2 = as_points(q1, q2)
-        mx = 2.0 * self.d1
-        my = q2 - q1
-        m2 = mx * mx + my * my
-        h2 = self.l * self.l / m2 - 0.25
-        with np.errstate(invalid="ignore"):
-            valid = ((h2 >= 0) & (q1 >= self.q_min) & (q1 <= self.q_max)
-                     & (q2 >= self.q_min) & (q2 <= self.q_max))
-        h = np.sqrt(np.clip(h2, 0.0, None)) * (1.0 if assembly == "up" else -1.0)
-        ax = 0.0 - h * my  # midpoint of B1 B2 has x = 0
-        ay = 0.5 * (q1 + q2) + h * mx
-        y = ay + self.l2 / 2.0
-        return np.where(valid, ax, np.nan), np.where(valid, y, np.nan), valid
-
-    def assembly_of(self, x, y):
-        """Which :meth:`fk` assembly mode (``"up"``/``"down"``) a pose of this working mode is in."""
-        x, y = as_points(x, y)
-        q1, q2, _ = self.ik(x, y)
-        ay = y - self.l2 / 2.0
-        cross = 2.0 * self.d1 * (ay - q1) - (q2 - q1) * (x + self.d1)
-        return np.where(cross >= 0, "up", "down")
+    def _segment_integral(self, u0, u1) -> float:
+        """The circular-segment area of the workspace's column integrals with the C
+        library's ``asin`` (``math``): the gantry's areas keep the digits they had
+        before the two-slider base (NumPy's ``arcsin``, which the Biglide's use, differs
+        from it in the last bit for about 7 % of the designs)."""
+        return _arc_primitive(u1, self.l) - _arc_primitive(u0, self.l)
 
     def serial_clearance(self, x, y):
         """Signed distance to the boundary of the reachable set, positive inside.
@@ -457,65 +419,7 @@ class Gantry(PlanarMechanism):
         side = l - au
         return np.minimum(np.minimum(lower, upper), side)
 
-    def bounding_box(self):
-        """``(xmin, xmax, ymin, ymax)``, tight: the extremes of :meth:`y_interval`.
-
-        Between the candidate abscissae (the ends of :attr:`x_range`, ``0``, ``+-d1`` and
-        the breakpoints of :meth:`workspace_area`) both offsets ``c_i(x)`` are monotone,
-        so the lower and upper bounds of the set reach their extremes at candidates.
-        """
-        xmin, xmax = self.x_range
-        xs = np.array([p for p in self._candidates() if xmin <= p <= xmax])
-        c1, c2 = self._offsets(xs)
-        base = self.l2 / 2.0
-        lo = self.q_min + base + np.maximum(c1, c2)
-        hi = self.q_max + base + np.minimum(c1, c2)
-        keep = lo <= hi + 1e-9 * self.l  # non-empty (to rounding at pinch points)
-        return (float(xmin), float(xmax), float(np.min(lo[keep])), float(np.max(hi[keep])))
-
-    def _candidates(self):
-        """Abscissae where ``c_1 - c_2`` is ``0`` or ``+-stroke``, the x range ends and ``+-d1``."""
-        xmin, xmax = self.x_range
-        l, d1, S = self.l, self.d1, self.stroke
-        pts = {xmin, xmax, 0.0, -d1, d1}
-        rhs = S * S * (4 * l * l - 4 * d1 * d1 - S * S) / (16 * d1 * d1 + 4 * S * S)
-        if rhs >= 0:
-            r = math.sqrt(rhs)
-            pts.update((r, -r))
-        return sorted(pts)
-
-    # --- workspace -----------------------------------------------------------------
-    def workspace_area(self) -> float:
-        """Exact area of the reachable set [L^2] (closed form, to rounding).
-
-        At abscissa ``x`` the set is the interval of :meth:`y_interval`, of length
-        ``max(0, stroke - |c_1(x) - c_2(x)|)`` (eq. 8-9). Its breakpoints, where
-        ``c_1 - c_2`` equals ``0`` or ``+-stroke``, satisfy (squaring twice)
-        ``x^2 = k^2 (4 l^2 - 4 d1^2 - k^2) / (16 d1^2 + 4 k^2)`` with ``k`` = stroke, or
-        ``x = 0``; between them the integrand is a fixed combination of
-        ``sqrt(l^2 - (x -+ d1)^2)``, integrated with its primitive. Spurious roots of the
-        squaring only split a piece, so the result is exact.
-        """
-        xmin, xmax = self.x_range
-        l, d1, S = self.l, self.d1, self.stroke
-        pts = [p for p in self._candidates() if xmin <= p <= xmax]
-        s1, s2 = self._s
-        area = 0.0
-        for a, b in zip(pts[:-1], pts[1:]):
-            if b <= a:
-                continue
-            m = 0.5 * (a + b)
-            c1, c2 = self._offsets(np.float64(m))
-            diff = float(c1 - c2)
-            if abs(diff) >= S:
-                continue
-            sig = 1.0 if diff >= 0 else -1.0
-            # int (c1 - c2) dx with c_i = -s_i sqrt(l^2 - (x - x_Bi)^2)
-            i1 = _arc_primitive(b + d1, l) - _arc_primitive(a + d1, l)
-            i2 = _arc_primitive(b - d1, l) - _arc_primitive(a - d1, l)
-            area += S * (b - a) - sig * (-s1 * i1 + s2 * i2)
-        return float(area)
-
+    # --- task workspace -------------------------------------------------------------
     def task_workspace_area(self) -> float:
         """Area of the task rectangle ``W_t`` [L^2] (``b h``)."""
         xmin, xmax, ymin, ymax = self._task("task_workspace_area")
@@ -526,156 +430,82 @@ class Gantry(PlanarMechanism):
             raise ValueError(f"{what} needs a task_workspace, got None (use Gantry.from_synthesis)")
         return self.task_workspace
 
-    # --- velocity output ratio (Wu sec. 3.3) -------------------------------------
-    def velocity_output_ratio(self, x, leg: int = 1):
-        """``k_v(i) = |x_dot / q_dot_i|`` at ``y_dot = 0`` (Wu eq. 6): ``|cot theta_i|``.
+    def _k_av_default_range(self):
+        """The task rectangle's ``[-b/2, b/2]`` (Wu eq. 17-18)."""
+        txmin, txmax, _, _ = self._task("k_av without x_min/x_max")
+        return txmin, txmax
 
-        Depends on ``x`` only; ``inf`` where the link is vertical, NaN outside the
-        range of :attr:`x_range`.
+    # --- dynamics (Wu sec. 5-6) ---------------------------------------------------------
+    def dynamics(self, inertia=None, length_unit: str | None = None):
+        """The rigid-body model (:class:`mechopt.dynamics.GantryDynamics`) of this gantry
+        in metres.
+
+        ``length_unit`` is the unit of this gantry's lengths, ``"mm"`` or ``"m"``
+        (default: that of :meth:`from_parameters`' inputs; required otherwise).
+        ``inertia`` defaults to Wu's Table 2 carried over to this design's link length
+        (:meth:`mechopt.dynamics.GantryInertia.wu2008_scaled`; Table 2 itself for
+        the Table 1 design, ``theta_1S = 10`` deg).
         """
-        leg = _v.choice("leg", leg, (1, 2))
-        x = np.asarray(x, dtype=float)
-        u = x - self.column_x[leg - 1]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return _w(u, self.l) / np.abs(u)
+        from .. import dynamics as _dyn  # late import: the dynamics is not needed otherwise
 
-    def k_av(self, x_min=None, x_max=None, leg: int = 1, reading: str = "literal") -> float:
-        """Global velocity output ratio ``k_av`` of Wu eq. (7) over ``[x_min, x_max]``.
+        if length_unit is None:
+            if self.synthesis_inputs is None:
+                raise ValueError("length_unit must be given ('mm' or 'm') for a gantry not made "
+                                 "by Gantry.from_parameters, got None")
+            length_unit = self.synthesis_inputs["length_unit"]
+        unit = _v.choice("length_unit", length_unit, tuple(_LENGTH_UNITS))
+        g_m = self.scaled(_LENGTH_UNITS[unit])
+        if inertia is None:
+            inertia = _dyn.GantryInertia.wu2008_scaled(g_m.l, _wu2008_link_length_m())
+        return _dyn.GantryDynamics(g_m, inertia)
 
-        The range defaults to the task rectangle's ``[-b/2, b/2]`` (eq. 17-18).
+    def eta_d(self, n: int = 48, inertia=None, length_unit: str | None = None) -> float:
+        """``eta_D`` of Wu eq. (44): the area mean of ``kappa_D`` over the task rectangle,
+        by an ``n x n`` Gauss-Legendre rule, of :meth:`dynamics` (same arguments)."""
+        return self.dynamics(inertia, length_unit).eta_d(n=n)
 
-        ``reading`` selects how eq. (6)-(7) are read; ``"literal"`` is the one used
-        throughout mechopt:
+    def summary(self, inertia=None, n: int = 48) -> dict:
+        """Every number of ``mechopt evaluate gantry`` (:attr:`summary_keys`, floats) of
+        a gantry made by :meth:`from_parameters` (Wu's synthesis).
 
-        ``"literal"`` (default)
-            the x-mean of ``k_v(i) = |cot theta_i|`` (eq. 6 with ``y_dot = 0``, then eq. 7),
-            integrated in closed form with the primitive
-            ``sqrt(l^2-u^2) - l ln((l + sqrt(l^2-u^2))/|u|)`` of ``sqrt(l^2-u^2)/|u|``.
-            Table 1's design gives 1.787, not the printed 1.05.
-        ``"displacement"``
-            the x travel over the slider travel at ``y_dot = 0``,
-            ``(x_max - x_min) / int |tan theta_i| dx`` (the harmonic x-mean of ``k_v``).
-            Every design of eq. (13) gives exactly 1 (``y_d1 = b``).
-        ``"max_speed"``
-            the x-mean of the largest ``|x_dot|`` with both sliders at unit speed and
-            ``y_dot`` free, ``2 / |tan theta_1 - tan theta_2|`` (leg-independent),
-            by 64-point Gauss-Legendre (smooth integrand; error below 1e-10 for
-            the designs of eq. 14-16). Table 1's design gives 1.109.
-
-        None of these (nor the others listed in ``tests/test_gantry.py``) reproduces
-        Table 1's ``k_av = 1.05``; the literal reading is kept.
+        ``workspace_area`` (exact area of the reachable set, [length_unit^2]), ``k_av``
+        (literal reading of eq. 7 over ``[-b/2, b/2]``), ``d``, ``d1``, ``l``, ``stroke``
+        (eq. 14-16, [length_unit]), ``eta_d`` (eq. 44, area mean of kappa_D over the task
+        rectangle, :meth:`eta_d` with ``inertia``, default Wu's Table 2 carried over to
+        this link length) and ``gtqi`` (area mean of :func:`mechopt.indices.tqi` over the
+        task rectangle, not over the workspace as :meth:`gtqi`); ``quadrature`` names
+        their rule, ``"gauss-legendre-NxN"`` (tensor Gauss-Legendre, ``n`` nodes per axis).
         """
-        reading = _v.choice("reading", reading, K_AV_READINGS)
-        leg = _v.choice("leg", leg, (1, 2))
-        if x_min is None or x_max is None:
-            txmin, txmax, _, _ = self._task("k_av without x_min/x_max")
-            x_min = txmin if x_min is None else x_min
-            x_max = txmax if x_max is None else x_max
-        x_min = _v.finite_number("x_min", x_min)
-        x_max = _v.finite_number("x_max", x_max)
-        if not x_min < x_max:
-            raise ValueError(f"x_max must exceed x_min = {x_min!r}, got {x_max!r}")
-        lo, hi = self.x_range
-        if x_min < lo or x_max > hi:
-            raise ValueError(
-                f"[x_min, x_max] must lie in the reachable x range [{lo!r}, {hi!r}], "
-                f"got [{x_min!r}, {x_max!r}]"
-            )
-        l = self.l
-        if reading == "max_speed":
-            g, gw = np.polynomial.legendre.leggauss(64)
-            xs = 0.5 * (x_max - x_min) * g + 0.5 * (x_max + x_min)
-            t1 = (xs + self.d1) / _w(xs + self.d1, l)
-            t2 = (xs - self.d1) / _w(xs - self.d1, l)
-            f = 2.0 / np.abs(t1 - t2)
-            return float(0.5 * np.dot(gw, f))
-        xb = self.column_x[leg - 1]
-        a, b = x_min - xb, x_max - xb  # u = x - x_Bi
-        if reading == "literal":
-            if a <= 0.0 <= b:
-                return math.inf  # |cot| ~ 1/|u| is not integrable at a vertical link
+        from ..dynamics import rectangle_rule
 
-            def F(u):  # primitive of sqrt(l^2-u^2)/u on u > 0
-                w = math.sqrt(max(l * l - u * u, 0.0))
-                return w - l * math.log((l + w) / u)
-
-            ua, ub = sorted((abs(a), abs(b)))
-            return (F(ub) - F(ua)) / (x_max - x_min)
-        # displacement: int |u| / sqrt(l^2-u^2) du = |w(u1) - w(u2)| on each side of 0
-
-        def wf(u):
-            return math.sqrt(max(l * l - u * u, 0.0))
-
-        if a < 0.0 < b:
-            travel = (l - wf(a)) + (l - wf(b))
-        else:
-            travel = abs(wf(a) - wf(b))
-        return (x_max - x_min) / travel if travel > 0 else math.inf
+        if self.synthesis_inputs is None:
+            raise ValueError("summary needs a gantry made by Gantry.from_parameters (Wu's synthesis)")
+        kw = self.synthesis_inputs
+        d, d1, l, stroke = dimensional_synthesis(kw["b"], kw["h"], math.radians(kw["theta_1s_deg"]))
+        xs, ys, w = rectangle_rule(self.task_workspace, n)
+        out = dict(workspace_area=self.workspace_area(), k_av=self.k_av(reading="literal"), d=d,
+                   d1=d1, l=l, stroke=stroke, eta_d=self.eta_d(n, inertia),
+                   gtqi=float(np.sum(w * self.tqi(xs, ys))))
+        res = {k: float(out[k]) for k in self.summary_keys[:-1]}
+        res["quadrature"] = f"gauss-legendre-{n}x{n}"
+        return res
 
 
 def wu2008_gantry(theta_1S_deg: float = 10.0, unit: str = "mm") -> Gantry:
     """The gantry of Wu 2008 Table 1 (``theta_1S = 10`` deg) or of sec. 4.2 (15 deg).
 
-    ``b = 500``, ``h = 400``, ``d2 = 100``, ``l2 = 200`` mm (sec. 4.2); the task rectangle
-    is placed at ``y in [300, 700]`` mm (:data:`WU2008_TASK_Y_MIN_MM`, an assumption).
+    The task and platform of Table 1 (``b = 500``, ``h = 400``, ``d2 = 100``, ``l2 = 200``
+    mm, read from ``mechopt/data/wu2008.csv``); the task rectangle is placed at
+    ``y in [300, 700]`` mm (:data:`WU2008_TASK_Y_MIN_MM`, an assumption).
     ``unit="m"`` returns the same machine in metres, as the dynamics needs.
     """
     unit = _v.choice("unit", unit, tuple(_LENGTH_UNITS))
     th = math.radians(_v.finite_number("theta_1S_deg", theta_1S_deg))
-    g = Gantry.from_synthesis(500.0, 400.0, th, l2=200.0, d2=100.0,
+    t1 = _wu2008_design()
+    g = Gantry.from_synthesis(t1["b"], t1["h"], th, l2=t1["l2"], d2=t1["d2"],
                               task_y_min=WU2008_TASK_Y_MIN_MM)
     return g if unit == "mm" else g.scaled(1e-3)
 
 
-SUMMARY_KEYS = ("workspace_area", "k_av", "d", "d1", "l", "stroke", "eta_d", "gtqi", "quadrature")
-
-
-def summary(b=500.0, h=400.0, theta_1S=math.radians(10.0), d2=100.0, l2=200.0,
-            length_unit: str = "mm", inertia=None, n: int = 48) -> dict:
-    """Every number of ``mechopt evaluate gantry`` for one synthesized design (floats).
-
-    Parameters
-    ----------
-    b, h : float
-        Task rectangle [length_unit], > 0.
-    theta_1S : float
-        Smallest link angle [rad], in (0, pi/4).
-    d2, l2 : float
-        Platform half-width and height [length_unit], >= 0.
-    length_unit : {"mm", "m"}
-        Unit of the lengths given and returned; the dynamics run in metres.
-    inertia : mechopt.dynamics.GantryInertia, optional
-        Masses and inertias (default: Wu Table 2 carried over to this design's link
-        length, :meth:`mechopt.dynamics.GantryInertia.wu2008_scaled`; Table 2 itself at
-        ``theta_1S = 10`` deg).
-    n : int
-        Gauss-Legendre nodes per axis of the task-rectangle means (eta_D, GTQI).
-
-    Returns
-    -------
-    dict with :data:`SUMMARY_KEYS`: ``workspace_area`` (exact area of the reachable
-    set, [length_unit^2]), ``k_av`` (literal reading of eq. 7 over ``[-b/2, b/2]``),
-    ``d``, ``d1``, ``l``, ``stroke`` (eq. 14-16, [length_unit]), ``eta_d`` (eq. 44,
-    area mean of kappa_D over the task rectangle) and ``gtqi`` (area mean of
-    :func:`mechopt.indices.tqi` over the task rectangle); ``quadrature`` names their
-    rule, ``"gauss-legendre-NxN"`` (tensor Gauss-Legendre, ``n`` nodes per axis).
-    """
-    from .. import dynamics as _dyn  # late import: dynamics imports this module
-
-    length_unit = _v.choice("length_unit", length_unit, tuple(_LENGTH_UNITS))
-    d, d1, l, stroke = dimensional_synthesis(b, h, theta_1S)
-    g = Gantry.from_synthesis(b, h, theta_1S, l2=l2, d2=d2)
-    k_av = g.k_av(reading="literal")
-    g_m = g.scaled(_LENGTH_UNITS[length_unit])
-    if inertia is None:
-        l0 = dimensional_synthesis(500.0, 400.0, math.radians(10.0))[2] * _LENGTH_UNITS["mm"]
-        inertia = _dyn.GantryInertia.wu2008_scaled(g_m.l, l0)
-    dyn = _dyn.GantryDynamics(g_m, inertia)
-    eta = dyn.eta_d(n=n)
-    xs, ys, w = _dyn.rectangle_rule(g.task_workspace, n)
-    gtqi = float(np.sum(w * g.tqi(xs, ys)))
-    out = dict(workspace_area=g.workspace_area(), k_av=k_av, d=d, d1=d1, l=l, stroke=stroke,
-               eta_d=eta, gtqi=gtqi)
-    res = {k: float(out[k]) for k in SUMMARY_KEYS[:-1]}
-    res["quadrature"] = f"gauss-legendre-{n}x{n}"
-    return res
+#: the keys of :meth:`Gantry.summary`
+SUMMARY_KEYS = Gantry.summary_keys

@@ -1,0 +1,570 @@
+"""Two sliders on parallel vertical guides, one link each to a common point: the
+topology of the Biglide (Stan 2008) and of Wu's gantry (Wu 2008), written once.
+
+Geometry. The guides are the vertical lines ``x = g_1`` and ``x = g_2 = -g_1``
+(``|g_i| = a``, the order of the legs is the subclass's: the Biglide puts leg 1 on
+the right, the gantry on the left); slider ``i`` sits at ``S_i = (g_i, q_i)``, its
+link of length ``L`` joins it to the link joint ``A = (x, y - e)``, and the reported
+point ``P = (x, y)`` lies ``e`` above it (``e = 0`` for the Biglide, ``e = l2/2`` for
+the gantry's platform). With the half chord ``h_i(x) = sqrt(L^2 - (x - g_i)^2)`` the
+inverse kinematics (Stan eq. 5, Wu eq. 2) is
+
+    q_i = y - e + s_i h_i(x),        s_i = +1 or -1,
+
+the working ``mode`` being the two signs ``s1 s2`` (first character for leg 1;
+``"-"`` puts the slider below the link joint). ``c_i = y - e - q_i = -s_i h_i =
+L cos(theta_i)``, ``theta_i`` the angle of link ``i`` from the vertical, depends on
+``x`` only.
+
+Closure: differentiating ``(x - g_i)^2 + (y - e - q_i)^2 = L^2`` gives
+``a_i . p_dot = c_i q_dot_i`` with ``a_i = (x - g_i, c_i) = A - S_i``, so
+``J = B^-1 A`` has rows ``(tan theta_i, 1)`` (Wu eq. 4): every local index depends on
+``x`` only. Type I (``c_i = 0``, a link horizontal): the vertical lines
+``x = g_i -/+ L``, which bound the workspace in x: ``a - L <= x <= L - a``. Type II
+(the links collinear): only in the mixed modes, on the line ``x = 0``.
+
+Forward kinematics: ``A`` is an intersection of the circles of radius ``L`` about the
+two sliders; assembly ``"up"`` puts it on the left of the vector from the left slider
+to the right one (above the line of the sliders), ``"down"`` on its right.
+
+Strokes ``lo_i <= q_i <= hi_i`` (lengths ``S_i = hi_i - lo_i``) bound the reachable
+set; they are tested with a tolerance of ``1e-12`` times the largest of ``L`` and the
+limits' magnitudes, so that a pose computed from a limit value (``fk``, or the corner
+of a synthesized task rectangle, Wu eq. 16) stays reachable despite rounding.
+
+Workspace area (exact). For each x the leg-i admissible y form the interval
+``[c_i'(x), c_i'(x) + S_i]`` with ``c_i' = lo_i + e - s_i h_i``, so the vertical
+chord is ``g(d) = max(0, min(S1, S2, d + S1, S2 - d))`` with ``d = c_1' - c_2'``.
+``g`` is piecewise linear in ``d`` with kinks at ``d in {-S1, 0, S2 - S1, S2}``; the
+x where ``d`` reaches a kink solve ``sigma1 h1 - sigma2 h2 = K`` (``sigma_i = -s_i``),
+whose squared form gives
+
+    x^2 = K^2 (4 (L^2 - a^2) - K^2) / (4 (4 a^2 + K^2)).
+
+Between consecutive roots the chord is a constant or ``+/- d(x) + const`` and
+``int h_i dx`` is a circular-segment area: :meth:`TwoSliderMechanism.workspace_area`
+is exact to rounding. Spurious roots of the squared equation only split an interval.
+
+GTQI: ``int TQI(x) g(d(x)) dx / W`` by adaptive Gauss-Kronrod (scipy ``quad``) on
+each of those intervals, relative error below 1e-10, or a fixed Gauss rule
+(:meth:`TwoSliderMechanism.tqi_integral`).
+
+Velocity output ratio (Wu eq. 6-7): at ``y_dot = 0``, ``q_i_dot = tan(theta_i) x_dot``,
+so ``k_v(i) = |x_dot / q_i_dot| = |cot theta_i| = h_i / |x - g_i|``, and ``k_av(i)`` is
+a mean of it over ``x in [x_min, x_max]`` (:meth:`TwoSliderMechanism.k_av`, three
+readings of eq. 7; the literal one in closed form, infinite when the range contains
+the guide).
+
+References
+----------
+Stan, Maties, Balan (2008), in Wu (ed.), Parallel Manipulators, Towards New
+Applications, I-Tech, ISBN 978-3-902613-40-0: eq. (5), (8), (9), Figs. 5-6.
+Wu, Wang, Wang, Shao (2008), Proc. IMechE C 222:1367-1374 (doi:10.1243/09544062JMES830):
+eq. (1)-(9).
+"""
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+
+from .. import geometry as _g
+from .. import validation as _v
+from .base import PlanarMechanism, as_points
+
+__all__ = ["TwoSliderMechanism", "ASSEMBLY_MODES", "GTQI_METHODS", "K_AV_READINGS"]
+
+ASSEMBLY_MODES = ("up", "down")
+#: how :meth:`TwoSliderMechanism.gtqi` integrates: 1-D adaptive quadrature of exact
+#: chords, a fixed Gauss rule of them, or a raster
+GTQI_METHODS = ("gauss", "quad", "raster")
+#: readings of Wu eq. (6)-(7) offered by :meth:`TwoSliderMechanism.k_av`
+K_AV_READINGS = ("literal", "displacement", "max_speed")
+#: default raster resolution: cells across the smaller side of the bounding box
+RASTER_CELLS = 400
+#: stroke limits are tested with this tolerance relative to the largest of the link
+#: length and the limits' magnitudes (module docstring)
+LIMIT_RTOL = 1e-12
+_QUAD_EPSREL = 1e-10
+_SIGN = {"+": 1.0, "-": -1.0}
+
+
+@lru_cache(maxsize=1)
+def _gauss_nodes(n: int = 128):
+    return np.polynomial.legendre.leggauss(n)
+
+
+def _w(u, l):
+    """``sqrt(l^2 - u^2)``; NaN where ``|u| > l``."""
+    with np.errstate(invalid="ignore"):
+        return np.sqrt(l * l - u * u)
+
+
+class TwoSliderMechanism(PlanarMechanism):
+    """Base of the two-slider mechanisms (module docstring); not offered by itself.
+
+    A subclass calls :meth:`_set_sliders` in its constructor and implements what
+    differs: its parameters, ``serial_clearance``, the default range of :meth:`k_av`
+    (:meth:`_k_av_default_range`) and its summary.
+    """
+
+    assembly_modes = ASSEMBLY_MODES
+    joint_names = ("q1", "q2")
+    angular_joints = False
+
+    def _set_sliders(self, half_span, link, leg1_right, mode, strokes, stroke_lengths, offset):
+        """Store the topology: guides at ``+-half_span`` (leg 1 at ``+half_span`` if
+        ``leg1_right``), links of length ``link``, the signs of ``mode``, the actuator
+        limits ``strokes = ((lo1, hi1), (lo2, hi2))`` and their lengths
+        ``stroke_lengths = (S1, S2)`` (as the subclass defines them), and the height
+        ``offset`` of the reported point above the link joint."""
+        self._a, self._L = half_span, link
+        self._g = (half_span, -half_span) if leg1_right else (-half_span, half_span)
+        self._s = (_SIGN[mode[0]], _SIGN[mode[1]])
+        self._lims = tuple(strokes)
+        self._S = tuple(stroke_lengths)
+        self._e = offset
+        (lo1, hi1), (lo2, hi2) = self._lims
+        self._stroke_tol = LIMIT_RTOL * max(abs(lo1), abs(hi1), abs(lo2), abs(hi2), link)
+
+    # --- geometry ---------------------------------------------------------------
+    @property
+    def length_scale(self) -> float:
+        """The link length [L]."""
+        return self._L
+
+    @property
+    def guides(self):
+        """x coordinates of the guides of sliders 1 and 2 [L]."""
+        return self._g
+
+    @property
+    def joint_limits(self):
+        """``((q1_min, q1_max), (q2_min, q2_max))`` [L]."""
+        return self._lims
+
+    @property
+    def x_range(self):
+        """``(a - L, L - a)``: where both links reach their guides (bounded by type-I lines)."""
+        return (self._a - self._L, self._L - self._a)
+
+    def _half_chords(self, x):
+        """``(h1, h2, ok1, ok2)``: ``h_i = sqrt(L^2 - (x - g_i)^2)`` (0 where ``|x - g_i| > L``)."""
+        out = []
+        for g in self._g:
+            u = x - g
+            r2 = self._L * self._L - u * u
+            out.append((np.sqrt(np.maximum(r2, 0.0)), r2 >= 0))
+        (h1, ok1), (h2, ok2) = out
+        return h1, h2, ok1, ok2
+
+    def _offsets(self, x):
+        """``c_i = y - e - q_i = L cos(theta_i) = -s_i h_i`` as functions of x, per leg
+        (NaN where the link cannot reach its guide)."""
+        c1 = -self._s[0] * _w(x - self._g[0], self._L)
+        c2 = -self._s[1] * _w(x - self._g[1], self._L)
+        return c1, c2
+
+    def legs(self, x, y):
+        """``(q1, q2, c1, c2, reachable)`` without masking: slider positions and
+        ``c_i = L cos(theta_i)`` [L] of both legs."""
+        c1, c2 = self._offsets(x)
+        y_a = y - self._e
+        q1 = y_a - c1
+        q2 = y_a - c2
+        return q1, q2, c1, c2, self._in_strokes(q1, q2)
+
+    def _in_strokes(self, q1, q2):
+        """Both slider positions within their strokes, to the tolerance of the module
+        docstring (False where NaN)."""
+        (lo1, hi1), (lo2, hi2) = self._lims
+        t = self._stroke_tol
+        with np.errstate(invalid="ignore"):
+            return (q1 >= lo1 - t) & (q1 <= hi1 + t) & (q2 >= lo2 - t) & (q2 <= hi2 + t)
+
+    def slider_positions(self, x, y):
+        """``(q1, q2)`` of the inverse kinematics in this mode, ignoring strokes; NaN
+        where a link cannot reach its guide."""
+        x, y = as_points(x, y)
+        q1, q2, _, _, _ = self.legs(x, y)
+        return q1, q2
+
+    def link_tangents(self, x, y):
+        """``(tan theta_1, tan theta_2, c1, c2, reachable)``: the rows of ``J`` are
+        ``(tan theta_i, 1)``, ``c_i = L cos(theta_i)`` [L]; NaN where unreachable
+        (what the gantry's dynamics, :class:`mechopt.dynamics.GantryDynamics`, needs)."""
+        x, y = as_points(x, y)
+        _, _, c1, c2, ok = self.legs(x, y)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            t1 = (x - self._g[0]) / c1
+            t2 = (x - self._g[1]) / c2
+        nan = np.nan
+        return (np.where(ok, t1, nan), np.where(ok, t2, nan), np.where(ok, c1, nan),
+                np.where(ok, c2, nan), ok)
+
+    def link_angles(self, x, y):
+        """``(theta_1, theta_2)`` [rad] of the links from the vertical (Wu eq. 1), in
+        (-pi, pi]; NaN where unreachable."""
+        x, y = as_points(x, y)
+        ok = self.reachable(x, y)
+        c1, c2 = self._offsets(x)
+        t1 = np.arctan2(x - self._g[0], c1)
+        t2 = np.arctan2(x - self._g[1], c2)
+        return np.where(ok, t1, np.nan), np.where(ok, t2, np.nan)
+
+    def y_interval(self, x):
+        """``(y_lo, y_hi)`` of the reachable set at abscissa ``x`` (NaN where empty):
+        leg i admits ``y in [lo_i + e + c_i(x), hi_i + e + c_i(x)]``."""
+        lo, hi = self._y_bounds(np.asarray(x, dtype=float))
+        empty = ~(lo <= hi)
+        return np.where(empty, np.nan, lo), np.where(empty, np.nan, hi)
+
+    def _y_bounds(self, x):
+        """The lower and upper bound of the reachable y at ``x`` (``lo > hi``: empty)."""
+        c1, c2 = self._offsets(x)
+        (lo1, hi1), (lo2, hi2) = self._lims
+        e = self._e
+        return (np.maximum(lo1 + e + c1, lo2 + e + c2), np.minimum(hi1 + e + c1, hi2 + e + c2))
+
+    # --- protocol -----------------------------------------------------------------
+    def reachable(self, x, y):
+        """Both links reach their guides and both sliders lie within their strokes
+        (to the tolerance of the module docstring)."""
+        x, y = as_points(x, y)
+        return self.legs(x, y)[4]
+
+    def ik(self, x, y):
+        """Slider positions ``(q1, q2, reachable)`` [L]; NaN where unreachable."""
+        x, y = as_points(x, y)
+        q1, q2, _, _, ok = self.legs(x, y)
+        return np.where(ok, q1, np.nan), np.where(ok, q2, np.nan), ok
+
+    #: compute ``c_i`` of the closure as ``(y - e) - q_i`` from the slider positions (True:
+    #: the Biglide's, Stan eq. 5 differentiated) rather than as ``-s_i h_i`` (False: the
+    #: gantry's, Wu eq. 1); the same number up to the rounding of ``y``, kept per
+    #: mechanism so that the Jacobians (and every index and design built on them) keep
+    #: their last digits
+    _closure_via_positions = False
+
+    def closure(self, x, y):
+        """``A p_dot = B q_dot`` with ``a_i = (x - g_i, c_i)`` and ``B_ii = c_i = L cos(theta_i)``;
+        rows of ``J = B^-1 A`` are ``(tan theta_i, 1)``. NaN where unreachable."""
+        x, y = as_points(x, y)
+        q1, q2, c1, c2, ok = self.legs(x, y)
+        if self._closure_via_positions:
+            y_a = y - self._e
+            c1, c2 = y_a - q1, y_a - q2
+        u1 = x - self._g[0]
+        u2 = x - self._g[1]
+        A = np.stack([np.stack([u1, c1], -1), np.stack([u2, c2], -1)], -2)
+        b = np.stack([c1, c2], -1)
+        A = np.where(ok[..., None, None], A, np.nan)
+        b = np.where(ok[..., None], b, np.nan)
+        return A, b, ok
+
+    def _left_right(self, q1, q2):
+        """``(q_left, q_right)``: the slider positions ordered by the guides' x."""
+        return (q1, q2) if self._g[0] < self._g[1] else (q2, q1)
+
+    def fk(self, q1, q2, assembly: str = "up", limits: bool = True):
+        """Forward kinematics ``(x, y, valid)`` by intersecting the link circles.
+
+        With ``m = S_right - S_left = (2a, q_right - q_left)`` the link joint is
+        ``A = M +/- sqrt(L^2 / |m|^2 - 1/4) (-m_y, m_x)``, ``M`` the sliders' midpoint;
+        ``"up"`` takes ``+``. ``valid`` is False (NaN) where ``|m| > 2 L`` or, with
+        ``limits=True``, a slider is outside its stroke.
+        """
+        _v.choice("assembly", assembly, ASSEMBLY_MODES)
+        q1, q2 = as_points(q1, q2)
+        ql, qr = self._left_right(q1, q2)
+        mx = 2.0 * self._a
+        my = qr - ql
+        m2 = mx * mx + my * my
+        with np.errstate(invalid="ignore", divide="ignore"):
+            h2 = self._L * self._L / m2 - 0.25  # (distance M -> A)^2 / |m|^2
+            valid = h2 >= 0
+            if limits:
+                valid &= self._in_strokes(q1, q2)
+        h = np.sqrt(np.clip(h2, 0.0, None)) * (1.0 if assembly == "up" else -1.0)
+        ax = 0.0 - h * my  # the sliders' midpoint has x = 0
+        ay = 0.5 * (q1 + q2) + h * mx
+        y = ay + self._e
+        return np.where(valid, ax, np.nan), np.where(valid, y, np.nan), valid
+
+    def assembly_of(self, x, y):
+        """``"up"`` where the link joint is on the left of the vector from the left
+        slider to the right one (or on it), else ``"down"``."""
+        x, y = as_points(x, y)
+        q1, q2 = self.slider_positions(x, y)
+        ql, qr = self._left_right(q1, q2)
+        cross = 2.0 * self._a * ((y - self._e) - ql) - (qr - ql) * (x + self._a)
+        return np.where(cross >= 0, "up", "down")
+
+    def bounding_box(self):
+        """``(xmin, xmax, ymin, ymax)``, tight: the extremes of :meth:`y_interval`.
+
+        Between consecutive candidate abscissae (the breakpoints of
+        :meth:`workspace_area`, which include the ends of :attr:`x_range` and ``0``,
+        and the guides) both offsets ``c_i(x)`` are monotone and neither bound switches
+        legs, so the bounds of the set reach their extremes at candidates. An empty
+        workspace gives a box of zero height at the top of the strokes.
+        """
+        xmin, xmax = self.x_range
+        pts = set(self._breakpoints().tolist()) | {g for g in self._g if xmin <= g <= xmax}
+        lo, hi = self._y_bounds(np.array(sorted(pts)))
+        keep = lo <= hi + 1e-9 * self._L  # non-empty (to rounding at pinch points)
+        if not np.any(keep):
+            (_, hi1), (_, hi2) = self._lims
+            y = float(min(hi1, hi2) + self._e)
+            return (float(xmin), float(xmax), y, y)
+        return (float(xmin), float(xmax), float(np.min(lo[keep])), float(np.max(hi[keep])))
+
+    # --- exact workspace area and GTQI --------------------------------------------
+    def _breakpoints(self):
+        """Sorted x in the x range where the chord changes formula (module docstring)."""
+        xa, xb = self.x_range
+        (a1, _), (a2, _) = self._lims
+        S1, S2 = self._S
+        a, L = self._a, self._L
+        pts = [xa, xb, 0.0]
+        for k in (-S1, 0.0, S2 - S1, S2):
+            K = k - (a1 - a2)
+            num = K * K * (4.0 * (L * L - a * a) - K * K)
+            den = 4.0 * (4.0 * a * a + K * K)
+            if num >= 0:
+                r = np.sqrt(num / den)
+                pts += [r, -r]
+        return np.unique(np.clip(pts, xa, xb))
+
+    def _d(self, x):
+        """``d(x) = c_1'(x) - c_2'(x)``, ``c_i' = lo_i - s_i h_i(x)`` (``e`` cancels)."""
+        h1, h2, _, _ = self._half_chords(np.asarray(x, dtype=float))
+        (a1, _), (a2, _) = self._lims
+        return (a1 - a2) - self._s[0] * h1 + self._s[1] * h2
+
+    def chord(self, x):
+        """Exact length [L] of the vertical section of the workspace at ``x``."""
+        x = np.asarray(x, dtype=float)
+        S1, S2 = self._S
+        d = self._d(x)
+        g = np.maximum(0.0, np.minimum.reduce([np.full_like(d, S1), np.full_like(d, S2),
+                                               d + S1, S2 - d]))
+        xa, xb = self.x_range
+        return np.where((x >= xa) & (x <= xb), g, 0.0)
+
+    def _segment_integral(self, u0, u1) -> float:
+        """``int_{u0}^{u1} sqrt(L^2 - u^2) du``, a circular-segment area (the area's
+        column integrals): :func:`mechopt.geometry.chord_integral`."""
+        return float(_g.chord_integral(self._L, u0, u1))
+
+    def workspace_area(self) -> float:
+        """Exact area W [L^2] of the workspace of this mode (Stan eq. 8; module docstring)."""
+        (a1, _), (a2, _) = self._lims
+        S1, S2 = self._S
+        total = 0.0
+        pts = self._breakpoints()
+        for x0, x1 in zip(pts[:-1], pts[1:]):
+            dx = x1 - x0
+            if dx <= 0:
+                continue
+            dm = float(self._d(0.5 * (x0 + x1)))
+            pieces = (S1, S2, dm + S1, S2 - dm)
+            k = int(np.argmin(pieces))
+            if pieces[k] <= 0:
+                continue
+            if k < 2:
+                total += pieces[k] * dx
+                continue
+            ih1 = self._segment_integral(x0 - self._g[0], x1 - self._g[0])
+            ih2 = self._segment_integral(x0 - self._g[1], x1 - self._g[1])
+            int_d = (a1 - a2) * dx - self._s[0] * ih1 + self._s[1] * ih2
+            total += (int_d + S1 * dx) if k == 2 else (S2 * dx - int_d)
+        # the terms are circular segments of size up to L^2, so the sum is exact to some
+        # eps L^2: a negative total is that round-off about an empty or almost empty
+        # workspace (strokes [0, 1e-12] with L = 1.1 give -2.2e-16 for a true 2e-25):
+        # its area is 0 to the accuracy of the formula
+        return float(total) if total > 0 else 0.0
+
+    def tqi_of_x(self, x):
+        """TQI (Stan eq. 9) as a function of ``x`` alone: ``2 |t1 - t2| / (t1^2 + t2^2 + 2)``
+        with ``t_i = (x - g_i)/c_i`` the slopes of ``J``'s rows; 0 on type-I lines."""
+        x = np.asarray(x, dtype=float)
+        h1, h2, _, _ = self._half_chords(x)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t1 = (x - self._g[0]) / (-self._s[0] * h1)
+            t2 = (x - self._g[1]) / (-self._s[1] * h2)
+            out = 2.0 * np.abs(t1 - t2) / (t1 * t1 + t2 * t2 + 2.0)
+        return np.where(np.isfinite(out), out, 0.0)
+
+    def tqi_integral(self, return_error: bool = False, method: str = "quad"):
+        """``int_W TQI dA`` [L^2] along x of ``TQI(x) * chord(x)`` on the intervals of
+        :meth:`_breakpoints`.
+
+        ``method="quad"``: adaptive quadrature (relative tolerance 1e-10); with
+        ``return_error=True`` returns ``(value, absolute error estimate)``.
+        ``method="gauss"``: a fixed 128-node Gauss-Legendre rule per interval,
+        vectorised (about 100x faster; the square-root behaviour of the chord at
+        the interval ends limits it to about 3e-8 relative, see
+        ``tests/test_biglide.py``), for optimisation loops.
+        """
+        pts = self._breakpoints()
+        if method == "gauss":
+            t, w = _gauss_nodes()
+            total = 0.0
+            for x0, x1 in zip(pts[:-1], pts[1:]):
+                if x1 > x0:
+                    xs = 0.5 * (x1 - x0) * t + 0.5 * (x0 + x1)
+                    total += 0.5 * (x1 - x0) * float(np.sum(w * self.tqi_of_x(xs) * self.chord(xs)))
+            return (total, float("nan")) if return_error else total
+        total, err = 0.0, 0.0
+        f = lambda t: float(self.tqi_of_x(t) * self.chord(t))  # noqa: E731
+        epsabs = self._quad_epsabs()
+        for x0, x1 in zip(pts[:-1], pts[1:]):
+            if x1 <= x0:
+                continue
+            from scipy import integrate  # only the adaptive rule needs scipy
+
+            # full_output: scipy's IntegrationWarning is not passed on (see _quad_epsabs)
+            v, e = integrate.quad(f, x0, x1, epsabs=epsabs, epsrel=_QUAD_EPSREL, limit=200,
+                                  full_output=1)[:2]
+            total += v
+            err += e
+        return (total, err) if return_error else total
+
+    def _quad_epsabs(self) -> float:
+        """The absolute floor of the adaptive rule of :meth:`tqi_integral`.
+
+        Far below the result for ordinary designs (which the relative tolerance
+        decides): ``1e-14 L^2``. The integrand is only known to some eps times the
+        chord (the TQI is a difference of nearly equal slopes when the guides are close
+        or the strokes long: ``l1 = 1e-12``, ``l2 = 1e-3``, strokes of 1 give a TQI of
+        1e-9 with 7 correct digits), so the floor is at least ``1e-14`` times the
+        largest possible value of the integral, the x range times the longest stroke:
+        a tolerance below the integrand's own rounding is what made scipy warn
+        (IntegrationWarning) for such mixed sizes. Where the integrand is known to still
+        fewer digits (links longer than the guide distance by 1e-9 of it or less: the
+        half chords ``sqrt(L^2 - u^2)`` cancel), the rule returns its best estimate
+        without the warning; ``tqi_integral(return_error=True)`` gives its error estimate.
+        """
+        xa, xb = self.x_range
+        return max(1e-14 * self._L ** 2, 1e-14 * (xb - xa) * max(self._S))
+
+    def gtqi(self, method: str = "quad", step=None) -> float:
+        """Area mean of the TQI (Stan eq. 9) over the workspace of this mode.
+
+        ``method="quad"``: :meth:`tqi_integral` / :meth:`workspace_area` (TQI depends
+        on x only, so the 2-D mean is a 1-D integral of exact chord lengths; relative
+        error ~1e-10); ``method="gauss"``: the same with the fixed Gauss rule of
+        :meth:`tqi_integral` (~3e-8, 100x faster). ``method="raster"``: mid-point mean
+        over the reachable cells of :func:`mechopt.quadrature.grid_over` with side
+        ``step`` [L] (default: the smaller side of the bounding box / 400); first-order
+        error in ``step``. NaN for an empty workspace.
+        """
+        _v.choice("method", method, GTQI_METHODS)
+        if method in ("quad", "gauss"):
+            w = self.workspace_area()
+            return float(self.tqi_integral(method=method) / w) if w > 0 else float("nan")
+        return self.raster_mean(self.tqi, step, RASTER_CELLS)
+
+    # --- velocity output ratio (Wu 2008 sec. 3.3) ------------------------------------
+    def velocity_output_ratio(self, x, leg: int = 1):
+        """``k_v(i) = |x_dot / q_dot_i|`` at ``y_dot = 0`` (Wu eq. 6): ``|cot theta_i|``
+        ``= h_i / |x - g_i|``.
+
+        Depends on ``x`` only (and not on the mode); ``inf`` where the link is
+        vertical, NaN where the link cannot reach its guide.
+        """
+        leg = _v.choice("leg", leg, (1, 2))
+        x = np.asarray(x, dtype=float)
+        u = x - self._g[leg - 1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return _w(u, self._L) / np.abs(u)
+
+    def k_v(self, x, y):
+        """Velocity output ratios ``(k_v(1), k_v(2))`` of Wu eq. (6) at the poses
+        ``(x, y)``: :meth:`velocity_output_ratio` of both legs, NaN where unreachable."""
+        x, y = as_points(x, y)
+        ok = self.reachable(x, y)
+        return (np.where(ok, self.velocity_output_ratio(x, 1), np.nan),
+                np.where(ok, self.velocity_output_ratio(x, 2), np.nan))
+
+    def _k_av_default_range(self):
+        """``(x_min, x_max)`` of :meth:`k_av` when not given: the whole :attr:`x_range`."""
+        return self.x_range
+
+    def k_av(self, x_min=None, x_max=None, leg: int = 1, reading: str = "literal") -> float:
+        """Global velocity output ratio ``k_av`` of Wu eq. (7) of ``leg`` over ``[x_min, x_max]``.
+
+        The range defaults to the mechanism's own (the Biglide's whole x range, the
+        gantry's task rectangle ``[-b/2, b/2]``, eq. 17-18); it must lie in
+        :attr:`x_range`. ``reading`` selects how eq. (6)-(7) are read; ``"literal"``
+        is the one used throughout mechopt:
+
+        ``"literal"`` (default)
+            the x-mean of ``k_v(i) = |cot theta_i|`` (eq. 6 with ``y_dot = 0``, then eq. 7),
+            integrated in closed form with the primitive
+            ``sqrt(L^2-u^2) - L ln((L + sqrt(L^2-u^2))/|u|)`` of ``sqrt(L^2-u^2)/|u|``;
+            ``inf`` if the range contains the guide of that leg (a vertical link).
+            Wu's Table 1 design gives 1.787, not the printed 1.05.
+        ``"displacement"``
+            the x travel over the slider travel at ``y_dot = 0``,
+            ``(x_max - x_min) / int |tan theta_i| dx`` (the harmonic x-mean of ``k_v``).
+            Every design of Wu eq. (13) gives exactly 1 (``y_d1 = b``).
+        ``"max_speed"``
+            the x-mean of the largest ``|x_dot|`` with both sliders at unit speed and
+            ``y_dot`` free, ``2 / |tan theta_1 - tan theta_2|`` (leg-independent),
+            by 64-point Gauss-Legendre (smooth integrand; error below 1e-10 for
+            the designs of Wu eq. 14-16). Wu's Table 1 design gives 1.109.
+
+        None of these (nor the others listed in ``tests/test_gantry.py``) reproduces
+        Wu's Table 1 ``k_av = 1.05``; the literal reading is kept.
+        """
+        reading = _v.choice("reading", reading, K_AV_READINGS)
+        leg = _v.choice("leg", leg, (1, 2))
+        if x_min is None or x_max is None:
+            dmin, dmax = self._k_av_default_range()
+            x_min = dmin if x_min is None else x_min
+            x_max = dmax if x_max is None else x_max
+        x_min = _v.finite_number("x_min", x_min)
+        x_max = _v.finite_number("x_max", x_max)
+        if not x_min < x_max:
+            raise ValueError(f"x_max must be greater than x_min = {x_min!r}, got {x_max!r}")
+        lo, hi = self.x_range
+        tol = 1e-12 * self._L
+        if x_min < lo - tol or x_max > hi + tol:
+            raise ValueError(
+                f"[x_min, x_max] must lie in the reachable x range [{lo!r}, {hi!r}], "
+                f"got [{x_min!r}, {x_max!r}]"
+            )
+        l = self._L
+
+        def wf(u):
+            return math.sqrt(max(l * l - u * u, 0.0))
+
+        if reading == "max_speed":
+            g, gw = np.polynomial.legendre.leggauss(64)
+            xs = 0.5 * (x_max - x_min) * g + 0.5 * (x_max + x_min)
+            u1, u2 = xs - self._g[0], xs - self._g[1]
+            t1 = u1 / (-self._s[0] * _w(u1, l))  # tan theta_i = (x - g_i) / c_i
+            t2 = u2 / (-self._s[1] * _w(u2, l))
+            f = 2.0 / np.abs(t1 - t2)
+            return float(0.5 * np.dot(gw, f))
+        xb = self._g[leg - 1]
+        a, b = x_min - xb, x_max - xb  # u = x - x_guide
+        if reading == "literal":
+            if a <= 0.0 <= b:
+                return math.inf  # |cot| ~ 1/|u| is not integrable at a vertical link
+
+            def F(u):  # primitive of sqrt(l^2-u^2)/u on u > 0
+                w = wf(u)
+                return w - l * math.log((l + w) / u)
+
+            ua, ub = sorted((abs(a), abs(b)))
+            return (F(ub) - F(ua)) / (x_max - x_min)
+        # displacement: int |u| / sqrt(l^2-u^2) du = |w(u1) - w(u2)| on each side of 0
+        if a < 0.0 < b:
+            travel = (l - wf(a)) + (l - wf(b))
+        else:
+            travel = abs(wf(a) - wf(b))
+        return (x_max - x_min) / travel if travel > 0 else math.inf

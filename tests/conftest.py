@@ -1,0 +1,140 @@
+"""Fixtures shared by several test modules, and the grouping of tests for pytest-xdist.
+
+``quick_reproduction`` runs ``mechopt reproduce all --quick`` once per test session
+(the command line, in this process, the papers one after another so that every
+figure saved can be inspected and every script's table is kept as it returned it):
+``tests/test_reproduce.py`` checks the command's files, ``tests/test_experiment_*.py``
+and ``tests/test_stan2008_readings.py`` each script's run inside it (the same
+``run(folder, quick=True)`` call as on its own, into the paper's folder).
+
+Under ``pytest -n 2`` (pytest-xdist) the tests that share a fixture broader than a
+function (this session fixture, or a module-scoped one) go to one worker as a group
+(:func:`pytest_xdist_make_scheduler`), so that the fixture is computed once (except
+the modules of :data:`SPREAD`, whose tests are long beside their fixture); every
+other test is distributed on its own, the largest groups first.
+"""
+from __future__ import annotations
+
+import importlib
+import re
+import time
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+#: the group of every test that uses the shared quick reproduction
+QUICK_GROUP = "quick_reproduction"
+#: modules whose module fixture is cheap beside their long tests (the tutorials, the
+#: fuzzers' scratch folder): their tests are spread over the workers, each worker
+#: building the fixture. (test_signals is not: its reference runs cost about as much
+#: as one of its tests, and a group of a few tests starts before the single tests.)
+SPREAD = {"test_docs", "test_fuzz"}
+
+
+@pytest.fixture(scope="session")
+def quick_reproduction(tmp_path_factory):
+    """``SimpleNamespace(out, runs, figures)``: the folder of one quick reproduction of
+    all papers; ``runs[paper] = (folder, table, seconds)`` as the paper's
+    ``experiments.<paper>.run(folder, quick=True)`` returned it and how long it took;
+    ``figures``: every ``(path, matplotlib Figure)`` the run saved."""
+    from mechopt import io as _io
+    from mechopt import reproduce as rep
+    from mechopt.cli import main
+
+    out = tmp_path_factory.mktemp("quick_reproduction")
+    figures, runs = [], {}
+    save = _io.save_figure
+
+    def capture(fig, path, dpi=120):
+        figures.append((str(path), fig))
+        return save(fig, path, dpi)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(_io, "save_figure", capture)
+        # the papers in this process (not in worker processes), so that the figures
+        # and the scripts' own tables are seen here
+        mp.setattr(rep, "default_jobs", lambda n: 1)
+        for paper in rep.PAPERS:
+            module = importlib.import_module(f"mechopt.experiments.{paper}")
+
+            def timed(folder, quick=False, _run=module.run, _paper=paper):
+                t0 = time.perf_counter()
+                table = _run(folder, quick=quick)
+                runs[_paper] = (Path(folder), table, time.perf_counter() - t0)
+                return table
+
+            mp.setattr(module, "run", timed)
+        assert main(["reproduce", "all", "--quick", "--out", str(out)]) == 0
+    assert set(runs) == set(rep.PAPERS)
+    return SimpleNamespace(out=out, runs=runs, figures=figures)
+
+
+def _groups():
+    """``{module: scope}`` of the test modules whose tests go to one worker together:
+    those that use the quick reproduction (one scope for all of them) and those with a
+    module-scoped fixture (a scope each), read from the sources."""
+    out = {}
+    for path in sorted(Path(__file__).parent.glob("test_*.py")):
+        text = path.read_text(errors="replace")
+        if "quick_reproduction" in text:
+            out[path.stem] = QUICK_GROUP
+        elif path.stem not in SPREAD and re.search(r"scope\s*=\s*[\"'](module|package|session)[\"']", text):
+            out[path.stem] = path.stem
+    return out
+
+
+def scope_of(nodeid: str, groups: dict) -> str:
+    """The xdist work unit of a test: its group (``groups``, or an ``@name`` suffix of
+    ``--dist loadgroup``), else the test alone."""
+    if nodeid.rfind("@") > nodeid.rfind("]"):
+        return nodeid.split("@")[-1]
+    module = Path(nodeid.split("::", 1)[0]).stem
+    return groups.get(module, nodeid)
+
+
+try:  # the scheduler hook exists only with pytest-xdist
+    import xdist  # noqa: F401
+except ImportError:  # pragma: no cover
+    pass
+else:
+    def pytest_xdist_make_scheduler(config, log):
+        """``-n N`` (``--dist load`` or ``loadgroup``): xdist's load-scope scheduling over
+        the work units of :func:`scope_of` (largest first). xdist's own ``loadgroup``
+        reads an ``@group`` suffix that it appends to the node ids, which pytest 9 no
+        longer lets a plugin change, so the groups are formed here."""
+        if config.getvalue("dist") not in ("load", "loadgroup"):
+            return None
+        from xdist.scheduler import LoadScopeScheduling
+
+        groups = _groups()
+
+        class GroupScheduling(LoadScopeScheduling):
+            def _split_scope(self, nodeid):
+                return scope_of(nodeid, groups)
+
+        return GroupScheduling(config, log)
+
+
+def pytest_runtest_setup(item):
+    """A test that maps with ``joblib.Parallel`` needs loky's reusable executor to be
+    joblib's own: joblib reuses an executor that mechopt.parallel started (an earlier
+    test of the same process, which under xdist may be any test) and fails on its
+    missing temporary-folder manager (AttributeError in joblib/executor.py). Such an
+    executor is shut down first, as a fresh process would have none."""
+    import inspect
+
+    try:
+        source = inspect.getsource(item.function)
+    except (AttributeError, OSError, TypeError):
+        return
+    if "joblib import Parallel" not in source:
+        return
+    try:
+        from joblib.externals.loky import reusable_executor
+    except ImportError:  # pragma: no cover
+        return
+    ex = reusable_executor._executor
+    if ex is not None and not hasattr(ex, "_temp_folder_manager"):
+        ex.shutdown(wait=True)
+        reusable_executor._executor = None
