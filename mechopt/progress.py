@@ -22,20 +22,37 @@ class Progress:
         self.min_interval = min_interval
         self._t0 = time.perf_counter()
         self._last = -float("inf")
+        self._state = None
 
     def update(self, done: int, info: str = ""):
         now = time.perf_counter()
-        elapsed = now - self._t0
-        frac = done / self.total
+        self._state = (done, info)
         if self.tty:
-            width = 30
-            bar = "#" * int(width * frac) + "-" * (width - int(width * frac))
-            self.stream.write(f"\r{self.label} [{bar}] {done}/{self.total} {elapsed:6.1f}s {info}  ")
-            self.stream.flush()
+            self._draw(now)
         elif done >= self.total or now - self._last >= self.min_interval:
-            self.stream.write(f"{self.label}: {done}/{self.total} ({elapsed:.1f} s) {info}\n")
+            self.stream.write(f"{self.label}: {done}/{self.total} ({now - self._t0:.1f} s) {info}\n")
             self.stream.flush()
             self._last = now
+
+    def _draw(self, now):
+        done, info = self._state
+        width = 30
+        filled = int(width * done / self.total)
+        bar = "#" * filled + "-" * (width - filled)
+        self.stream.write(f"\r{self.label} [{bar}] {done}/{self.total} {now - self._t0:6.1f}s {info}  ")
+        self.stream.flush()
+
+    def message(self, log, text: str):
+        """``log(text)`` without breaking the bar: on a TTY the bar's line is cleared
+        first and redrawn after (``log`` may write to the same terminal)."""
+        if not self.tty:
+            log(text)
+            return
+        self.stream.write("\r\033[K")
+        self.stream.flush()
+        log(text)
+        if self._state is not None:
+            self._draw(time.perf_counter())
 
     def close(self):
         if self.tty:

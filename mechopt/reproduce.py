@@ -85,21 +85,21 @@ def default_jobs(n_units: int) -> int:
 
 
 def reproduce(paper: str, out="results", quick: bool = False, force: bool = False,
-              log=print, n_jobs: int | None = None) -> pd.DataFrame:
+              log=print, n_jobs: int | None = None, progress: bool = False) -> pd.DataFrame:
     """Reproduce one paper (or ``"all"``) into ``out/<paper>/``; returns the table(s).
 
     The papers are independent, and so are the parts of a paper that only write files
     (``experiments.<paper>.PARTS``, e.g. a weighting sweep whose front no row uses):
-    with several papers to run and ``n_jobs`` > 1 (default :func:`default_jobs` of the
-    papers to run), each paper's table and each of its parts is a work unit mapped over
-    ``n_jobs`` worker processes (:func:`mechopt.parallel.parallel_map`), longest first
-    (:data:`COST`). Every file is the one a serial run writes, byte for byte (the units
-    write disjoint files; ``tests/test_reproduce.py``); a paper's ``table.csv`` is
-    written once all its units are done. ``n_jobs=1``, or a single paper, runs in this
-    process one paper after the other. A paper's line is logged when it is done; the
-    returned table is in the order of :data:`PAPERS`."""
-    from .parallel import parallel_map
-
+    each paper's table and each of its parts is a work unit (a stage), mapped over
+    ``n_jobs`` worker processes (:func:`mechopt.parallel.parallel_map`; default
+    :func:`default_jobs` of the papers to run), longest first (:data:`COST`). Every
+    file is the one a serial run writes, byte for byte (the units write disjoint files;
+    ``tests/test_reproduce.py``); a paper's ``table.csv`` is written once all its units
+    are done. ``n_jobs=1``, or a single paper, runs the units in this process. A
+    paper's line is logged when it is done; with ``progress`` a
+    :class:`mechopt.progress.Progress` over the stages (a bar on a terminal, one plain
+    line per finished stage otherwise) goes to stderr. The returned table is in the
+    order of :data:`PAPERS`."""
     _v.choice("paper", paper, PAPERS + ("all",))
     if n_jobs is not None:
         n_jobs = _v.integer("n_jobs", n_jobs, 1)
@@ -122,15 +122,8 @@ def reproduce(paper: str, out="results", quick: bool = False, force: bool = Fals
                 f"{_describe_stamp(old)}, this one is {_describe_stamp(stamp)}: recomputing")
         todo.append((i, name))
     workers = default_jobs(len(todo)) if n_jobs is None else min(n_jobs, max(len(todo), 1))
-    if workers > 1:
-        _run_parallel(todo, n, out, quick, stamp, workers, tables, log, parallel_map)
-    else:
-        for i, name in todo:
-            log(f"[{i}/{n}] {name}: running{' (quick)' if quick else ''} ...")
-            t0 = time.perf_counter()
-            df = _finish_paper(name, out / name, stamp, _run_paper((name, str(out / name), bool(quick), None)))
-            log(f"[{i}/{n}] {name}: {counts_line(counts(df))} ({time.perf_counter() - t0:.1f} s)")
-            tables[name] = df.assign(paper=name)
+    if todo:
+        _run_units(todo, n, out, quick, stamp, workers, tables, log, progress)
     table = pd.concat([tables[name] for name in papers], ignore_index=True)
     write_summary(out)
     return table
@@ -146,31 +139,47 @@ def _units(name):
     return [TABLE, *getattr(module, "PARTS", ())]
 
 
-def _run_parallel(todo, n, out, quick, stamp, workers, tables, log, parallel_map):
+def _run_units(todo, n, out, quick, stamp, workers, tables, log, progress):
+    """Run the work units of the papers ``todo`` on ``workers`` processes (1: here)."""
+    from .parallel import parallel_map
+    from .progress import Progress
+
     cost = COST[bool(quick)]
     units = [(i, name, part) for i, name in todo for part in _units(name)]
     units.sort(key=lambda u: -cost.get((u[1], None if u[2] == TABLE else u[2]), 0))  # stable
     left = {name: sum(1 for u in units if u[1] == name) for _, name in todo}
     seconds = dict.fromkeys(left, 0.0)
     result = {}
+    where = f"{workers} processes" if workers > 1 else "this process"
     log(f"running {', '.join(name for _, name in todo)}{' (quick)' if quick else ''} as "
-        f"{len(units)} work units on {workers} processes ...")
+        f"{len(units)} work units on {where} ...")
+    bar = Progress(len(units), "reproduce", min_interval=0.0) if progress else None
+    finished = 0
 
     def _done(k, res):
+        nonlocal finished
         i, name, part = units[k]
         value, sec = res
         seconds[name] += sec
+        finished += 1
+        if bar is not None:
+            bar.update(finished, f"{name} {part} done ({sec:.1f} s)")
         if part == TABLE:
             result[name] = value
         left[name] -= 1
         if left[name] == 0:  # every unit of the paper is done: its table, written last
             df = _finish_paper(name, out / name, stamp, result.pop(name))
-            log(f"[{i}/{n}] {name}: {counts_line(counts(df))} ({seconds[name]:.1f} s in "
-                f"{sum(1 for u in units if u[1] == name)} work units)")
+            line = (f"[{i}/{n}] {name}: {counts_line(counts(df))} ({seconds[name]:.1f} s in "
+                    f"{sum(1 for u in units if u[1] == name)} work units)")
+            bar.message(log, line) if bar is not None else log(line)
             tables[name] = df.assign(paper=name)
 
     jobs = [(name, str(out / name), bool(quick), part) for _, name, part in units]
-    parallel_map(_timed_unit, jobs, n_jobs=workers, on_item=_done)
+    try:
+        parallel_map(_timed_unit, jobs, n_jobs=workers, on_item=_done)
+    finally:
+        if bar is not None:
+            bar.close()
 
 
 def _timed_unit(job):
@@ -181,14 +190,12 @@ def _timed_unit(job):
 
 
 def _run_paper(job):
-    """``job = (name, folder, quick, part)``: with ``part`` None the whole paper
-    (``experiments.<name>.run``), :data:`TABLE` its table without its parts
-    (``run(..., parts=False)``), else one of its parts (``run_part``, returns None)."""
+    """``job = (name, folder, quick, part)``: :data:`TABLE` the paper's table without
+    its parts (``experiments.<name>.run(..., parts=False)``), else one of its parts
+    (``run_part``, returns None)."""
     name, folder, quick, part = job
     folder = _io.prepare_out_dir(Path(folder))
     module = importlib.import_module(f"mechopt.experiments.{name}")
-    if part is None:
-        return module.run(folder, quick=quick)
     if part == TABLE:
         if getattr(module, "PARTS", ()):
             return module.run(folder, quick=quick, parts=False)

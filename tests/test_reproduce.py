@@ -220,6 +220,7 @@ def test_a_quick_paper_is_recomputed_by_a_full_run(tmp_path, capsys, monkeypatch
     import mechopt.experiments.wu2008 as wu
 
     monkeypatch.setattr(wu, "run", fake_run)
+    monkeypatch.setattr(wu, "PARTS", ())
     out = tmp_path / "r"
     rep.reproduce("wu2008", out=out, quick=True, log=lambda m: None)
     rep.reproduce("wu2008", out=out, quick=True, log=lambda m: None)
@@ -253,6 +254,35 @@ def test_papers_in_worker_processes_write_the_same_files(results, tmp_path, monk
             if rel.name in ("run.json", "manifest.json"):
                 continue
             assert (results / paper / rel).read_bytes() == (tmp_path / paper / rel).read_bytes(), (paper, rel)
+
+
+def test_progress_lines_per_stage(tmp_path, capsys, monkeypatch):
+    """With ``progress`` (the CLI's default) each finished work unit (a paper's table or
+    one of its parts) prints one plain line on a pipe, naming the paper and the stage,
+    counted over all stages; the paper's summary line comes after its last stage."""
+    from mechopt import reproduce as rep
+
+    import mechopt.experiments.wu2008 as wu
+
+    def fake_run(out, quick, parts=True):
+        return pd.DataFrame([{"quantity": "q", "source": "s", "paper": 1.0, "reproduced": 1.0,
+                              "unit": "-", "rel_error": 0.0, "status": "match",
+                              "kind": "computed", "note": "tol 0.5"}])
+
+    stages = []
+    monkeypatch.setattr(wu, "run", fake_run)
+    monkeypatch.setattr(wu, "run_part", lambda out, quick, part: stages.append(part))
+    log = []
+    rep.reproduce("wu2008", out=tmp_path, quick=True, log=log.append, progress=True)
+    err = capsys.readouterr().err.splitlines()
+    units = rep._units("wu2008")
+    assert stages == list(units[1:]) and len(units) >= 2
+    lines = [line for line in err if line.startswith("reproduce: ")]
+    assert len(lines) == len(units), err
+    for k, line in enumerate(lines, 1):
+        assert line.startswith(f"reproduce: {k}/{len(units)} (") and " wu2008 " in line, line
+    assert {line.split(" wu2008 ")[1].split()[0] for line in lines} == set(units)
+    assert log[-1].startswith("[1/1] wu2008: 1 of 1 computed match")
 
 
 def test_default_jobs_and_bad_n_jobs(tmp_path):
