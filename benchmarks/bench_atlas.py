@@ -34,8 +34,8 @@ def _best_of(fn, repeat=5):
 
 
 def bench_lci(n_points=2_000_000):
-    from mechopt import kernels as K
-    from mechopt.quadrature import disk_rule
+    from mechopt.mechanisms.five_bar import kernels as K
+    from mechopt.core.quadrature import disk_rule
 
     # points of the MIC disk of Liu's example (0.85, 1.6, 0.55): all reachable
     r = int(np.sqrt(n_points / 2))
@@ -52,8 +52,8 @@ def bench_lci(n_points=2_000_000):
 
 
 def bench_per_design(n=2000):
-    from mechopt import kernels as K
-    from mechopt.atlas import design_grid
+    from mechopt.mechanisms.five_bar import kernels as K
+    from mechopt.run.atlas import design_grid
 
     g = design_grid(0.01).sample(n, random_state=0)
     r1, r2, r3 = (g[c].to_numpy() for c in ("r1", "r2", "r3"))
@@ -74,7 +74,7 @@ def bench_per_design(n=2000):
 
 
 def bench_scaling(step=0.02):
-    from mechopt.atlas import compute_atlas, design_grid
+    from mechopt.run.atlas import compute_atlas, design_grid
 
     n = len(design_grid(step))
     print(f"Step-{step} atlas ({n} designs, six indices, area rule), joblib workers:")
@@ -98,7 +98,7 @@ def bench_scaling(step=0.02):
 
 
 def bench_full(step=0.01):
-    from mechopt.atlas import run_atlas
+    from mechopt.run.atlas import run_atlas
 
     with tempfile.TemporaryDirectory() as tmp:
         t = time.perf_counter()

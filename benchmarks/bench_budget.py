@@ -1,4 +1,4 @@
-"""How good is the estimate a run prints before it starts (mechopt.budget)?
+"""How good is the estimate a run prints before it starts (mechopt.run.budget)?
 
     python benchmarks/bench_budget.py
 
@@ -28,7 +28,7 @@ CHILD = r"""
 import json, resource, sys, time
 from mechopt import budget
 from mechopt.problems import get
-from mechopt.runner import make_algorithm, optimize
+from mechopt.run.runner import make_algorithm, optimize
 name, algo, pop, gen = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
 problem = get(name)
 a = make_algorithm(algo, pop, problem.n_obj)

@@ -3,7 +3,7 @@
     python benchmarks/bench_design.py [--place fixed|free-y] [--task rect:W,H@X,Y]
                                       [--min-lci G] [--cli]
 
-The scan is independent of :mod:`mechopt.design` (it calls only ``FiveBar``'s
+The scan is independent of :mod:`mechopt.workflows.design` (it calls only ``FiveBar``'s
 ``reachable``, ``lci`` and ``type2_function``). A design is feasible when, on the
 task's check points (a 41 x 25 grid of the rectangle, edges included, plus 400
 points along its boundary), every point is reachable, ``LCI >= gamma`` and

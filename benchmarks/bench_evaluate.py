@@ -12,7 +12,7 @@ issue for the five-bar: under 1 s wall and under 200 MB.
 
 Commands: the five-bar of the issue (``--r1 0.85 --r2 1.6 --r3 0.55``) and every other
 mechanism with the README's example (the gantry with its defaults). One more row,
-``five-bar (API)``, times ``mechopt.evaluate.evaluate`` called from a fresh process
+``five-bar (API)``, times ``mechopt.analysis.evaluate.evaluate`` called from a fresh process
 without the command line (so the cost of building the CLI's parser shows apart).
 
 ``--pythonpath DIR`` runs the children with ``DIR`` first on ``PYTHONPATH`` (e.g. an
@@ -34,7 +34,7 @@ TARGET_WALL = 1.0  # s, five-bar
 TARGET_RSS = 200.0  # MB, five-bar
 
 CLI = "import sys; from mechopt.cli import main; sys.exit(main())"
-API = ("from mechopt.evaluate import evaluate; from mechopt.mechanisms.five_bar import FiveBar; "
+API = ("from mechopt.analysis.evaluate import evaluate; from mechopt.mechanisms.five_bar.model import FiveBar; "
        "print(evaluate(FiveBar(0.85, 1.6, 0.55)).as_dict())")
 
 COMMANDS = [

@@ -17,11 +17,11 @@ A single-objective problem's "front" is its best feasible design; the
 refinement zooms :data:`SO_LEVELS` times, :data:`SO_REFINE` times finer each,
 around the best :data:`SO_TOP` designs instead.
 
-Then the problem's default run, ``mechopt.runner.optimize(get(name), seed=1,
+Then the problem's default run, ``mechopt.run.runner.optimize(get(name), seed=1,
 n_jobs=2)``, is measured against it: objectives in minimisation form,
 normalised by the reference front's ideal and nadir (an objective whose span on
 the reference front is zero, as on a single-design front, by its declared
-range, :attr:`mechopt.problems.base.Objective.bounds`), IGD+
+range, :attr:`mechopt.run.problem.Objective.bounds`), IGD+
 (``pymoo.indicators.igd_plus.IGDPlus``) and the ratio of hypervolumes
 (``pymoo.indicators.hv.HV``, reference point 1.1 in every direction; above 1
 where the run beats the lattice). For a single objective, the relative gap
@@ -49,7 +49,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechopt.parallel import chunks, parallel_map
+from mechopt.run.parallel import chunks, parallel_map
 from mechopt.problems import get, names
 
 #: full and quick lattices by number of variables: (points per variable, refinement
@@ -200,7 +200,7 @@ def compare(problem, F_ref, F_run) -> dict:
 def default_run(name, n_jobs=2, seed=1):
     """The default run of ``name``: ``(F in minimisation form, seconds, run.json info)``;
     ``n_jobs=None``: the runner chooses."""
-    from mechopt.runner import optimize
+    from mechopt.run.runner import optimize
 
     p = get(name)
     t0 = time.perf_counter()

@@ -27,9 +27,9 @@ import time
 
 import numpy as np
 
-from mechopt import fast_lci
-from mechopt import indices
-from mechopt.mechanisms.five_bar import FiveBar
+from mechopt.mechanisms.five_bar import lci as fast_lci
+from mechopt.core import indices
+from mechopt.mechanisms.five_bar.model import FiveBar
 
 TARGET = 1e7
 

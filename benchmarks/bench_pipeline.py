@@ -137,9 +137,9 @@ def _install_clock(clock: _Clock, paper: str):
     import importlib
     import inspect
 
-    import mechopt.atlas as atlas
-    import mechopt.io as mio
-    import mechopt.runner as runner
+    import mechopt.run.atlas as atlas
+    import mechopt.run.io as mio
+    import mechopt.run.runner as runner
 
     runner.optimize = clock.wrap("optimisation", runner.optimize)
     runner.sweep = clock.wrap("optimisation", runner.sweep)
@@ -170,7 +170,7 @@ def _stage_worker(paper: str, quick: bool, out: str, result: str) -> int:
     t0 = time.perf_counter()
     clock = _Clock()
     _install_clock(clock, paper)
-    from mechopt.reproduce import reproduce
+    from mechopt.workflows.reproduce import reproduce
 
     t1 = time.perf_counter()
     reproduce(paper, out=out, quick=quick, force=True, log=lambda msg: None)

@@ -5,8 +5,8 @@ design space (``r1 + r2 + r3 = 3``), mapped through the package's single
 parallel map exactly as a Problem does it (one chunk per worker), and their
 ratio, for two evaluators:
 
-* ``reference``: :func:`mechopt.workspace.mic` by ray root finding plus
-  :func:`mechopt.performance.global_indices` (about 0.2 s per design);
+* ``reference``: :func:`mechopt.analysis.workspace.mic` by ray root finding plus
+  :func:`mechopt.analysis.performance.global_indices` (about 0.2 s per design);
 * ``fast``: the vectorised explicit-locus path the problems use
   (:func:`mechopt.problems.liu2006.liu_indices`, about 1 ms per design), where a
   population of 100 is too small for processes to pay off.
@@ -23,7 +23,7 @@ import time
 
 import numpy as np
 
-from mechopt.parallel import chunks, parallel_map
+from mechopt.run.parallel import chunks, parallel_map
 from mechopt.problems import get
 
 
@@ -39,8 +39,8 @@ def _designs(n, seed=0):
 
 def _reference(X):
     from mechopt import FiveBar
-    from mechopt.performance import global_indices
-    from mechopt.workspace import mic
+    from mechopt.analysis.performance import global_indices
+    from mechopt.analysis.workspace import mic
 
     out = []
     for r1, r3 in X:

@@ -5,7 +5,7 @@
 
 The names come from the code wherever the code defines them: the registered
 mechanisms, their declared parameters and ``summary()`` keys,
-:data:`mechopt.evaluate.DISK_KEYS`, every registered problem's variables,
+:data:`mechopt.analysis.evaluate.DISK_KEYS`, every registered problem's variables,
 objectives (with their units), constraints and derived columns (one evaluation of
 the design in the middle of its bounds), the Liu 2006 regions, the atlas columns,
 the design objectives, requirements and mechanism lengths, and the reproduction
@@ -404,7 +404,7 @@ name, then a rename).
 
 
 def _evaluate() -> str:
-    from mechopt.evaluate import DISK_KEYS, DISK_OPTIONS
+    from mechopt.analysis.evaluate import DISK_KEYS, DISK_OPTIONS
     from mechopt.mechanisms import registry
 
     out = ["## `mechopt evaluate MECHANISM`\n",
@@ -580,7 +580,7 @@ def _sweep(problems) -> str:
 
 
 def _design() -> str:
-    from mechopt.design import MECHANISMS, OBJECTIVES, Requirements, get_spec
+    from mechopt.analysis.task import MECHANISMS, OBJECTIVES, Requirements, get_spec
 
     req_all = Requirements(min_lci=0.5, joint_limits=(0, 1), link_angle=(0, 1), max_stroke=1, min_speed=1,
                            min_force=1, actuator_speed=1, actuator_torque=1, payload=1)
@@ -651,7 +651,7 @@ def _design() -> str:
 
 
 def _atlas() -> str:
-    from mechopt.atlas import DEFAULT_INDICES, design_grid, index_columns
+    from mechopt.run.atlas import DEFAULT_INDICES, design_grid, index_columns
 
     cols = list(design_grid(0.5).columns) + [c for c in index_columns(DEFAULT_INDICES)]
     rows = [(f"`{c}`", *_lookup(ATLAS_CSV, c, "atlas.csv")) for c in cols]
@@ -673,8 +673,8 @@ def _atlas() -> str:
 
 
 def _reproduce() -> str:
-    from mechopt.published import KINDS, STATUSES, TABLE_COLUMNS
-    from mechopt.reproduce import PAPERS
+    from mechopt.core.published import KINDS, STATUSES, TABLE_COLUMNS
+    from mechopt.workflows.reproduce import PAPERS
 
     cols = list(TABLE_COLUMNS) + [c for c in TABLE_CSV if c not in TABLE_COLUMNS]
     for s in STATUSES:

@@ -5,7 +5,7 @@ Thin script over :mod:`mechopt.problems.le2013` and the runner. Writes ``curve.c
 ``fig5_a_max.png``, ``fig6_lci_square.png``, the GA run (``front/``), the relaxed run
 (``relaxed/``), the (square side, gamma) front and its weighting sweep (``sweep/``).
 
-Every printed number comes from ``mechopt/data/le2013.csv`` (:func:`mechopt.published.lookup`);
+Every printed number comes from ``mechopt/data/le2013.csv`` (:func:`mechopt.core.published.lookup`);
 its tolerance is half a unit of its last printed digit in its printed unit (our own
 accuracy, :data:`A_ABS_TOL`, is finer). Besides the literal rows the table shows:
 
@@ -36,13 +36,13 @@ from matplotlib.figure import Figure
 from scipy.optimize import brentq, minimize_scalar
 
 from mechopt import FiveBar
-from mechopt import io as _io
-from mechopt.parallel import parallel_map
+from mechopt.run import io as _io
+from mechopt.run.parallel import parallel_map
 from mechopt.problems import get
 from mechopt.problems.le2013 import GAMMA, RHO_BOUNDS, THETA_LIMITS, square_side, tied_half_base
-from mechopt.published import claim_row, compare, comparison_row, lookup
-from mechopt.runner import optimize, parse_weights, sweep
-from mechopt.workspace import mic
+from mechopt.core.published import claim_row, compare, comparison_row, lookup
+from mechopt.run.runner import optimize, parse_weights, sweep
+from mechopt.analysis.workspace import mic
 
 __all__ = ["run", "run_part", "PARTS", "A_ABS_TOL", "FLOWCHART_STEPS", "flowchart_a_max", "golden_section_max",
            "contact_side", "corner_side", "corner_switch_rho", "lower_switch_rho", "joint_limits_hold",

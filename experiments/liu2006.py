@@ -1,7 +1,7 @@
 """Liu, Wang, Pritschow (2006): section 3 side by side with the published values.
 
-Thin script: it only calls the evaluators (:mod:`mechopt.workspace`,
-:mod:`mechopt.performance`) and the comparison helpers of :mod:`mechopt.published`.
+Thin script: it only calls the evaluators (:mod:`mechopt.analysis.workspace`,
+:mod:`mechopt.analysis.performance`) and the comparison helpers of :mod:`mechopt.core.published`.
 """
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import numpy as np
 import pandas as pd
 
 from mechopt import FiveBar
-from mechopt.performance import global_indices, region_indices
-from mechopt.published import claim_row, compare, comparison_row, load, lookup
-from mechopt.workspace import gcw, joint_ranges, largest_square, mic, usable_region
+from mechopt.analysis.performance import global_indices, region_indices
+from mechopt.core.published import claim_row, compare, comparison_row, load, lookup
+from mechopt.analysis.workspace import gcw, joint_ranges, largest_square, mic, usable_region
 
 __all__ = ["reproduce_section3", "dimension_rows", "paper_d_rows", "claim_rows", "run", "run_part",
            "PARTS", "REL_TOL",
@@ -76,7 +76,7 @@ def _reproduce_design(key: str, quantities, quadrature: str) -> dict:
 
 
 def _tolerances(quantity: str) -> dict:
-    """``rel_tol``/``abs_tol`` of :func:`mechopt.published.comparison_row` for a quantity."""
+    """``rel_tol``/``abs_tol`` of :func:`mechopt.core.published.comparison_row` for a quantity."""
     if "theta" in quantity:
         return {"rel_tol": 0.0, "abs_tol": ANGLE_TOL_DEG}
     return {"rel_tol": REL_TOL.get(quantity, REL_TOL["default"]), "abs_tol": 0.0}
@@ -279,10 +279,10 @@ def run_part(out, quick: bool, name: str) -> None:
     sweep (``front/``, ``front_many/``, ``sweep/``)."""
     from pathlib import Path
 
-    from . import liu2006_figures as figs
+    from mechopt.experiments import liu2006_figures as figs
 
     from mechopt.problems import get
-    from mechopt.runner import optimize, parse_weights, sweep
+    from mechopt.run.runner import optimize, parse_weights, sweep
 
     out = Path(out)
     if name == "figures":
@@ -302,7 +302,7 @@ def run(out, quick: bool = False, parts: bool = True) -> pd.DataFrame:
     ``parts=False`` leaves out the files of :data:`PARTS` (written by :func:`run_part`)."""
     from pathlib import Path
 
-    from . import liu2006_figures as figs
+    from mechopt.experiments import liu2006_figures as figs
 
     out = Path(out)
     figs.atlas_figures(out, quick)

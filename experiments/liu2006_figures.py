@@ -2,7 +2,7 @@
 
 Figs. 8-16 (example designs with MIC and usable workspace), 17-28 (LCI and index
 maps, usable workspaces, GCW, the maximal square). The atlases (Figs. 2-6) and
-optimum regions (Figs. 7, 9, 11, 13, 15) come from :mod:`mechopt.atlas`.
+optimum regions (Figs. 7, 9, 11, 13, 15) come from :mod:`mechopt.run.atlas`.
 """
 from __future__ import annotations
 
@@ -13,9 +13,9 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Circle, Rectangle
 
 from mechopt import FiveBar
-from mechopt import io as _io
-from mechopt.plotting import INDEX_LABELS, labelled_colorbar, workspace_axes
-from mechopt.workspace import gcw, largest_square, mic, usable_region
+from mechopt.run import io as _io
+from mechopt.run.plotting import INDEX_LABELS, labelled_colorbar, workspace_axes
+from mechopt.analysis.workspace import gcw, largest_square, mic, usable_region
 
 __all__ = ["draw_all", "atlas_figures", "design_figures", "EXAMPLES"]
 
@@ -48,8 +48,8 @@ def _map(ax, fb, region, values, title, label, levels=12):
 
 
 def _disk_region(fb, m, radius, step):
-    from mechopt.quadrature import grid_over
-    from mechopt.workspace import Region
+    from mechopt.core.quadrature import grid_over
+    from mechopt.analysis.workspace import Region
 
     g = grid_over((-radius, radius, m.center_y - radius, m.center_y + radius), step)
     X, Y = g.points()
@@ -92,7 +92,7 @@ def fig_usable_pair(step):
 
 
 def fig_extremes_on_miw(fb, names, step, title):
-    from mechopt import indices as ix
+    from mechopt.core import indices as ix
 
     m = mic(fb)
     reg = _disk_region(fb, m, m.radius, step)
@@ -108,7 +108,7 @@ def fig_extremes_on_miw(fb, names, step, title):
 
 
 def fig_gcw_and_square(fb, step):
-    from mechopt import indices as ix
+    from mechopt.core import indices as ix
 
     u = usable_region(fb, step=step)
     g = gcw(fb, 0.5, u)
@@ -142,8 +142,8 @@ def atlas_figures(out, quick: bool = False):
     Figs. 7-15 with their example designs; writes ``atlas.csv`` and ``regions.csv``."""
     import pandas as pd
 
-    from mechopt.atlas import compute_atlas, draw_atlas, plane_coordinates
-    from mechopt.conditions import parse_condition
+    from mechopt.run.atlas import compute_atlas, draw_atlas, plane_coordinates
+    from mechopt.core.conditions import parse_condition
     from mechopt.problems.liu2006 import REGIONS, liu_indices
 
     table = compute_atlas(step=0.1 if quick else 0.01, quadrature="polar")

@@ -2,13 +2,13 @@
 the published values.
 
 Thin script: it only calls the problems of :mod:`mechopt.problems.stan2008`, the
-runner (:func:`mechopt.runner.optimize`, :func:`mechopt.runner.sweep`), pymoo's GA
+runner (:func:`mechopt.run.runner.optimize`, :func:`mechopt.run.runner.sweep`), pymoo's GA
 (for Table 1's operator rates), the mechanism evaluators and the comparison helpers
-of :mod:`mechopt.published`.
+of :mod:`mechopt.core.published`.
 
 ``run(out, quick)`` returns one row per published quantity, reading and checked claim
-(columns :data:`mechopt.published.TABLE_COLUMNS`, row kinds of
-:data:`mechopt.published.KINDS`) and writes into ``out``:
+(columns :data:`mechopt.core.published.TABLE_COLUMNS`, row kinds of
+:data:`mechopt.core.published.KINDS`) and writes into ``out``:
 
 ``bipod/``, ``biglide/``      NSGA-II front (``front.csv``, ``history.csv``, ``run.json``,
                               ``front.png``) and weighting sweep (``sweep.csv``,
@@ -72,7 +72,7 @@ two interior weighted optima 1.1 and 1.1556 together with the T-only row L2 = 1;
 not adopted.
 
 Tolerances (printed unit): half a unit of the last printed digit, or a stated class
-accuracy if larger (:mod:`mechopt.published`): an optimum of the one design variable
+accuracy if larger (:mod:`mechopt.core.published`): an optimum of the one design variable
 gets :data:`ABS_TOL_OPTIMUM_FRACTION` of the design range, absolute (the location error
 of an optimum does not scale with its value); the literal workspace area 1 %
 (:data:`REL_TOL_AREA`, a raster count's error scales with the workspace); settings and
@@ -88,18 +88,18 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 from scipy.optimize import brentq, minimize_scalar
 
-from mechopt import io as _io
+from mechopt.run import io as _io
 from mechopt.mechanisms.biglide import Biglide
 from mechopt.mechanisms.bipod import Bipod, bipod_tqi_integral, bipod_workspace_area
-from mechopt.parallel import parallel_map
+from mechopt.run.parallel import parallel_map
 from mechopt.problems import get
 from mechopt.problems.stan2008 import Q_MAX_OVER_Q_MIN, StanBiglide
-from mechopt.problems.weighted import WeightedSum
-from mechopt.plotting import labelled_colorbar
-from mechopt.published import (TABLE_COLUMNS, claim_row, compare, load, lookup,
+from mechopt.run.weighted import WeightedSum
+from mechopt.run.plotting import labelled_colorbar
+from mechopt.core.published import (TABLE_COLUMNS, claim_row, compare, load, lookup,
                                printed_half_unit)
-from mechopt.quadrature import grid_over
-from mechopt.runner import make_algorithm, optimize, parse_weights, sweep
+from mechopt.core.quadrature import grid_over
+from mechopt.run.runner import make_algorithm, optimize, parse_weights, sweep
 
 __all__ = ["run", "ABS_TOL_OPTIMUM_FRACTION", "REL_TOL_AREA", "SETTINGS", "WEIGHTS", "SEED",
            "AREA_SEARCH", "AREA_READING_B", "BIGLIDE_L1", "BIGLIDE_STROKES", "paper_ga",
@@ -610,7 +610,7 @@ def _ga_rows(pub, pop, gen, quick, rates, paper_runs):
               f"{p_cx:g}, its one variable always crossed; polynomial mutation (eta 20) of an individual "
               f"with probability {p_mut:g}, its one variable always mutated (n_var = 1: the rate per "
               f"individual is the rate per variable); no duplicate elimination (GAOT keeps copies). "
-              f"Run with mechopt.runner.optimize(WeightedSum(problem, W2), algorithm=paper_ga(...), "
+              f"Run with mechopt.run.runner.optimize(WeightedSum(problem, W2), algorithm=paper_ga(...), "
               f"gen={gen}, seed={SEED}) (an algorithm object: the same run as "
               f"pymoo.optimize.minimize with that seed). The GAOT operators are not named in the "
               f"paper; the rates are applied as these probabilities. Results (rows "

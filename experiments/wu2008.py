@@ -8,15 +8,15 @@ Pareto fronts of the problems ``wu2008`` and ``wu2008-dynamic``, the weighting
 sweep of ``wu2008``, and redraws Figs 2, 4, 5, 6 and 7 from our numbers.
 
 Thin script: every number comes from :mod:`mechopt.mechanisms.gantry`,
-:mod:`mechopt.dynamics`, the problems registry and :mod:`mechopt.runner`; the
+:mod:`mechopt.mechanisms.gantry_dynamics`, the problems registry and :mod:`mechopt.run.runner`; the
 code below only picks evaluation points, draws and writes (through
-:mod:`mechopt.io`). The paper prints no number for Figs 4-7, so those rows are
+:mod:`mechopt.run.io`). The paper prints no number for Figs 4-7, so those rows are
 ``not-reported`` and carry the checks of the text's qualitative statements.
 
 Modelling assumptions (stated in the notes of the rows they affect): the links'
 mass centres sit at mid-link (Table 2 prints no ``s_i2``); link ``A3B3`` loads the
 machine like ``A1B1`` (eq. 36-37); the symmetric variant of sec. 6.3 copies the
-left chain to the right (:meth:`mechopt.dynamics.GantryInertia.symmetric_variant`);
+left chain to the right (:meth:`mechopt.mechanisms.gantry_dynamics.GantryInertia.symmetric_variant`);
 the task rectangle sits at ``y in [300, 700]`` mm (no index depends on it).
 """
 from __future__ import annotations
@@ -31,13 +31,14 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Circle, Ellipse, Rectangle
 from scipy.optimize import brentq
 
-from mechopt import io as _io
-from mechopt import problems, runner
-from mechopt.dynamics import (GantryDynamics, GantryInertia, rectangle_rule,
+from mechopt.run import io as _io
+from mechopt import problems
+from mechopt.run import runner
+from mechopt.mechanisms.gantry_dynamics import (GantryDynamics, GantryInertia, rectangle_rule,
                               wu2008_driving_forces)
 from mechopt.mechanisms.gantry import (Gantry, dimensional_synthesis, k_av_literal_of_design,
                                        wu2008_gantry)
-from mechopt.published import TABLE_COLUMNS, claim_row, compare, comparison_row, load, lookup
+from mechopt.core.published import TABLE_COLUMNS, claim_row, compare, comparison_row, load, lookup
 
 __all__ = ["run", "run_part", "PARTS", "REL_TOL", "ALTERNATIVE_READING", "QUANTITIES"]
 

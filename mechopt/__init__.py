@@ -12,16 +12,20 @@ __version__ = "0.1.0"
 
 #: public name -> module that defines it
 _PUBLIC = {
-    "PlanarMechanism": "mechopt.mechanisms.base",
-    "FiveBar": "mechopt.mechanisms.five_bar",
+    "PlanarMechanism": "mechopt.core.protocol",
+    "FiveBar": "mechopt.mechanisms.five_bar.model",
     "Bipod": "mechopt.mechanisms.bipod",
     "Biglide": "mechopt.mechanisms.biglide",
     "Gantry": "mechopt.mechanisms.gantry",
     "dimensional_synthesis": "mechopt.mechanisms.gantry",
-    "GantryDynamics": "mechopt.dynamics",
-    "GantryInertia": "mechopt.dynamics",
-    "mic": "mechopt.workspace",
-    "global_indices": "mechopt.performance",
+    "GantryDynamics": "mechopt.mechanisms.gantry_dynamics",
+    "GantryInertia": "mechopt.mechanisms.gantry_dynamics",
+    "mic": "mechopt.analysis.workspace",
+    "global_indices": "mechopt.analysis.performance",
+    "evaluate": "mechopt.analysis.evaluate",
+    "Task": "mechopt.analysis.task",
+    "Requirements": "mechopt.analysis.task",
+    "design": "mechopt.workflows.design",
 }
 
 __all__ = ["__version__", *_PUBLIC]

@@ -40,7 +40,7 @@ def get(name: str, **options):
     """
     import inspect
 
-    from mechopt import validation as _v
+    from mechopt.core import validation as _v
 
     _v.choice("problem", name, names())
     module, cls, kw = _REGISTRY[name]

@@ -2,15 +2,15 @@
 
 :class:`DesignProblem` is built from (mechanism, task, requirements, objectives);
 the kinematics, the requirements and their certification live in
-:mod:`mechopt.design` (:class:`~mechopt.design.DesignEvaluator`). Variables (pymoo's
+:mod:`mechopt.analysis.task` (:class:`~mechopt.analysis.task.DesignEvaluator`). Variables (pymoo's
 ``X``): each length ``L`` of the mechanism as ``ln_L = ln(L + min_length)`` (or the
 scale ``ln_D`` of a fixed ``shape``), ``mode`` (an index into the mechanism's working
 modes) with ``mode="any"``, and the task placement relative to the design's reach,
 ``task_x_rel`` in [-1, 1] and ``task_y_rel`` in [0, 1], when it is free; front.csv
-(written by :func:`mechopt.design.design`) has the lengths and ``task_x, task_y`` in
+(written by :func:`mechopt.workflows.design.design`) has the lengths and ``task_x, task_y`` in
 the task's unit.
 Constraints are ``G <= 0``, one per requirement, normalised (see
-:mod:`mechopt.design`); an infeasible design has finite objectives and ``G > 0``.
+:mod:`mechopt.workflows.design`); an infeasible design has finite objectives and ``G > 0``.
 
 Without arguments the problem is the issue's example: a five-bar for the
 100 x 60 mm rectangle centred at (0, 180) mm with LCI >= 0.4, links <= 250 mm,
@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechopt.design import OBJECTIVES, DesignEvaluator, Requirements, Sampling, Task
+from mechopt.analysis.task import OBJECTIVES, DesignEvaluator, Requirements, Sampling, Task
 
-from .base import MechoptProblem, Objective
+from mechopt.run.problem import MechoptProblem, Objective
 
 __all__ = ["DesignProblem", "EXAMPLE"]
 
@@ -43,7 +43,7 @@ class DesignProblem(MechoptProblem):
     def __init__(self, mechanism="five-bar", task=None, requirements=None, objectives=("size", "min-lci"),
                  mode=None, place="fixed", min_length=None, max_length=None, shape=None, sampling=None,
                  **kwargs):
-        from mechopt.design import parse_task
+        from mechopt.analysis.task import parse_task
 
         if task is None:
             task = EXAMPLE["task"]

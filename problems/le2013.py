@@ -13,9 +13,9 @@ from __future__ import annotations
 import numpy as np
 
 from mechopt import FiveBar
-from mechopt.workspace import largest_square_at, mic
+from mechopt.analysis.workspace import largest_square_at, mic
 
-from .base import MechoptProblem, Objective
+from mechopt.run.problem import MechoptProblem, Objective
 
 __all__ = ["square_side", "LeSquare", "LeSquareRelaxed", "LeSquareGamma", "THETA_LIMITS", "GAMMA"]
 
@@ -74,7 +74,7 @@ def square_side(l1, l2, l0, gamma=GAMMA, theta_limits=THETA_LIMITS) -> dict:
 
 class _SquareTest:
     """The constraints (23), (25)-(26) at a square's sample points for
-    :func:`mechopt.workspace.largest_square_at`, which only asks whether *all* of them
+    :func:`mechopt.analysis.workspace.largest_square_at`, which only asks whether *all* of them
     hold: ``ok & (LCI >= gamma) & (theta_i in [lo, hi])`` point by point, with the
     same kinematics calls (``fb.lci``, ``fb.ik``) on the same points, so the bisection
     takes the same steps and returns the same side bit for bit. Only the order of the

@@ -8,7 +8,7 @@ Design space (Liu 2006 sec. 2.1, Ref. [19]): ``r1 + r2 + r3 = 3``, ``0 < r1, r2 
 problem has no constraint (MOEA/D runs on it); a region problem's design that
 misses its region violates its thresholds, and one without a MIC (kept as a
 guard, ``has_mic``) carries objective values no feasible design can beat. Indices are the global means of
-:func:`mechopt.performance.global_indices` with a named quadrature, ``polar`` by
+:func:`mechopt.analysis.performance.global_indices` with a named quadrature, ``polar`` by
 default (the one that reproduces the paper's numbers, see ``tests/test_liu2006.py``);
 ``quadrature="area"`` gives the true area means that ``mechopt evaluate`` reports by
 default. The quadrature is part of the problem's :attr:`settings`, written to
@@ -23,9 +23,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechopt.quadrature import QUADRATURES
+from mechopt.core.quadrature import QUADRATURES
 
-from .base import MechoptProblem, Objective
+from mechopt.run.problem import MechoptProblem, Objective
 
 __all__ = ["REGIONS", "LiuRegion", "LiuManyObjective", "liu_indices", "designs"]
 
@@ -85,11 +85,11 @@ def designs(X):
 def liu_indices(r1, r2, r3, quadrature: str = "polar") -> dict:
     """Global indices of designs ``(r1, r2, r3)`` (arrays); NaN where a design has no MIC.
 
-    Vectorised over the designs through :func:`mechopt.atlas.evaluate_designs`
+    Vectorised over the designs through :func:`mechopt.run.atlas.evaluate_designs`
     (the explicit-locus MIC and the compiled disk means; agreement with
-    :func:`mechopt.performance.global_indices` is tested in ``tests/test_atlas.py``).
+    :func:`mechopt.analysis.performance.global_indices` is tested in ``tests/test_atlas.py``).
     """
-    from mechopt.atlas import RESULT_COLUMNS
+    from mechopt.run.atlas import RESULT_COLUMNS
 
     r1, r2, r3 = (np.atleast_1d(np.asarray(v, float)) for v in (r1, r2, r3))
     res = _evaluate_memo(r1, r2, r3, quadrature)
@@ -100,7 +100,7 @@ def liu_indices(r1, r2, r3, quadrature: str = "polar") -> dict:
 
 
 #: designs evaluated by this process: (quadrature, r1, r2, r3) -> row of
-#: :func:`mechopt.atlas.evaluate_designs`. A GA meets the same designs again (the
+#: :func:`mechopt.run.atlas.evaluate_designs`. A GA meets the same designs again (the
 #: weighting sweep's NSGA-II run is the front run of the same seed, every weight's GA
 #: starts from the same population); the kernels evaluate each design on its own, so
 #: a remembered row is the row a new evaluation would give, bit for bit
@@ -110,7 +110,7 @@ MEMO_SIZE = 400_000
 
 
 def _evaluate_memo(r1, r2, r3, quadrature):
-    from mechopt.atlas import RESULT_COLUMNS, evaluate_designs
+    from mechopt.run.atlas import RESULT_COLUMNS, evaluate_designs
 
     # keyed by the bits (so that -0.0 and 0.0 stay apart)
     keys = list(map(tuple, np.column_stack([r1, r2, r3]).astype(float).view(np.uint64).tolist()))
@@ -158,7 +158,7 @@ class LiuRegion(MechoptProblem):
     default_gen = 100
 
     def __init__(self, region: str = "w-gci", quadrature: str = "polar", **kwargs):
-        from mechopt import validation as _v
+        from mechopt.core import validation as _v
 
         self.region = _v.choice("region", region, tuple(REGIONS))
         self.quadrature = _v.choice("quadrature", quadrature, QUADRATURES)
@@ -202,7 +202,7 @@ class LiuManyObjective(MechoptProblem):
     default_gen = 40
 
     def __init__(self, quadrature: str = "polar", **kwargs):
-        from mechopt import validation as _v
+        from mechopt.core import validation as _v
 
         self.quadrature = _v.choice("quadrature", quadrature, QUADRATURES)
         self.settings = {"quadrature": self.quadrature}

@@ -21,11 +21,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechopt import geometry as _g
+from mechopt.core import geometry as _g
 from mechopt.mechanisms.biglide import Biglide, _gauss_nodes
 from mechopt.mechanisms.bipod import Bipod, bipod_tqi_integral, bipod_workspace_area
 
-from .base import MechoptProblem, Objective
+from mechopt.run.problem import MechoptProblem, Objective
 
 __all__ = ["StanBipod", "StanBiglide", "BIPOD_BOUNDS", "BIGLIDE_BOUNDS", "biglide_indices"]
 

@@ -8,7 +8,7 @@ global velocity output ratio ``k_av`` (eq. 7, literal reading: the x-mean of
 ``l`` (minimised); ``d1`` and the stroke are reported with every design. The
 variant ``wu2008-dynamic`` adds the global dynamic index ``eta_D`` (eq. 44,
 minimised) with the masses of Wu Table 2 carried over to each design's link length
-(:meth:`mechopt.dynamics.GantryInertia.wu2008_scaled`: constant mass per length and
+(:meth:`mechopt.mechanisms.gantry_dynamics.GantryInertia.wu2008_scaled`: constant mass per length and
 cross-section, counterweights half the moving mass).
 
 Both objectives of ``wu2008`` improve as ``theta_1S`` decreases (Wu sec. 4.3:
@@ -23,7 +23,7 @@ import numpy as np
 
 from mechopt.mechanisms.gantry import Gantry, dimensional_synthesis, k_av_literal_of_design
 
-from .base import MechoptProblem, Objective
+from mechopt.run.problem import MechoptProblem, Objective
 
 __all__ = ["WuGantry", "WuGantryDynamic", "THETA_1S_BOUNDS_DEG"]
 

@@ -36,10 +36,11 @@ SPREAD = {"test_docs", "test_fuzz"}
 def quick_reproduction(tmp_path_factory):
     """``SimpleNamespace(out, runs, figures)``: the folder of one quick reproduction of
     all papers; ``runs[paper] = (folder, table, seconds)`` as the paper's
-    ``experiments.<paper>.run(folder, quick=True)`` returned it and how long it took;
+    ``experiments.<paper>.run(folder, quick=True)`` returned it (without the parts
+    ``run_part`` writes, ``parts=False``, where the paper has parts) and how long it took;
     ``figures``: every ``(path, matplotlib Figure)`` the run saved."""
-    from mechopt import io as _io
-    from mechopt import reproduce as rep
+    from mechopt.run import io as _io
+    from mechopt.workflows import reproduce as rep
     from mechopt.cli import main
 
     out = tmp_path_factory.mktemp("quick_reproduction")
@@ -58,9 +59,9 @@ def quick_reproduction(tmp_path_factory):
         for paper in rep.PAPERS:
             module = importlib.import_module(f"mechopt.experiments.{paper}")
 
-            def timed(folder, quick=False, _run=module.run, _paper=paper):
+            def timed(folder, quick=False, _run=module.run, _paper=paper, **parts):
                 t0 = time.perf_counter()
-                table = _run(folder, quick=quick)
+                table = _run(folder, quick=quick, **parts)
                 runs[_paper] = (Path(folder), table, time.perf_counter() - t0)
                 return table
 
@@ -118,7 +119,7 @@ else:
 
 def pytest_runtest_setup(item):
     """A test that maps with ``joblib.Parallel`` needs loky's reusable executor to be
-    joblib's own: joblib reuses an executor that mechopt.parallel started (an earlier
+    joblib's own: joblib reuses an executor that mechopt.run.parallel started (an earlier
     test of the same process, which under xdist may be any test) and fails on its
     missing temporary-folder manager (AttributeError in joblib/executor.py). Such an
     executor is shut down first, as a fresh process would have none."""

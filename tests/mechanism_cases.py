@@ -21,7 +21,7 @@ import functools
 
 import numpy as np
 
-from mechopt.mechanisms.five_bar import FiveBar, MODES
+from mechopt.mechanisms.five_bar.model import FiveBar, MODES
 
 
 def sample_away_from_singularities(

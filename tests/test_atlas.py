@@ -1,14 +1,14 @@
 """Five-bar performance atlas (issue 6): fast kernels, accuracy, parallel backends, CLI.
 
 The accuracy reference is built from the library's reference machinery at fine
-resolution: the type-II clearance of :func:`mechopt.workspace.type2_clearance`
+resolution: the type-II clearance of :func:`mechopt.analysis.workspace.type2_clearance`
 (root finding along rays) plus the closed-form serial clearance, maximised over
 the centre on a 200-point grid with every one of the three best local maxima
-refined (``mechopt.workspace.mic`` refines only the best grid point, and its
+refined (``mechopt.analysis.workspace.mic`` refines only the best grid point, and its
 48-point grid misses the better of two nearly equal peaks, e.g. (2.2812,
 0.4778, 0.241), see :func:`test_fast_mic_finds_the_better_of_two_peaks`); the
-disk means of :func:`mechopt.performance.global_indices` at 96 x 192 nodes; and
-for the MCI the best of :func:`mechopt.performance.max_lci` and a Nelder-Mead
+disk means of :func:`mechopt.analysis.performance.global_indices` at 96 x 192 nodes; and
+for the MCI the best of :func:`mechopt.analysis.performance.max_lci` and a Nelder-Mead
 polish of a smooth surrogate from the best node of a 128 x 256 grid
 (``max_lci``'s compass search can stall short of a cone apex at LCI = 1).
 """
@@ -25,14 +25,14 @@ import pytest
 from scipy.optimize import minimize, minimize_scalar
 
 from mechopt import FiveBar
-from mechopt import indices as ix
-from mechopt import kernels as K
-from mechopt.atlas import (RESULT_COLUMNS, compute_atlas, design_grid, evaluate_designs,
+from mechopt.core import indices as ix
+from mechopt.mechanisms.five_bar import kernels as K
+from mechopt.run.atlas import (RESULT_COLUMNS, compute_atlas, design_grid, evaluate_designs,
                            index_columns, plane_coordinates, run_atlas)
 from mechopt.cli import main
-from mechopt.performance import global_indices, max_lci
-from mechopt.quadrature import disk_rule
-from mechopt.workspace import MIC, mic, type2_clearance
+from mechopt.analysis.performance import global_indices, max_lci
+from mechopt.core.quadrature import disk_rule
+from mechopt.analysis.workspace import MIC, mic, type2_clearance
 
 numba_only = pytest.mark.skipif(not K.HAVE_NUMBA, reason="numba not installed")
 MODES = ("+-", "-+", "++", "--")
@@ -367,8 +367,8 @@ def test_unreachable_scheduler_is_one_line_exit_2(tmp_path, capsys):
 
 def test_numba_is_optional():
     """Without numba the kernels fall back to NumPy (same values)."""
-    code = ("import mechopt.kernels as K, numpy as np; assert not K.HAVE_NUMBA; "
-            "from mechopt.atlas import evaluate_designs; "
+    code = ("import mechopt.mechanisms.five_bar.kernels as K, numpy as np; assert not K.HAVE_NUMBA; "
+            "from mechopt.run.atlas import evaluate_designs; "
             "import json; print(json.dumps(evaluate_designs([0.85, 1.5], [1.6, 1.2], [0.55, 0.3]).tolist()))")
     env = dict(os.environ, MECHOPT_NO_NUMBA="1")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)

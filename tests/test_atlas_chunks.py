@@ -8,7 +8,7 @@ import zipfile
 import numpy as np
 import pytest
 
-from mechopt.atlas import compute_atlas
+from mechopt.run.atlas import compute_atlas
 from mechopt.cli import main
 
 STEP, CHUNK = 0.1, 64  # 344 designs, 6 chunks

@@ -20,7 +20,7 @@ from mechopt.mechanisms.bipod import (
     bipod_tqi_integral,
     bipod_workspace_area,
 )
-from mechopt.published import load, printed_half_unit
+from mechopt.core.published import load, printed_half_unit
 
 HYP = settings(max_examples=60, deadline=None, derandomize=True)
 

@@ -6,7 +6,7 @@ import sys
 import pytest
 
 from mechopt.cli import main
-from mechopt.evaluate import DISK_KEYS
+from mechopt.analysis.evaluate import DISK_KEYS
 
 REQUIRED = {"r_mic", "mic_center_y", "gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min",
             "gsi_max", "gsi_min", "usable_area", "gcw_area", "gcw_gci", "gcw_square_side",

@@ -3,7 +3,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from mechopt.conditions import parse_condition
+from mechopt.core.conditions import parse_condition
 
 DF = pd.DataFrame({
     "r_mic": [0.9, 0.7, np.nan, 1.0, 0.85],

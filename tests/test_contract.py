@@ -1,7 +1,7 @@
 """Contract suite run on every mechanism of tests/mechanism_cases.py.
 
 The idea of scikit-learn's ``estimator_checks``: one set of checks that every
-implementation of :class:`mechopt.mechanisms.base.PlanarMechanism` must pass, for
+implementation of :class:`mechopt.core.protocol.PlanarMechanism` must pass, for
 every working mode. Mechanism-specific properties live in their own test files.
 """
 from __future__ import annotations
@@ -15,8 +15,8 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from mechanism_cases import CASES, sample_away_from_singularities
-from mechopt.mechanisms.base import PlanarMechanism
-from mechopt.mechanisms.five_bar import FiveBar
+from mechopt.core.protocol import PlanarMechanism
+from mechopt.mechanisms.five_bar.model import FiveBar
 
 IDS = [c[0] for c in CASES]
 HYP = settings(
@@ -334,7 +334,7 @@ def test_scale_invariance(case):
 def test_summary_is_the_declared_one(case):
     """``summary()`` returns :attr:`summary_keys` in order; where ``summary_powers`` is
     declared, every float of it has a power, and the design scaled by ``D`` gives the
-    numbers times ``D**p`` (what ``mechopt.evaluate`` relies on to evaluate a design in
+    numbers times ``D**p`` (what ``mechopt.analysis.evaluate`` relies on to evaluate a design in
     units of its size)."""
     cid, mech, _ = case
     try:

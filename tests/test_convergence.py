@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from mechopt.problems import get, names
-from mechopt.problems.base import HV_REFERENCE, MechoptProblem, Objective
-from mechopt.runner import optimize
+from mechopt.run.problem import HV_REFERENCE, MechoptProblem, Objective
+from mechopt.run.runner import optimize
 
 _BENCH = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_fronts.py"
 

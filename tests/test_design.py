@@ -1,7 +1,7 @@
 """``mechopt design``: task-driven sizing (issue 13).
 
 * every front design satisfies every requirement on a dense grid of its task,
-  checked here with the mechanisms' own methods only (not mechopt.design);
+  checked here with the mechanisms' own methods only (not mechopt.workflows.design);
 * the paper cases: Wu 2008 eq. 14-16 (gantry) and Liu 2006 sec. 3.2.3 (five-bar D);
 * bad tasks: one-line errors, exit 2, nothing written; no feasible design: a
   "no design satisfies ..." message naming the requirement;
@@ -24,8 +24,8 @@ import pytest
 
 from mechopt import Biglide, Bipod, FiveBar, dimensional_synthesis
 from mechopt.cli import main
-from mechopt.design import (NoFeasibleDesign, Requirements, Task, certify, design, knee_index,
-                            parse_task)
+from mechopt.analysis.task import NoFeasibleDesign, Requirements, Task, certify, knee_index, parse_task
+from mechopt.workflows.design import design
 from mechopt.problems.design import DesignProblem
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -265,7 +265,7 @@ def test_problem_conventions_finite_objectives_graded_violations():
 
 def test_speed_force_torque_are_liu_extremes_with_units():
     """speed = w / max s_max(J) [mm/s], force = t s_min(J) [N] with t in N m and J in
-    rad/mm, torque = payload / min s_min(J) [N m] (module docstring of mechopt.design)."""
+    rad/mm, torque = payload / min s_min(J) [N m] (module docstring of mechopt.workflows.design)."""
     task = Task.rect(40, 30, (0, 160))
     req = Requirements(actuator_speed=2.0, actuator_torque=1.5, payload=10.0)
     p = DesignProblem("five-bar", task, req, ("size", "speed", "force", "torque"), max_length=300)

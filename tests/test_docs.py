@@ -282,11 +282,11 @@ def test_api_page_covers_the_public_api():
         assert f"``{name}``" in text, name
     for info in __import__("pkgutil").iter_modules(mechanisms.__path__):
         assert f"mechopt.mechanisms.{info.name}" in documented, info.name
-    for module in ("mechopt.problems", "mechopt.problems.base", "mechopt.design", "mechopt.evaluate",
-                   "mechopt.runner"):
+    for module in ("mechopt.problems", "mechopt.run.problem", "mechopt.workflows.design", "mechopt.analysis.evaluate",
+                   "mechopt.run.runner"):
         assert module in documented, module
     for func in ("optimize", "resume", "sweep"):
-        assert f".. autofunction:: mechopt.runner.{func}" in text or "automodule:: mechopt.runner" in text
+        assert f".. autofunction:: mechopt.run.runner.{func}" in text or "automodule:: mechopt.run.runner" in text
     index = (DOCS / "index.rst").read_text()
     for page in ("tutorial_design", "tutorial_evaluate", "outputs", "api"):
         assert f"   {page}\n" in index, page

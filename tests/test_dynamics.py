@@ -6,9 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from mechopt import dynamics, motion
+from mechopt.mechanisms import gantry_dynamics as dynamics
+from mechopt.core import motion
 from mechopt.data import published_values
-from mechopt.dynamics import (
+from mechopt.mechanisms.gantry_dynamics import (
     ELLIPSE_KINDS,
     GantryDynamics,
     GantryInertia,
@@ -17,8 +18,8 @@ from mechopt.dynamics import (
     wu2008_published,
 )
 from mechopt.mechanisms.gantry import MODES, Gantry, wu2008_gantry
-from mechopt.motion import trapezoidal_profile, wu2008_trajectory
-from mechopt.quadrature import grid_over
+from mechopt.core.motion import trapezoidal_profile, wu2008_trajectory
+from mechopt.core.quadrature import grid_over
 
 PUB = wu2008_published()
 
@@ -57,7 +58,7 @@ def test_table2_loaded_from_the_data_file():
 
 def test_data_and_motion_live_apart_and_stay_importable_from_dynamics():
     """Wu's printed numbers come from mechopt/data/wu2008.csv (with their source), the
-    motion profile from mechopt.motion; the old names still import from mechopt.dynamics."""
+    motion profile from mechopt.core.motion; the old names still import from mechopt.mechanisms.gantry_dynamics."""
     assert dynamics.trapezoidal_profile is motion.trapezoidal_profile
     assert dynamics.wu2008_trajectory is motion.wu2008_trajectory
     assert PUB == published_values("wu2008") and PUB is not published_values("wu2008")

@@ -19,8 +19,8 @@ import pytest
 import mechopt.problems
 from mechopt.cli import main
 from mechopt.problems import get, names
-from mechopt.problems.base import MechoptProblem
-from mechopt.runner import optimize, sweep
+from mechopt.run.problem import MechoptProblem
+from mechopt.run.runner import optimize, sweep
 
 SEED = "9"
 
@@ -139,7 +139,7 @@ def test_api_empty_front_keeps_its_columns():
 def test_sweep_marks_only_the_infeasible_weights(tmp_path, monkeypatch, capsys):
     """Weight 1 made infeasible (every g > 0), weight 0 left alone: one optimum, one
     row with feasible False, NaN objectives and its violation."""
-    from mechopt.problems.weighted import WeightedSum
+    from mechopt.run.weighted import WeightedSum
 
     plain = WeightedSum.evaluate_designs
 

@@ -17,8 +17,8 @@ from scipy.optimize import brentq
 
 from mechopt import FiveBar
 from mechopt.problems.le2013 import square_side
-from mechopt.published import KINDS, TABLE_COLUMNS, load, printed_half_unit
-from mechopt.workspace import mic
+from mechopt.core.published import KINDS, TABLE_COLUMNS, load, printed_half_unit
+from mechopt.analysis.workspace import mic
 
 S2 = np.sqrt(2.0)
 GAMMA = 0.5
@@ -256,7 +256,7 @@ def test_square_side_equals_the_plain_all_points_test_bit_for_bit():
     kinematics only when it holds, the last failing point first): the bisection of
     ``largest_square_at`` must take the same steps as with the plain element-wise test
     of (23), (25)-(26), on tied, relaxed and gamma designs and on joint limits that bind."""
-    from mechopt.workspace import largest_square_at
+    from mechopt.analysis.workspace import largest_square_at
 
     from mechopt.problems import le2013 as P
 

@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 from mechopt.experiments import stan2008
-from mechopt.published import TABLE_COLUMNS
+from mechopt.core.published import TABLE_COLUMNS
 
 WEIGHT_LABELS = ("W1=0.7,W2=0.3", "W1=0.3,W2=0.7", "W1=1,W2=0", "W1=0,W2=1")
 QUANTITIES = (

@@ -6,7 +6,7 @@ import pandas as pd
 import pytest
 
 from mechopt.experiments import wu2008
-from mechopt.published import TABLE_COLUMNS
+from mechopt.core.published import TABLE_COLUMNS
 
 QUANTITIES = [
     "d1[theta_1S=15deg]", "l[theta_1S=15deg]", "stroke[theta_1S=15deg]",

@@ -10,7 +10,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from mechanism_cases import sample_away_from_singularities
-from mechopt.mechanisms.five_bar import ASSEMBLY_MODES, MODES, FiveBar
+from mechopt.mechanisms.five_bar.model import ASSEMBLY_MODES, MODES, FiveBar
 
 HYP = settings(
     max_examples=25,
@@ -336,9 +336,9 @@ def test_repr_round_trips():
     assert eval(repr(m), {"FiveBar": FiveBar}).__dict__ == m.__dict__
 
 
-# --- the fused LCI fast path (mechopt.fast_lci) -----------------------------------------------
-from mechopt import indices as _ix  # noqa: E402
-from mechopt import fast_lci as _k  # noqa: E402
+# --- the fused LCI fast path (mechopt.mechanisms.five_bar.lci) -----------------------------------------------
+from mechopt.core import indices as _ix  # noqa: E402
+from mechopt.mechanisms.five_bar import lci as _k  # noqa: E402
 
 FAST_LENGTHS = LENGTHS + [(1.0, 1.0, 0.3), (250.0, 400.0, 120.0), (2e-3, 3e-3, 1e-3)]
 

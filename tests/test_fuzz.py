@@ -215,7 +215,7 @@ def check_cli(argv, work: Path):
 # --------------------------------------------------------------------------
 # value strategies for the command line: (text, ok) pairs
 # --------------------------------------------------------------------------
-LENGTH_MIN, LENGTH_MAX = 1e-12, 1e12  # mechopt.validation
+LENGTH_MIN, LENGTH_MAX = 1e-12, 1e12  # mechopt.core.validation
 
 
 def _float_text(x):
@@ -395,7 +395,7 @@ def _evaluate_specs():
     """``{mechanism: (option specs, required options)}`` of ``mechopt evaluate``, from each
     registered mechanism's declared parameters (the same declarations the CLI is
     generated from), with this file's value generators per parameter kind."""
-    from mechopt.evaluate import DISK_OPTIONS
+    from mechopt.analysis.evaluate import DISK_OPTIONS
     from mechopt.mechanisms import registry
 
     by_kind = {"length": "pos", "length0": "nonneg", "position": "real", "angle_deg": "deg",
@@ -919,13 +919,13 @@ def _five_bar():
 
 
 def _mic():
-    from mechopt.workspace import mic
+    from mechopt.analysis.workspace import mic
 
     return _cached("mic", lambda: mic(_five_bar()))
 
 
 def _usable():
-    from mechopt.workspace import usable_region
+    from mechopt.analysis.workspace import usable_region
 
     return _cached("usable", lambda: usable_region(_five_bar(), step=0.05, center=(0.0, _mic().center_y)))
 
@@ -1118,7 +1118,7 @@ INERTIA_OPTIONAL = ("s12", "s22", "I4", "s4", "m5", "I5", "s5", "g")
 
 @target
 def gantry_inertia(draw):
-    from mechopt.dynamics import GantryDynamics, GantryInertia
+    from mechopt.mechanisms.gantry_dynamics import GantryDynamics, GantryInertia
 
     kw = {f: draw(mixed(st.floats(0.0, 20.0), p_good=4)) for f in INERTIA_FIELDS}
     for f in INERTIA_OPTIONAL:
@@ -1155,7 +1155,7 @@ def gantry_inertia(draw):
 
 @target
 def dynamics_helpers(draw):
-    from mechopt import dynamics as D
+    from mechopt.mechanisms import gantry_dynamics as D
 
     box = draw(st.one_of(st.lists(real, min_size=3, max_size=5), mixed(st.none())))
     n = draw(count(st.integers(1, 8)))
@@ -1195,7 +1195,7 @@ def problems_get(draw):
 @target
 def runner_optimize(draw):
     from mechopt.problems import get
-    from mechopt.runner import optimize
+    from mechopt.run.runner import optimize
 
     name = draw(st.sampled_from(FAST_PROBLEMS))
     alg = draw(st.one_of(st.none(), name_of(("ga", "nsga2", "nsga3"))))
@@ -1213,7 +1213,7 @@ def runner_optimize(draw):
 
 @target
 def runner_helpers(draw):
-    from mechopt import runner as R
+    from mechopt.run import runner as R
 
     text = draw(st.one_of(st.sampled_from(WEIGHTS_GOOD + WEIGHTS_BAD), _ANY_TEXT,
                           st.sampled_from([None, 5, 0.5, b"0,1", ["0", "1"], "0:1:0.5:"])))
@@ -1234,7 +1234,7 @@ def runner_helpers(draw):
 @target
 def runner_sweep(draw):
     from mechopt.problems import get
-    from mechopt.runner import sweep
+    from mechopt.run.runner import sweep
 
     name = draw(st.sampled_from(FAST_2OBJ + ("wu2008-dynamic",)))
     weights = draw(st.one_of(st.lists(st.floats(0, 1), min_size=1, max_size=3),
@@ -1251,7 +1251,7 @@ def runner_sweep(draw):
 
 @target
 def quadrature(draw):
-    from mechopt.quadrature import disk_rule, grid_over
+    from mechopt.core.quadrature import disk_rule, grid_over
 
     radius = draw(mixed(st.floats(0.0, 3.0)))
     rule = draw(name_of(("area", "polar")))
@@ -1272,7 +1272,7 @@ def quadrature(draw):
 
 @target
 def workspace(draw):
-    from mechopt import workspace as W
+    from mechopt.analysis import workspace as W
 
     what = draw(st.sampled_from(["mic", "usable", "gcw", "square", "ranges", "clearance"]))
     method = draw(name_of(("auto", "explicit", "rays")))
@@ -1302,8 +1302,8 @@ def workspace(draw):
 
 @target
 def performance(draw):
-    from mechopt import performance as P
-    from mechopt.evaluate import evaluate
+    from mechopt.analysis import performance as P
+    from mechopt.analysis.evaluate import evaluate
 
     what = draw(st.sampled_from(["global", "disk_mean", "max_lci", "region", "evaluate"]))
     quad = draw(name_of(("area", "polar")))
@@ -1342,7 +1342,7 @@ def extreme_designs(draw):
     full: they return, or raise a ValueError that names the design (its class and
     inputs) rather than an internal quantity."""
     from mechopt import Biglide, Bipod, FiveBar
-    from mechopt.evaluate import evaluate
+    from mechopt.analysis.evaluate import evaluate
     from mechopt.mechanisms.asymmetric_five_bar import AsymmetricFiveBar
 
     what = draw(st.sampled_from(["five-bar", "five-bar", "five-bar", "bipod", "biglide", "asymmetric"]))
@@ -1380,7 +1380,7 @@ def extreme_designs(draw):
 
 @target
 def atlas(draw):
-    from mechopt import atlas as A
+    from mechopt.run import atlas as A
 
     what = draw(st.sampled_from(["step", "indices", "grid", "compute", "run", "evaluate"]))
     step = draw(st.one_of(st.sampled_from(STEPS_GOOD + STEPS_BAD), mixed(st.floats(0.25, 0.5))))
@@ -1418,7 +1418,7 @@ def atlas(draw):
 def conditions(draw):
     import pandas as pd
 
-    from mechopt.conditions import parse_condition
+    from mechopt.core.conditions import parse_condition
 
     text = draw(st.one_of(where_text(), mixed(st.just("gci > 0.5"))))
     names = draw(st.one_of(st.none(), st.just(WHERE_NAMES)))
@@ -1435,7 +1435,7 @@ def conditions(draw):
 
 @target
 def parallel(draw):
-    from mechopt import parallel as Pa
+    from mechopt.run import parallel as Pa
 
     n = draw(count(st.integers(1, 4)))
     seq = draw(st.lists(st.integers(), max_size=6))
@@ -1458,7 +1458,7 @@ def parallel(draw):
 
 @target
 def reproduce(draw):
-    from mechopt.reproduce import reproduce as run_reproduce
+    from mechopt.workflows.reproduce import reproduce as run_reproduce
 
     paper = draw(st.one_of(st.sampled_from(["", "nope", "LIU2006", "le 2013", None, 5, "al", "\udcff"]),
                            _ANY_TEXT))
@@ -1503,13 +1503,13 @@ def test_api_fuzz(fuzz_root, data):
 # --------------------------------------------------------------------------
 def _named_cases():
     from mechopt import Biglide, Bipod, FiveBar, Gantry
-    from mechopt.atlas import check_step, parse_indices
-    from mechopt.conditions import parse_condition
-    from mechopt.dynamics import GantryInertia
+    from mechopt.run.atlas import check_step, parse_indices
+    from mechopt.core.conditions import parse_condition
+    from mechopt.mechanisms.gantry_dynamics import GantryInertia
     from mechopt.problems import get
-    from mechopt.quadrature import disk_rule, grid_over
-    from mechopt.runner import make_algorithm, parse_weights
-    from mechopt.workspace import gcw
+    from mechopt.core.quadrature import disk_rule, grid_over
+    from mechopt.run.runner import make_algorithm, parse_weights
+    from mechopt.analysis.workspace import gcw
 
     masses = dict(zip(INERTIA_FIELDS, [1.0] * 10))
     cases = []
@@ -1563,7 +1563,7 @@ def test_named_bad_inputs_raise_value_error_naming_the_parameter():
 
 def test_optimize_pop_and_gen_limits():
     from mechopt.problems import get
-    from mechopt.runner import optimize
+    from mechopt.run.runner import optimize
 
     for pop, gen in ((1, 1), (0, 1), (2, 0), (2, -1), ("x", 1), (2, "y")):
         with pytest.raises(ValueError, match="pop|gen"):

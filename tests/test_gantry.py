@@ -11,7 +11,7 @@ from scipy import integrate
 
 import mechopt
 from mechopt import Biglide
-from mechopt.dynamics import wu2008_published
+from mechopt.mechanisms.gantry_dynamics import wu2008_published
 from mechopt.mechanisms.gantry import (
     ASSEMBLY_MODES,
     K_AV_READINGS,
@@ -451,7 +451,7 @@ def test_summary_for_table1():
 # --- one topology with the Biglide -----------------------------------------------------------
 @pytest.mark.parametrize("mode", MODES)
 def test_the_gantry_is_the_biglide_with_a_platform_offset(mode):
-    """Both are the two-slider topology of mechopt.mechanisms.slider: the gantry numbers its
+    """Both are the two-slider topology of mechopt.mechanisms.sliders: the gantry numbers its
     legs from the left, the Biglide from the right, and reports a point l2/2 above the link
     joint. The same machine as a Biglide (legs and mode swapped; its point is the link
     joint, l2/2 below the gantry's) has the same area, slider positions, Jacobian,
@@ -499,7 +499,7 @@ def test_empty_workspace_has_a_degenerate_box():
 def test_dynamics_and_eta_d_of_a_synthesized_gantry():
     """``eta_D`` is a method of the gantry: its dynamics in metres, Wu's Table 2 carried
     over to its link length; Table 2 itself for the Table 1 design."""
-    from mechopt.dynamics import GantryDynamics, GantryInertia
+    from mechopt.mechanisms.gantry_dynamics import GantryDynamics, GantryInertia
 
     g = Gantry.from_parameters()
     assert g.eta_d() == g.summary()["eta_d"]

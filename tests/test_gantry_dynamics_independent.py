@@ -1,4 +1,4 @@
-"""Independent check of the Wu 2008 gantry dynamics (``mechopt.dynamics.GantryDynamics``).
+"""Independent check of the Wu 2008 gantry dynamics (``mechopt.mechanisms.gantry_dynamics.GantryDynamics``).
 
 What is derived here, with sympy, from the geometry alone (no use of
 ``GantryDynamics.links``, ``.bodies``, ``._coef``, ``._tan`` or any private helper;
@@ -51,7 +51,7 @@ import numpy as np
 import pytest
 import sympy as sp  # in the ``test`` extra: a missing sympy must fail, not skip
 
-from mechopt.dynamics import GantryDynamics, GantryInertia, wu2008_driving_forces
+from mechopt.mechanisms.gantry_dynamics import GantryDynamics, GantryInertia, wu2008_driving_forces
 from mechopt.mechanisms.gantry import wu2008_gantry
 
 RTOL = 1e-9

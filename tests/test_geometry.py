@@ -1,4 +1,4 @@
-"""Exact area primitives of mechopt.geometry against closed forms and quadrature."""
+"""Exact area primitives of mechopt.core.geometry against closed forms and quadrature."""
 from __future__ import annotations
 
 import numpy as np
@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import integrate
 
-from mechopt import geometry as g
+from mechopt.core import geometry as g
 
 
 def _lens_by_quadrature(ra, rb, d):

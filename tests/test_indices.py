@@ -1,4 +1,4 @@
-"""Local indices (mechopt.indices) against numpy.linalg on 2x2 matrices."""
+"""Local indices (mechopt.core.indices) against numpy.linalg on 2x2 matrices."""
 from __future__ import annotations
 
 import numpy as np
@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from mechopt import indices as ix
+from mechopt.core import indices as ix
 
 HYP = settings(max_examples=60, deadline=None, derandomize=True)
 

@@ -1,7 +1,7 @@
 """Internal limits: every admissible design evaluates, or says which input is the problem.
 
-Lengths in [1e-12, 1e12] are admissible (``mechopt.validation``). ``evaluate`` works
-in units of the design's size (a power of two, ``mechopt.evaluate.unit_of``), so:
+Lengths in [1e-12, 1e12] are admissible (``mechopt.core.validation``). ``evaluate`` works
+in units of the design's size (a power of two, ``mechopt.analysis.evaluate.unit_of``), so:
 
 * an ordinary design gives exactly the numbers it gave before that (the unit is 1,
   or a power of two, by which these computations scale exactly);
@@ -22,10 +22,10 @@ import pytest
 
 from mechopt import Biglide, Bipod, FiveBar
 from mechopt.cli import main
-from mechopt.evaluate import _check_raster, disk_evaluation, evaluate, unit_of
+from mechopt.analysis.evaluate import _check_raster, disk_evaluation, evaluate, unit_of
 from mechopt.mechanisms.asymmetric_five_bar import AsymmetricFiveBar
-from mechopt.performance import global_indices
-from mechopt.workspace import gcw, largest_square, mic, usable_region
+from mechopt.analysis.performance import global_indices
+from mechopt.analysis.workspace import gcw, largest_square, mic, usable_region
 
 #: powers of the length of each number of the five-bar's evaluation (J ~ 1/L)
 POWERS = {"r_mic": 1, "mic_center_y": 1, "gvi_max": 1, "gvi_min": 1, "gpi_max": -1, "gpi_min": -1,

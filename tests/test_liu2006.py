@@ -12,9 +12,9 @@ import pytest
 
 from mechopt import FiveBar
 from mechopt.experiments.liu2006 import reproduce_section3
-from mechopt.published import load
-from mechopt.quadrature import disk_rule
-from mechopt.workspace import mic
+from mechopt.core.published import load
+from mechopt.core.quadrature import disk_rule
+from mechopt.analysis.workspace import mic
 
 INDEX_ROWS = {"gci", "gvi_max", "gvi_min", "gpi_max", "gpi_min", "gsi_max", "gsi_min"}
 SELF_CONTRADICTION = "0.7/1.7/0.6"

@@ -1,4 +1,4 @@
-"""mechopt.numerics: the one golden-section search of the package."""
+"""mechopt.core.numerics: the one golden-section search of the package."""
 from __future__ import annotations
 
 import math
@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from mechopt.numerics import INV_PHI, golden_section_max
+from mechopt.core.numerics import INV_PHI, golden_section_max
 
 
 def test_finds_the_maximum_of_a_unimodal_function_to_tol():

@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 
 from mechopt.cli import main
-from mechopt.dynamics import GantryDynamics, GantryInertia
+from mechopt.mechanisms.gantry_dynamics import GantryDynamics, GantryInertia
 from mechopt.mechanisms.gantry import dimensional_synthesis, wu2008_gantry
 from mechopt.problems import get, names
 

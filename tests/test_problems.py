@@ -3,10 +3,10 @@ import numpy as np
 import pytest
 
 from mechopt.cli import main
-from mechopt.parallel import parallel_map
+from mechopt.run.parallel import parallel_map
 from mechopt.problems import available, get, names
 from mechopt.problems.le2013 import square_side, tied_half_base
-from mechopt.runner import optimize, parse_weights, sweep
+from mechopt.run.runner import optimize, parse_weights, sweep
 
 CHEAP = [n for n in names() if not n.startswith(("le2013", "liu2006", "wu2008-dynamic"))]
 

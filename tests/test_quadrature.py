@@ -3,9 +3,9 @@ import numpy as np
 import pytest
 
 from mechopt import FiveBar
-from mechopt.performance import GLOBAL_INDEX_NAMES, global_indices
-from mechopt.quadrature import disk_rule, grid_over
-from mechopt.workspace import mic
+from mechopt.analysis.performance import GLOBAL_INDEX_NAMES, global_indices
+from mechopt.core.quadrature import disk_rule, grid_over
+from mechopt.analysis.workspace import mic
 
 
 @pytest.mark.parametrize("rule", ["area", "polar"])

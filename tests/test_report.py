@@ -19,8 +19,8 @@ import pandas as pd
 import pytest
 
 from mechopt.cli import main
-from mechopt.report import build_report, figure_caption, write_report
-from mechopt.reproduce import reproduce, summary_table
+from mechopt.workflows.report import build_report, figure_caption, write_report
+from mechopt.workflows.reproduce import reproduce, summary_table
 
 
 @pytest.fixture(scope="module")

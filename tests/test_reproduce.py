@@ -5,7 +5,7 @@ import pandas as pd
 import pytest
 
 from mechopt.cli import main
-from mechopt.published import TABLE_COLUMNS
+from mechopt.core.published import TABLE_COLUMNS
 
 REQUIRED = {
     "le2013": ["rho_star", "a_max", "a_max_at_paper_rho", "lci_min_in_square", "lci_max_in_square"],
@@ -143,8 +143,8 @@ def test_unknown_paper(capsys, tmp_path):
 
 def test_counts_are_over_computed_rows_only(results):
     """match/differs count only what the paper computed and we recompute; settings,
-    readings and claims are counted apart (mechopt.published.counts)."""
-    from mechopt.published import KINDS, counts
+    readings and claims are counted apart (mechopt.core.published.counts)."""
+    from mechopt.core.published import KINDS, counts
 
     total = {"computed": 0, "match": 0, "differs": 0}
     for paper in REQUIRED:
@@ -181,7 +181,7 @@ def test_liu_readings_and_claims(results):
     import numpy as np
 
     from mechopt import FiveBar
-    from mechopt.workspace import mic
+    from mechopt.analysis.workspace import mic
 
     t = pd.read_csv(results / "liu2006" / "table.csv").set_index("quantity")
     for i, (r, printed) in enumerate(((0.85, 5.61), (1.6, 10.56), (0.55, 3.63)), 1):
@@ -207,7 +207,7 @@ def test_liu_readings_and_claims(results):
 
 def test_a_quick_paper_is_recomputed_by_a_full_run(tmp_path, capsys, monkeypatch):
     """reproduce --quick then reproduce: the second recomputes (the first was quick)."""
-    from mechopt import reproduce as rep
+    from mechopt.workflows import reproduce as rep
 
     calls = []
 
@@ -237,7 +237,7 @@ def test_papers_in_worker_processes_write_the_same_files(results, tmp_path, monk
     file of a paper run in a worker equals the serial run's (tables, fronts, sweeps,
     curves, figures), byte for byte; only run.json / manifest.json (wall times, run
     ids) and the log differ."""
-    from mechopt import reproduce as rep
+    from mechopt.workflows import reproduce as rep
 
     two = ("le2013", "wu2008")
     monkeypatch.setattr(rep, "PAPERS", two)
@@ -260,7 +260,7 @@ def test_progress_lines_per_stage(tmp_path, capsys, monkeypatch):
     """With ``progress`` (the CLI's default) each finished work unit (a paper's table or
     one of its parts) prints one plain line on a pipe, naming the paper and the stage,
     counted over all stages; the paper's summary line comes after its last stage."""
-    from mechopt import reproduce as rep
+    from mechopt.workflows import reproduce as rep
 
     import mechopt.experiments.wu2008 as wu
 
@@ -288,7 +288,7 @@ def test_progress_lines_per_stage(tmp_path, capsys, monkeypatch):
 def test_default_jobs_and_bad_n_jobs(tmp_path):
     import os
 
-    from mechopt import reproduce as rep
+    from mechopt.workflows import reproduce as rep
 
     assert rep.default_jobs(1) == 1 and rep.default_jobs(0) == 1
     assert rep.default_jobs(4) == min(4, os.cpu_count() or 1)
@@ -305,7 +305,7 @@ def test_liu_indices_remembered_equal_new_evaluations():
     the kernels' row of a fresh evaluation, bit for bit, whatever the batch around it."""
     import numpy as np
 
-    from mechopt.atlas import RESULT_COLUMNS, evaluate_designs
+    from mechopt.run.atlas import RESULT_COLUMNS, evaluate_designs
     from mechopt.problems import liu2006 as P
 
     rng = np.random.default_rng(2006)
@@ -327,12 +327,12 @@ def test_liu_indices_remembered_equal_new_evaluations():
 
 def test_atlas_figures_reuse_the_triangulation(tmp_path):
     """Every atlas figure is drawn on the same points: the Delaunay triangulation is
-    computed once (mechopt.atlas._triangulation) and the PNG is the same bytes as with
+    computed once (mechopt.run.atlas._triangulation) and the PNG is the same bytes as with
     a fresh triangulation."""
     import matplotlib.tri as mtri
 
-    from mechopt import atlas
-    from mechopt import io as _io
+    from mechopt.run import atlas
+    from mechopt.run import io as _io
 
     table = atlas.compute_atlas(step=0.1, indices="gci", n_jobs=1)
     atlas._TRIANGULATIONS.clear()
@@ -351,12 +351,12 @@ def test_atlas_figures_reuse_the_triangulation(tmp_path):
 
 
 def test_mic_radius_on_the_sorted_cloud_equals_the_full_scan():
-    """mechopt.kernels: the MIC's coarse and golden-section radii visit the type-II cloud
+    """mechopt.mechanisms.five_bar.kernels: the MIC's coarse and golden-section radii visit the type-II cloud
     sorted by y and stop where dy^2 alone exceeds the best distance; the value must be
     the full scan's, bit for bit (clouds with invalid points, ties, empty clouds)."""
     import numpy as np
 
-    from mechopt import kernels as K
+    from mechopt.mechanisms.five_bar import kernels as K
 
     if not K.HAVE_NUMBA:
         pytest.skip("the compiled kernels")

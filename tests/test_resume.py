@@ -67,7 +67,7 @@ def test_checkpoint_every_must_be_positive(tmp_path, capsys):
                                                 ("liu2006-many", "nsga3")])
 def test_every_algorithm_checkpoints_and_resumes_identically(tmp_path, problem, algorithm):
     from mechopt.problems import get
-    from mechopt.runner import _save_checkpoint, make_algorithm, optimize, resume
+    from mechopt.run.runner import _save_checkpoint, make_algorithm, optimize, resume
 
     ref = optimize(get(problem), algorithm, pop=8, gen=3, seed=5, n_jobs=1, progress=False)
     p = get(problem)

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import pytest
 
-from mechopt import checkpoint
+from mechopt.run import checkpoint
 from mechopt.cli import main
 
 FAST = ["le2013-relaxed", "--pop", "12", "--gen", "6", "--seed", "3", "--n-jobs", "1"]
@@ -45,7 +45,7 @@ def _digests(folder: Path) -> dict:
 def interrupted(tmp_path):
     """A folder of a run stopped right after its checkpoint of generation 2 (by a
     KeyboardInterrupt raised where a kill would land)."""
-    import mechopt.runner as R
+    import mechopt.run.runner as R
 
     out = tmp_path / "interrupted"
     real = R._save_checkpoint
@@ -211,7 +211,7 @@ def test_a_stale_checkpoint_of_another_run_is_refused(interrupted, tmp_path, cap
 def test_a_checkpoint_of_another_problem_than_run_json_is_refused(tmp_path, capsys):
     """A wu2008 checkpoint in a folder whose run.json (no manifest: an older mechopt's)
     is a stan2008 run."""
-    import mechopt.runner as R
+    import mechopt.run.runner as R
 
     stan = tmp_path / "stan"
     assert main(["optimize", "stan2008-bipod", "--pop", "6", "--gen", "2", "--n-jobs", "1", "--out", str(stan)]) == 0
@@ -358,7 +358,7 @@ _FAULTY = r"""
 import errno, os, sys
 limit = os.environ.get("MECHOPT_TEST_ENOSPC_AFTER")
 if limit:
-    import mechopt.io as io
+    import mechopt.run.io as io
     real = io.atomic_path
     used = [0]
     import contextlib
@@ -391,7 +391,7 @@ def test_a_run_that_cannot_fit_in_memory_is_refused_before_it_starts(tmp_path, c
 
 
 def test_a_run_of_months_is_refused_with_its_estimate(tmp_path):
-    from mechopt import budget
+    from mechopt.run import budget
 
     out = tmp_path / "long"
     argv = ["optimize", "liu2006-many", "--pop", "6000", "--gen", "1000000", "--out", str(out)]

@@ -7,7 +7,7 @@ import pytest
 
 from mechopt.cli import main
 from mechopt.problems import get
-from mechopt.runner import optimize, parse_weights, sweep
+from mechopt.run.runner import optimize, parse_weights, sweep
 
 SMALL = dict(pop=8, gen=2, seed=1)
 

@@ -1,5 +1,5 @@
 """Stan 2008 readings, claims and tolerances of experiments/stan2008.py, each value
-recomputed here independently of the table code (closed forms, mechopt.geometry,
+recomputed here independently of the table code (closed forms, mechopt.core.geometry,
 numerical integration written in this file, pymoo directly) and checked against the
 table row of one quick run."""
 import re
@@ -9,9 +9,9 @@ import pandas as pd
 import pytest
 from scipy import integrate
 
-from mechopt import geometry
+from mechopt.core import geometry
 from mechopt.experiments import stan2008
-from mechopt.published import counts, printed_half_unit
+from mechopt.core.published import counts, printed_half_unit
 
 PRINTED_AREA = 4693.33
 HALF_AREA = printed_half_unit(2)
@@ -200,7 +200,7 @@ def test_ga_table1_rates(quick):
     from pymoo.optimize import minimize
 
     from mechopt.problems import get
-    from mechopt.problems.weighted import WeightedSum
+    from mechopt.run.weighted import WeightedSum
 
     _, df = quick
     s = stan2008.SETTINGS[True]

@@ -12,7 +12,7 @@ from pymoo.termination.default import DefaultMultiObjectiveTermination
 
 from mechopt.cli import main
 from mechopt.problems import get
-from mechopt.runner import CHECKPOINT, _front_table, make_algorithm, optimize, resume
+from mechopt.run.runner import CHECKPOINT, _front_table, make_algorithm, optimize, resume
 
 PROBLEM = "stan2008-bipod"  # cheap, two objectives
 
@@ -119,7 +119,7 @@ def test_checkpoint_is_steppable_with_next(tmp_path):
     ref = optimize(get(PROBLEM), _nsga2(), gen=6, seed=7, n_jobs=1, progress=False, plot=False)
 
     p = get(PROBLEM)
-    from mechopt.runner import _save_checkpoint
+    from mechopt.run.runner import _save_checkpoint
 
     algo = _nsga2()
     algo.setup(p, termination=("n_gen", 6), seed=7, verbose=False)
@@ -128,7 +128,7 @@ def test_checkpoint_is_steppable_with_next(tmp_path):
     state = {"algorithm": "NSGA2", "pop": 10, "gen": 6, "seed": 7, "rows": [], "elapsed": 0.0,
              "checkpoint_every": 1}
     _save_checkpoint(algo, state, tmp_path)
-    from mechopt import checkpoint
+    from mechopt.run import checkpoint
 
     loaded = checkpoint.read(tmp_path / CHECKPOINT)[1]["algorithm_state"]  # authenticated, then loaded
     assert loaded.callback is not None and loaded.display is not None
@@ -144,7 +144,7 @@ def test_checkpoint_written_by_a_run_resumes_and_steps(tmp_path):
     resumed by :func:`resume` and stepped by hand, both reach the uninterrupted front."""
     import shutil
 
-    import mechopt.runner as R
+    import mechopt.run.runner as R
 
     ref = optimize(get(PROBLEM), _nsga2(), gen=5, seed=11, n_jobs=1, out=tmp_path / "ref", progress=False,
                    plot=False)
@@ -165,7 +165,7 @@ def test_checkpoint_written_by_a_run_resumes_and_steps(tmp_path):
                      checkpoint_every=1, progress=False, plot=False)
     finally:
         R._save_checkpoint = real
-    from mechopt import checkpoint
+    from mechopt.run import checkpoint
 
     loaded = checkpoint.read(tmp_path / "saved.pkl")[1]["algorithm_state"]
     while loaded.has_next():
@@ -229,7 +229,7 @@ def test_sweep_passes_the_settings(tmp_path):
 
 
 def test_n_jobs_auto_measures_and_records(monkeypatch):
-    import mechopt.runner as R
+    import mechopt.run.runner as R
 
     cheap = optimize(get(PROBLEM), pop=6, gen=3, seed=1, progress=False, plot=False)
     assert cheap.info["n_jobs"] == 1 and cheap.info["n_jobs_auto"] is True

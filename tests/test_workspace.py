@@ -4,8 +4,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from mechopt import FiveBar
-from mechopt.quadrature import disk_rule
-from mechopt.workspace import gcw, joint_ranges, largest_square, mic, usable_region
+from mechopt.core.quadrature import disk_rule
+from mechopt.analysis.workspace import gcw, joint_ranges, largest_square, mic, usable_region
 
 
 def _disk_is_free(fb, cy, radius):
@@ -97,7 +97,8 @@ def test_empty_inputs_raise():
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 
-from mechopt import fast_lci, workspace as W  # noqa: E402
+from mechopt.mechanisms.five_bar import lci as fast_lci
+from mechopt.analysis import workspace as W  # noqa: E402
 
 MODES = ("+-", "-+", "++", "--")
 
@@ -114,7 +115,7 @@ def _random_designs(seed, n):
 
 
 def test_mic_port_sizes_are_the_kernels():
-    from mechopt import kernels as K
+    from mechopt.mechanisms.five_bar import kernels as K
 
     assert W._MIC_SIZES == K.MIC_SIZES
     assert W._N_SUB_BRANCH == K._N_SUB_BRANCH and W._GOLD == K._GOLD
@@ -125,7 +126,7 @@ def test_mic_port_sizes_are_the_kernels():
 def test_mic_port_equals_the_compiled_kernel_bit_for_bit(mode):
     """The NumPy port of one design (what ``mic`` uses first in a process) gives the
     compiled kernel's radius and centre exactly, so that which one runs never shows."""
-    from mechopt import kernels as K
+    from mechopt.mechanisms.five_bar import kernels as K
 
     d = _random_designs(7 + MODES.index(mode), 400)
     R, Y = K.mic_batch(d[:, 0], d[:, 1], d[:, 2], mode=mode, compiled=True)
@@ -214,9 +215,9 @@ def test_usable_region_is_the_whole_raster_labelling(r):
 
 
 def test_one_evaluation_imports_neither_scipy_nor_numba():
-    code = ("import sys; from mechopt.evaluate import evaluate; from mechopt import FiveBar; "
+    code = ("import sys; from mechopt.analysis.evaluate import evaluate; from mechopt import FiveBar; "
             "evaluate(FiveBar(0.85, 1.6, 0.55)); "
-            "print(sorted(m for m in ('scipy', 'numba', 'mechopt.kernels', 'matplotlib', 'pandas') "
+            "print(sorted(m for m in ('scipy', 'numba', 'mechopt.mechanisms.five_bar.kernels', 'matplotlib', 'pandas') "
             "if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"

@@ -1,9 +1,9 @@
-"""The mechanisms: one module per mechanism, each a :class:`~mechopt.mechanisms.base.PlanarMechanism`.
+"""The mechanisms: one module per mechanism, each a :class:`~mechopt.core.protocol.PlanarMechanism`.
 
 :func:`registry` finds every mechanism that declares a ``cli_name`` in the modules of
-this package, so a new mechanism is one new module (plus its case in the contract
+this package and its subpackages (``five_bar/``), so a new mechanism is one new module (plus its case in the contract
 suite, ``tests/mechanism_cases.py``): ``mechopt evaluate`` and
-:func:`mechopt.evaluate.evaluate` pick it up without edits elsewhere.
+:func:`mechopt.analysis.evaluate.evaluate` pick it up without edits elsewhere.
 """
 from __future__ import annotations
 
@@ -17,13 +17,11 @@ __all__ = ["registry", "get"]
 @lru_cache(maxsize=1)
 def registry() -> dict:
     """``{cli_name: class}`` of every mechanism module of this package, sorted by name."""
-    from .base import PlanarMechanism
+    from mechopt.core.protocol import PlanarMechanism
 
     found = {}
-    for info in pkgutil.iter_modules(__path__):
-        if info.name == "base":
-            continue
-        module = importlib.import_module(f"{__name__}.{info.name}")
+    for info in pkgutil.walk_packages(__path__, prefix=f"{__name__}."):
+        module = importlib.import_module(info.name)
         for obj in vars(module).values():
             if (isinstance(obj, type) and issubclass(obj, PlanarMechanism)
                     and obj.__module__ == module.__name__ and obj.cli_name):
@@ -35,6 +33,6 @@ def registry() -> dict:
 
 def get(name: str):
     """The mechanism class registered as ``name`` (e.g. ``"five-bar"``)."""
-    from .. import validation as _v
+    from mechopt.core import validation as _v
 
     return registry()[_v.choice("mechanism", name, tuple(registry()))]

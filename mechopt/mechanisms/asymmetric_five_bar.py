@@ -18,7 +18,7 @@ means of the LCI and the TQI over it.
 
 This module is the whole implementation: the contract suite (a case in
 ``tests/mechanism_cases.py``), ``mechopt evaluate asymmetric-five-bar`` and
-:func:`mechopt.evaluate.evaluate` pick it up from :func:`mechopt.mechanisms.registry`.
+:func:`mechopt.analysis.evaluate.evaluate` pick it up from :func:`mechopt.mechanisms.registry`.
 
 References
 ----------
@@ -29,8 +29,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import validation as _v
-from .base import Parameter, PlanarMechanism, as_points
+from mechopt.core import validation as _v
+from mechopt.core.protocol import Parameter, PlanarMechanism, as_points
 
 __all__ = ["AsymmetricFiveBar", "MODES", "ASSEMBLY_MODES"]
 
@@ -187,7 +187,7 @@ class AsymmetricFiveBar(PlanarMechanism):
         side (first-order error in the cell size). An empty workspace is a result:
         area 0 and NaN means, also for legs that never meet (an empty bounding box,
         e.g. ``r3`` beyond both legs' reach)."""
-        from ..quadrature import grid_over
+        from mechopt.core.quadrature import grid_over
 
         empty = {"workspace_area": 0.0, "mean_lci": float("nan"), "mean_tqi": float("nan"),
                  "quadrature": f"raster-{_CELLS}"}

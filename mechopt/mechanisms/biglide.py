@@ -17,7 +17,7 @@ the default. Mode ``"--"`` is always in the assembly ``"up"`` (``P`` above the l
 ``S2 -> S1``), ``"++"`` always ``"down"``; the mixed modes change assembly across
 their type-II line ``x = 0``.
 
-The Biglide is the two-slider topology of :mod:`mechopt.mechanisms.slider` with the
+The Biglide is the two-slider topology of :mod:`mechopt.mechanisms.sliders` with the
 reported point at the links' joint (no platform offset): the closure
 (``J`` rows ``(tan theta_i, 1)``, Wu eq. 4), the singularities (type I on
 ``x = +/-(L2 - L1)``, type II on ``x = 0`` in the mixed modes), the forward kinematics,
@@ -42,10 +42,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import validation as _v
-from .base import Parameter, as_points
-from .slider import (ASSEMBLY_MODES, GTQI_METHODS, LIMIT_RTOL, RASTER_CELLS,  # noqa: F401
-                     TwoSliderMechanism, _gauss_nodes)
+from mechopt.core import validation as _v
+from mechopt.core.protocol import Parameter, as_points
+from mechopt.mechanisms.sliders import ASSEMBLY_MODES, GTQI_METHODS, LIMIT_RTOL, RASTER_CELLS, TwoSliderMechanism, _gauss_nodes
 
 __all__ = ["Biglide", "MODES", "ASSEMBLY_MODES", "GTQI_METHODS", "SUMMARY_KEYS"]
 

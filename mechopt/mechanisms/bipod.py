@@ -60,9 +60,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import geometry as _g
-from .. import validation as _v
-from .base import Parameter, PlanarMechanism, as_points
+from mechopt.core import geometry as _g
+from mechopt.core import validation as _v
+from mechopt.core.protocol import Parameter, PlanarMechanism, as_points
 
 __all__ = [
     "Bipod",
@@ -101,7 +101,7 @@ def bipod_workspace_area(b, q1_min, q1_max, q2_min, q2_max, branch="up"):
 
     The intersection of the annuli ``q_i_min <= |P - A_i| <= q_i_max`` around
     ``A1 = (0, 0)``, ``A2 = (b, 0)`` (inclusion-exclusion of four lens areas,
-    :func:`mechopt.geometry.annuli_intersection_area`); half of it for the
+    :func:`mechopt.core.geometry.annuli_intersection_area`); half of it for the
     branches ``"up"``/``"down"``. No validation beyond the geometric one: use
     :class:`Bipod` for checked single designs.
     """
@@ -120,7 +120,7 @@ def bipod_tqi_integral(b, q1_min, q1_max, q2_min, q2_max, branch="up"):
     Equals the area of the admissible actuator region ``Q`` (module docstring)
     per half plane: the box area minus the three corners cut off by the triangle
     inequalities ``q1 - q2 <= b``, ``q2 - q1 <= b``, ``q1 + q2 >= b`` (disjoint
-    for positive strut lengths; ramp formulas of :mod:`mechopt.geometry`).
+    for positive strut lengths; ramp formulas of :mod:`mechopt.core.geometry`).
     """
     _v.choice("branch", branch, BRANCHES)
     a1, b1, a2, b2, c = (np.asarray(v, dtype=float) for v in (q1_min, q1_max, q2_min, q2_max, b))
@@ -347,7 +347,7 @@ class Bipod(PlanarMechanism):
 
         ``method="exact"`` is ``tqi_integral() / workspace_area()`` (closed form,
         rounding error only). ``method="raster"`` is the mid-point mean over the
-        cells of :func:`mechopt.quadrature.grid_over` whose centres are reachable,
+        cells of :func:`mechopt.core.quadrature.grid_over` whose centres are reachable,
         with cells of side ``step`` [L] (default: the smaller side of the bounding
         box / 400); its error is first order in ``step`` (boundary cells): for
         Stan's design 9e-4 relative at ``step = 2`` mm, 4e-5 at the default

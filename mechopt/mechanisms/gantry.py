@@ -48,9 +48,9 @@ import math
 
 import numpy as np
 
-from .. import validation as _v
-from .base import Parameter, as_points
-from .slider import ASSEMBLY_MODES, K_AV_READINGS, TwoSliderMechanism
+from mechopt.core import validation as _v
+from mechopt.core.protocol import Parameter, as_points
+from mechopt.mechanisms.sliders import ASSEMBLY_MODES, K_AV_READINGS, TwoSliderMechanism
 
 __all__ = [
     "Gantry",
@@ -82,7 +82,7 @@ def _arc_primitive(u, l):
 def _wu2008_design() -> dict:
     """Wu's Table 1 machine as printed (``mechopt/data/wu2008.csv``): the task ``b``,
     ``h`` [mm], ``theta_1S`` [deg] and the platform ``d2``, ``l2`` [mm]."""
-    from ..data import published_values
+    from mechopt.data import published_values
 
     pub = published_values("wu2008")
     return {k: pub[("table1", k)][0] for k in ("b", "h", "theta_1S", "d2", "l2")}
@@ -90,7 +90,7 @@ def _wu2008_design() -> dict:
 
 def _wu2008_link_length_m() -> float:
     """Link length [m] of Wu's Table 1 design (eq. 15), the machine Table 2's inertias
-    belong to (:meth:`mechopt.dynamics.GantryInertia.wu2008_scaled`)."""
+    belong to (:meth:`mechopt.mechanisms.gantry_dynamics.GantryInertia.wu2008_scaled`)."""
     t1 = _wu2008_design()
     return dimensional_synthesis(t1["b"], t1["h"], math.radians(t1["theta_1S"]))[2] * _LENGTH_UNITS["mm"]
 
@@ -151,7 +151,7 @@ def _per_unit_width(theta_1S):
 def check_synthesis(b, h, theta_1S, scales=(1.0,), unit: str = "") -> None:
     """ValueError (one line, in terms of ``b``, ``h``, ``theta_1S``) when the gantry of
     :func:`dimensional_synthesis` has a length outside the admissible
-    ``[LENGTH_MIN, LENGTH_MAX]`` of :mod:`mechopt.validation`, in its own unit or
+    ``[LENGTH_MIN, LENGTH_MAX]`` of :mod:`mechopt.core.validation`, in its own unit or
     multiplied by one of ``scales`` (e.g. ``1e-3``: the dynamics run in metres).
 
     For a fixed ``theta_1S`` the machine is linear in the task (``d1 = k1 b``,
@@ -252,7 +252,7 @@ class Gantry(TwoSliderMechanism):
     Lengths may be in any consistent unit [L]; angles are in rad. The actuator
     coordinates are lengths, so the Jacobian is dimensionless and invariant under a
     change of length unit (see :meth:`scaled`). The kinematics, the exact area and
-    ``k_av`` are those of the two-slider topology (:mod:`mechopt.mechanisms.slider`)
+    ``k_av`` are those of the two-slider topology (:mod:`mechopt.mechanisms.sliders`)
     with the columns as guides (leg 1 on the left) and the platform offset ``l2/2``.
     """
 
@@ -437,16 +437,16 @@ class Gantry(TwoSliderMechanism):
 
     # --- dynamics (Wu sec. 5-6) ---------------------------------------------------------
     def dynamics(self, inertia=None, length_unit: str | None = None):
-        """The rigid-body model (:class:`mechopt.dynamics.GantryDynamics`) of this gantry
+        """The rigid-body model (:class:`mechopt.mechanisms.gantry_dynamics.GantryDynamics`) of this gantry
         in metres.
 
         ``length_unit`` is the unit of this gantry's lengths, ``"mm"`` or ``"m"``
         (default: that of :meth:`from_parameters`' inputs; required otherwise).
         ``inertia`` defaults to Wu's Table 2 carried over to this design's link length
-        (:meth:`mechopt.dynamics.GantryInertia.wu2008_scaled`; Table 2 itself for
+        (:meth:`mechopt.mechanisms.gantry_dynamics.GantryInertia.wu2008_scaled`; Table 2 itself for
         the Table 1 design, ``theta_1S = 10`` deg).
         """
-        from .. import dynamics as _dyn  # late import: the dynamics is not needed otherwise
+        from mechopt.mechanisms import gantry_dynamics as _dyn  # late import: the dynamics is not needed otherwise
 
         if length_unit is None:
             if self.synthesis_inputs is None:
@@ -472,11 +472,11 @@ class Gantry(TwoSliderMechanism):
         (literal reading of eq. 7 over ``[-b/2, b/2]``), ``d``, ``d1``, ``l``, ``stroke``
         (eq. 14-16, [length_unit]), ``eta_d`` (eq. 44, area mean of kappa_D over the task
         rectangle, :meth:`eta_d` with ``inertia``, default Wu's Table 2 carried over to
-        this link length) and ``gtqi`` (area mean of :func:`mechopt.indices.tqi` over the
+        this link length) and ``gtqi`` (area mean of :func:`mechopt.core.indices.tqi` over the
         task rectangle, not over the workspace as :meth:`gtqi`); ``quadrature`` names
         their rule, ``"gauss-legendre-NxN"`` (tensor Gauss-Legendre, ``n`` nodes per axis).
         """
-        from ..dynamics import rectangle_rule
+        from mechopt.mechanisms.gantry_dynamics import rectangle_rule
 
         if self.synthesis_inputs is None:
             raise ValueError("summary needs a gantry made by Gantry.from_parameters (Wu's synthesis)")

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import MechoptProblem, Objective
+from mechopt.run.problem import MechoptProblem, Objective
 
 __all__ = ["WeightedSum"]
 

@@ -27,7 +27,7 @@ import pickle
 import secrets
 from pathlib import Path
 
-from . import io as _io
+from mechopt.run import io as _io
 
 __all__ = ["MAGIC", "UnreadableCheckpoint", "key_path", "write", "read"]
 

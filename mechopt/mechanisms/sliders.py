@@ -69,9 +69,9 @@ from functools import lru_cache
 
 import numpy as np
 
-from .. import geometry as _g
-from .. import validation as _v
-from .base import PlanarMechanism, as_points
+from mechopt.core import geometry as _g
+from mechopt.core import validation as _v
+from mechopt.core.protocol import PlanarMechanism, as_points
 
 __all__ = ["TwoSliderMechanism", "ASSEMBLY_MODES", "GTQI_METHODS", "K_AV_READINGS"]
 
@@ -193,7 +193,7 @@ class TwoSliderMechanism(PlanarMechanism):
     def link_tangents(self, x, y):
         """``(tan theta_1, tan theta_2, c1, c2, reachable)``: the rows of ``J`` are
         ``(tan theta_i, 1)``, ``c_i = L cos(theta_i)`` [L]; NaN where unreachable
-        (what the gantry's dynamics, :class:`mechopt.dynamics.GantryDynamics`, needs)."""
+        (what the gantry's dynamics, :class:`mechopt.mechanisms.gantry_dynamics.GantryDynamics`, needs)."""
         x, y = as_points(x, y)
         _, _, c1, c2, ok = self.legs(x, y)
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -355,7 +355,7 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def _segment_integral(self, u0, u1) -> float:
         """``int_{u0}^{u1} sqrt(L^2 - u^2) du``, a circular-segment area (the area's
-        column integrals): :func:`mechopt.geometry.chord_integral`."""
+        column integrals): :func:`mechopt.core.geometry.chord_integral`."""
         return float(_g.chord_integral(self._L, u0, u1))
 
     def workspace_area(self) -> float:
@@ -457,7 +457,7 @@ class TwoSliderMechanism(PlanarMechanism):
         on x only, so the 2-D mean is a 1-D integral of exact chord lengths; relative
         error ~1e-10); ``method="gauss"``: the same with the fixed Gauss rule of
         :meth:`tqi_integral` (~3e-8, 100x faster). ``method="raster"``: mid-point mean
-        over the reachable cells of :func:`mechopt.quadrature.grid_over` with side
+        over the reachable cells of :func:`mechopt.core.quadrature.grid_over` with side
         ``step`` [L] (default: the smaller side of the bounding box / 400); first-order
         error in ``step``. NaN for an empty workspace.
         """

@@ -10,18 +10,18 @@ Liu 2006 defines every global index as an area mean over a workspace W
   the singular loci);
 * over the good-conditioning workspace (sec. 3.2.3): GCI and GSI.
 
-The quadrature is named (``area`` or ``polar``, see :mod:`mechopt.quadrature`)
+The quadrature is named (``area`` or ``polar``, see :mod:`mechopt.core.quadrature`)
 and is reported with every result.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from . import indices as _ix
-from . import validation as _v
-from .numerics import golden_section_max
-from .quadrature import QUADRATURES, disk_rule
-from .workspace import MIC, Region, _blocks, mic as _mic
+from mechopt.core import indices as _ix
+from mechopt.core import validation as _v
+from mechopt.core.numerics import golden_section_max
+from mechopt.core.quadrature import QUADRATURES, disk_rule
+from mechopt.analysis.workspace import MIC, Region, _blocks, mic as _mic
 
 __all__ = ["GLOBAL_INDEX_NAMES", "disk_mean", "global_indices", "region_indices", "max_lci"]
 
@@ -39,7 +39,7 @@ _HALF_DISK = {
 def disk_mean(mech, center_y, radius, quadrature="area", n_r=None, n_theta=None):
     """Means of every local index over the disk of ``radius`` centred at ``(0, center_y)``.
 
-    Returns a dict keyed by :data:`mechopt.indices.LOCAL_INDEX_NAMES`.
+    Returns a dict keyed by :data:`mechopt.core.indices.LOCAL_INDEX_NAMES`.
     """
     kw = {k: v for k, v in (("n_r", n_r), ("n_theta", n_theta)) if v is not None}
     center_y = _v.position("center_y", center_y)

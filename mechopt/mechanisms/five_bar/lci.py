@@ -3,7 +3,7 @@
 :func:`five_bar_lci` gives the same values as the generic path
 ``indices.lci(FiveBar.jacobian(x, y))`` (to rounding: tested to 1e-12) without its
 temporaries: no elbow coordinates, no ``(..., 2, 2)`` stacks, no trigonometry.
-:meth:`mechopt.mechanisms.five_bar.FiveBar.lci` calls it.
+:meth:`mechopt.mechanisms.five_bar.model.FiveBar.lci` calls it.
 
 Derivation (DESIGN conventions; Le 2013 eq. 13-19). For leg i with base joint
 ``A_i = (ax_i, 0)``, ``v = P - A_i = (dx, y)``, ``w = (-y, dx)`` and ``q = |v|^2``, the

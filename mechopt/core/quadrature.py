@@ -23,7 +23,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from . import validation as _v
+from mechopt.core import validation as _v
 
 __all__ = ["QUADRATURES", "disk_rule", "Grid", "grid_over"]
 

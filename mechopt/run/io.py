@@ -242,7 +242,7 @@ def claim_out(folder, kind: str, key: dict, outputs, overwrite: bool = False) ->
     if old is not None:  # the same run again: the earlier files stay ours until replaced
         manifest["files"] = old.get("files", {})
         manifest["owned"] = old.get("owned", [])
-    from . import __version__
+    from mechopt import __version__
 
     manifest["mechopt"] = __version__
     write_json(manifest, folder / MANIFEST)

@@ -1,7 +1,7 @@
 """Figures of runs: Pareto fronts, convergence curves, weighting sweeps.
 
 Figures are built with :class:`matplotlib.figure.Figure` (no global pyplot
-state, no display needed) and saved through :func:`mechopt.io.save_figure`.
+state, no display needed) and saved through :func:`mechopt.run.io.save_figure`.
 A run without any feasible design has no front: its figure is the final
 population in design space, coloured by constraint violation
 (:func:`plot_population`).

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from pymoo.core.problem import Problem
 
-from mechopt.parallel import chunks, parallel_map
+from mechopt.run.parallel import chunks, parallel_map
 
 __all__ = ["MechoptProblem", "Objective", "HV_REFERENCE"]
 

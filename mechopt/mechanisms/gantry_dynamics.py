@@ -1,7 +1,7 @@
 """Rigid-body dynamics of the Wu 2008 gantry: inertia matrices, kappa_D, eta_D, driving forces.
 
 The motion profiles (:func:`trapezoidal_profile`, :func:`wu2008_trajectory`) live in
-:mod:`mechopt.motion` and Wu's printed numbers (Table 2 inertias, Table 3 motion) in
+:mod:`mechopt.core.motion` and Wu's printed numbers (Table 2 inertias, Table 3 motion) in
 ``mechopt/data/wu2008.csv`` (:func:`mechopt.data.published_values`); both names stay
 importable from here.
 
@@ -74,11 +74,11 @@ from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-from . import indices as _ix
-from . import validation as _v
-from .data import published_values
-from .mechanisms.base import as_points
-from .motion import trapezoidal_profile, wu2008_trajectory  # noqa: F401 (importable from here too)
+from mechopt.core import indices as _ix
+from mechopt.core import validation as _v
+from mechopt.data import published_values
+from mechopt.core.protocol import as_points
+from mechopt.core.motion import trapezoidal_profile, wu2008_trajectory  # noqa: F401 (importable from here too)
 
 __all__ = [
     "GantryInertia",
@@ -252,7 +252,7 @@ class GantryDynamics:
             raise ValueError(f"gantry must be a mechopt.Gantry, got {type(gantry).__name__}")
         if not isinstance(inertia, GantryInertia):
             raise ValueError(
-                f"inertia must be a mechopt.dynamics.GantryInertia, got {type(inertia).__name__}")
+                f"inertia must be a mechopt.mechanisms.gantry_dynamics.GantryInertia, got {type(inertia).__name__}")
         self.gantry = gantry
         self.inertia = p = inertia
         l = gantry.l

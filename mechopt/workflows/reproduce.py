@@ -2,10 +2,10 @@
 
 Each paper has a thin script ``experiments/<paper>.py`` (installed as
 ``mechopt.experiments.<paper>``) with ``run(out: Path, quick: bool) -> DataFrame``
-that computes its rows (columns :data:`mechopt.published.TABLE_COLUMNS`) and
+that computes its rows (columns :data:`mechopt.core.published.TABLE_COLUMNS`) and
 writes its figures, front and sweep into ``out``. This module runs them, writes
 ``table.csv`` and ``table.md`` per paper and the summary ``README.md`` over all,
-each file atomically (:mod:`mechopt.io`). A paper whose ``table.csv`` exists is
+each file atomically (:mod:`mechopt.run.io`). A paper whose ``table.csv`` exists is
 skipped unless ``force``. The papers are independent: ``reproduce("all")`` runs them
 side by side in worker processes (one per CPU, :func:`default_jobs`), with the same
 files as one after the other.
@@ -19,10 +19,10 @@ from pathlib import Path
 
 import pandas as pd
 
-from . import __version__
-from . import io as _io
-from . import validation as _v
-from .published import KINDS, STATUSES, TABLE_COLUMNS, counts
+from mechopt import __version__
+from mechopt.run import io as _io
+from mechopt.core import validation as _v
+from mechopt.core.published import KINDS, STATUSES, TABLE_COLUMNS, counts
 
 __all__ = ["PAPERS", "reproduce", "default_jobs", "markdown_table", "write_summary", "summary_table", "counts_line"]
 
@@ -91,13 +91,13 @@ def reproduce(paper: str, out="results", quick: bool = False, force: bool = Fals
     The papers are independent, and so are the parts of a paper that only write files
     (``experiments.<paper>.PARTS``, e.g. a weighting sweep whose front no row uses):
     each paper's table and each of its parts is a work unit (a stage), mapped over
-    ``n_jobs`` worker processes (:func:`mechopt.parallel.parallel_map`; default
+    ``n_jobs`` worker processes (:func:`mechopt.run.parallel.parallel_map`; default
     :func:`default_jobs` of the papers to run), longest first (:data:`COST`). Every
     file is the one a serial run writes, byte for byte (the units write disjoint files;
     ``tests/test_reproduce.py``); a paper's ``table.csv`` is written once all its units
     are done. ``n_jobs=1``, or a single paper, runs the units in this process. A
     paper's line is logged when it is done; with ``progress`` a
-    :class:`mechopt.progress.Progress` over the stages (a bar on a terminal, one plain
+    :class:`mechopt.run.progress.Progress` over the stages (a bar on a terminal, one plain
     line per finished stage otherwise) goes to stderr. The returned table is in the
     order of :data:`PAPERS`."""
     _v.choice("paper", paper, PAPERS + ("all",))
@@ -141,8 +141,8 @@ def _units(name):
 
 def _run_units(todo, n, out, quick, stamp, workers, tables, log, progress):
     """Run the work units of the papers ``todo`` on ``workers`` processes (1: here)."""
-    from .parallel import parallel_map
-    from .progress import Progress
+    from mechopt.run.parallel import parallel_map
+    from mechopt.run.progress import Progress
 
     cost = COST[bool(quick)]
     units = [(i, name, part) for i, name in todo for part in _units(name)]
@@ -246,7 +246,7 @@ def counts_line(c: dict) -> str:
 
 
 def summary_table(out) -> pd.DataFrame:
-    """One row of :func:`mechopt.published.counts` per finished paper, and a total row."""
+    """One row of :func:`mechopt.core.published.counts` per finished paper, and a total row."""
     rows = []
     for name in PAPERS:
         f = out / name / "table.csv"

@@ -14,7 +14,7 @@
 * :func:`joint_ranges` - actuator ranges over a region.
 
 Cost of one design. Nothing here imports scipy or numba: the five-bar's MIC is
-the atlas kernel's algorithm (:func:`mechopt.kernels.mic_batch`) ported to NumPy for
+the atlas kernel's algorithm (:func:`mechopt.mechanisms.five_bar.kernels.mic_batch`) ported to NumPy for
 one design, with the same values bit for bit (``tests/test_workspace.py``), and the
 connected component of the usable region is found on runs of cells. The raster
 is evaluated in blocks of rows (:data:`RASTER_BLOCK` cells), so its memory stays
@@ -29,9 +29,9 @@ from functools import cached_property
 
 import numpy as np
 
-from . import validation as _v
-from .numerics import INV_PHI, golden_section_max
-from .quadrature import Grid, grid_over
+from mechopt.core import validation as _v
+from mechopt.core.numerics import INV_PHI, golden_section_max
+from mechopt.core.quadrature import Grid, grid_over
 
 __all__ = [
     "MIC",
@@ -96,7 +96,7 @@ def type2_clearance(mech, cx, cy, radius, n_phi=128, n_r=96, n_refine=64):
     cells. At the closest point the locus is tangent to the circle, so the ray
     there crosses it transversally and the bracketing cannot miss it.
     """
-    from .mechanisms.base import as_points
+    from mechopt.core.protocol import as_points
 
     scalar = np.ndim(cx) == 0 and np.ndim(cy) == 0 and np.ndim(radius) == 0
     cx, cy = as_points(cx, cy)
@@ -127,7 +127,7 @@ def mic(mech, method: str = "auto", n_y: int = 48, tol: float = 1e-6) -> MIC:
     """Maximal inscribed circle of ``mech`` (centre on the y axis, ``y > 0``).
 
     ``method="explicit"`` (the default for a :class:`~mechopt.FiveBar`, ``"auto"``)
-    is the algorithm of :func:`mechopt.kernels.mic_batch`: the five-bar's type-II
+    is the algorithm of :func:`mechopt.mechanisms.five_bar.kernels.mic_batch`: the five-bar's type-II
     locus is generated explicitly (B1, P, B2 collinear) and filtered by working
     mode, then a dense search over centres with golden-section refinement (about
     2.5e-6 relative against a converged reference, ``tests/test_atlas.py``). One
@@ -216,20 +216,20 @@ def no_mic_message(mech) -> str:
 
 
 # --- the five-bar's explicit MIC for one design ---------------------------------------------
-# A NumPy port of ``mechopt.kernels._mic_one_nb`` with its operations in the same order
+# A NumPy port of ``mechopt.mechanisms.five_bar.kernels._mic_one_nb`` with its operations in the same order
 # and the C library's trigonometric functions (``math``; NumPy's vectorised arccos
 # differs from it in the last bit), so that it gives the compiled kernel's values bit
 # for bit (tests/test_workspace.py checks it on 1600 designs, every mode). Its sizes are
 # ``kernels.MIC_SIZES`` (the same test checks that they are equal).
 _MIC_SIZES = dict(n_crank=128, n_y=128, n_sub=16, n_seed_y=9, n_golden=42, n_cand=2)
-#: the ratio of the port's golden-section search (:data:`mechopt.kernels._GOLD`)
+#: the ratio of the port's golden-section search (:data:`mechopt.mechanisms.five_bar.kernels._GOLD`)
 _GOLD = INV_PHI
 _N_SUB_BRANCH = 8
 #: seconds spent in the NumPy port after which :func:`five_bar_mic` loads the compiled
-#: kernel (its first load costs about 0.5 s per process; see :mod:`mechopt.fast_lci`)
+#: kernel (its first load costs about 0.5 s per process; see :mod:`mechopt.mechanisms.five_bar.lci`)
 MIC_NUMBA_AFTER_SECONDS = 0.5
 _port_seconds = 0.0
-_compiled_mic = None  # mechopt.kernels.mic_batch once the compiled kernel is used
+_compiled_mic = None  # mechopt.mechanisms.five_bar.kernels.mic_batch once the compiled kernel is used
 
 
 def _libm(f, a):
@@ -397,10 +397,10 @@ def _mic_one(r1, r2, r3, s1, s2):
 
 
 def _compiled():
-    """:func:`mechopt.kernels.mic_batch` if its compiled path exists, else False."""
+    """:func:`mechopt.mechanisms.five_bar.kernels.mic_batch` if its compiled path exists, else False."""
     global _compiled_mic
     if _compiled_mic is None:
-        from . import kernels
+        from mechopt.mechanisms.five_bar import kernels
 
         _compiled_mic = kernels.mic_batch if kernels.HAVE_NUMBA else False
     return _compiled_mic
@@ -412,7 +412,7 @@ def five_bar_mic(r1, r2, r3, mode="+-"):
     first :data:`MIC_NUMBA_AFTER_SECONDS` of a process, by the compiled kernel after
     (if numba is available)."""
     global _port_seconds
-    from .fast_lci import HAVE_NUMBA
+    from mechopt.mechanisms.five_bar.lci import HAVE_NUMBA
 
     if HAVE_NUMBA and _port_seconds >= MIC_NUMBA_AFTER_SECONDS and _compiled():
         r, y = _compiled()(r1, r2, r3, mode=mode, compiled=True)
@@ -437,7 +437,7 @@ def _mic_one_port(r1, r2, r3, mode):
 
 @dataclass(frozen=True)
 class Region:
-    """A region as a boolean ``mask`` on a :class:`~mechopt.quadrature.Grid`."""
+    """A region as a boolean ``mask`` on a :class:`~mechopt.core.quadrature.Grid`."""
 
     grid: Grid
     mask: np.ndarray

@@ -22,8 +22,8 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
-from .. import indices as _ix
-from .. import validation as _v
+from mechopt.core import indices as _ix
+from mechopt.core import validation as _v
 
 __all__ = ["PlanarMechanism", "Parameter", "REQUIRED", "PARAMETER_KINDS", "as_points"]
 
@@ -122,15 +122,15 @@ class PlanarMechanism(ABC):
     summary_keys: tuple[str, ...] = ()
     #: ``{key: p}``: the number ``key`` of :meth:`summary` of the design scaled by ``D``
     #: (:meth:`scaled`) is ``D**p`` times the design's, so that
-    #: :func:`mechopt.evaluate.evaluate` computes it in units of the design's size; None
+    #: :func:`mechopt.analysis.evaluate.evaluate` computes it in units of the design's size; None
     #: when the summary is not homogeneous in the lengths (then evaluated as given)
     summary_powers: dict | None = None
     #: True when the Liu 2006 indices over the MIC (a disk centred on the y axis)
     #: apply: the mechanism is symmetric about the y axis
     disk_indices: bool = False
     #: True for the symmetric five-bar's lengths ``r1, r2, r3`` and ``mode``:
-    #: :mod:`mechopt.workspace` then finds the MIC in closed form
-    #: (:func:`~mechopt.workspace.five_bar_mic`), filters the usable region by the legs'
+    #: :mod:`mechopt.analysis.workspace` then finds the MIC in closed form
+    #: (:func:`~mechopt.analysis.workspace.five_bar_mic`), filters the usable region by the legs'
     #: reach and says why a MIC is missing in terms of those lengths
     explicit_mic: bool = False
     #: working modes (inverse-kinematics branches) the mechanism supports
@@ -157,7 +157,7 @@ class PlanarMechanism(ABC):
         """The mechanism's own global numbers (areas, means over its workspace) for
         ``mechopt evaluate``, as ``{name: float or str}`` with the keys
         :attr:`summary_keys`; options of :attr:`summary_options`. Default: none.
-        The one entry point of a mechanism's numbers (:func:`mechopt.evaluate.evaluate`
+        The one entry point of a mechanism's numbers (:func:`mechopt.analysis.evaluate.evaluate`
         calls it)."""
         return {}
 
@@ -280,7 +280,7 @@ class PlanarMechanism(ABC):
         return _ix.manipulability(self.jacobian(x, y))
 
     def local_indices(self, x, y) -> dict:
-        """Every local index of :data:`mechopt.indices.LOCAL_INDEX_NAMES`."""
+        """Every local index of :data:`mechopt.core.indices.LOCAL_INDEX_NAMES`."""
         return _ix.local_indices(self.jacobian(x, y))
 
     def raster_mean(self, local, step=None, cells: int = 400) -> float:
@@ -288,8 +288,8 @@ class PlanarMechanism(ABC):
         mid-point rule on square cells of side ``step`` [L] (default: the smaller side
         of :meth:`bounding_box` / ``cells``); first-order error in ``step``. NaN when
         nothing is reachable."""
-        from .. import validation as _v
-        from ..quadrature import grid_over
+        from mechopt.core import validation as _v
+        from mechopt.core.quadrature import grid_over
 
         box = self.bounding_box()
         if step is None:

@@ -6,15 +6,15 @@ and writes one HTML file that needs nothing else to be read: every image is embe
 a ``data:`` URI, the style sheet and the small table sorter are inline, nothing is
 fetched from the network. The page holds
 
-* the summary counts of :func:`mechopt.reproduce.summary_table`;
-* per paper: its table (columns :data:`mechopt.published.TABLE_COLUMNS` and any extra
+* the summary counts of :func:`mechopt.workflows.reproduce.summary_table`;
+* per paper: its table (columns :data:`mechopt.core.published.TABLE_COLUMNS` and any extra
   ones, e.g. ``design``, ``quadrature``) with the statuses coloured and every column
   sortable by a click on its header; each ``differs`` row with its reason (its note);
   every figure with a caption naming the paper figure it redraws (from the file name:
   ``fig5_a_max.png`` of ``le2013`` is "Le 2013 Fig. 5"); the fronts and weighting sweeps.
 
 Every text taken from the results is escaped (:func:`html.escape`); the file is written
-atomically (:func:`mechopt.io.write_text`) and is pure ASCII (other characters as
+atomically (:func:`mechopt.run.io.write_text`) and is pure ASCII (other characters as
 character references), whatever the locale.
 """
 from __future__ import annotations
@@ -29,10 +29,10 @@ from pathlib import Path
 
 import pandas as pd
 
-from . import __version__
-from . import io as _io
-from .published import TABLE_COLUMNS
-from .reproduce import PAPERS, TITLES, counts_line, summary_table
+from mechopt import __version__
+from mechopt.run import io as _io
+from mechopt.core.published import TABLE_COLUMNS
+from mechopt.workflows.reproduce import PAPERS, TITLES, counts_line, summary_table
 
 __all__ = ["build_report", "write_report", "figure_caption", "paper_name"]
 
@@ -391,7 +391,7 @@ def _runs_html(d: Path, paper: str) -> str:
 
 def _paper_html(d: Path, paper: str) -> tuple[str, int]:
     df = _read_table(d, paper)
-    from .published import counts
+    from mechopt.core.published import counts
 
     stamp = _read_json(d / paper / "reproduce.json")
     kind = ""

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Callable, Iterable, Sequence
 
-from . import validation as _v
+from mechopt.core import validation as _v
 
 __all__ = ["parallel_map", "chunks", "connect", "check_cluster", "kernel_path", "stop_workers",
            "DEFAULT_STALL_S"]
@@ -27,14 +27,14 @@ def kernel_path() -> str:
     """``"numba"`` or ``"numpy"``: which implementation of the compiled kernels this
     process runs (the two agree to ~1e-14, not bit for bit, so a cached or
     distributed result records it and is never mixed with the other)."""
-    from . import kernels
+    from mechopt.mechanisms.five_bar import kernels
 
     return "numba" if kernels.HAVE_NUMBA else "numpy"
 
 
 def _worker_facts() -> dict:
     """Run on each Dask worker: the mechopt version and kernel path it would use."""
-    from . import __version__
+    from mechopt import __version__
 
     return {"mechopt": __version__, "kernel": kernel_path()}
 

@@ -24,10 +24,10 @@ proportions of the design triangle itself.
 Computation
 -----------
 Designs on a lattice of step ``step`` are split into chunks mapped through
-:func:`mechopt.parallel.parallel_map` (joblib processes or a Dask cluster).
-Inside a chunk, :func:`mechopt.kernels.mic_batch` finds every MIC (closed-form
+:func:`mechopt.run.parallel.parallel_map` (joblib processes or a Dask cluster).
+Inside a chunk, :func:`mechopt.mechanisms.five_bar.kernels.mic_batch` finds every MIC (closed-form
 serial clearance plus an explicitly generated type-II locus) and
-:func:`mechopt.kernels.disk_stats_batch` every disk mean and the MCI; both loop
+:func:`mechopt.mechanisms.five_bar.kernels.disk_stats_batch` every disk mean and the MCI; both loop
 over designs and quadrature nodes in compiled code (numba) or in NumPy arrays,
 never in Python. A design whose MIC radius is 0 (no singularity-free disk on
 the y axis: every design with ``r3 = 1.5``, where ``r1 + r2 = r3``) gets NaN
@@ -43,8 +43,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import kernels as _k
-from . import validation as _v
+from mechopt.mechanisms.five_bar import kernels as _k
+from mechopt.core import validation as _v
 
 __all__ = [
     "INDEX_GROUPS",
@@ -175,10 +175,10 @@ def design_grid(step):
 def evaluate_designs(r1, r2, r3, quadrature: str = "area", mode: str = "+-", compiled=None):
     """``(n, 10)`` array of :data:`RESULT_COLUMNS` for arrays of designs.
 
-    The fast path of :mod:`mechopt.kernels`; degenerate designs (MIC radius 0)
+    The fast path of :mod:`mechopt.mechanisms.five_bar.kernels`; degenerate designs (MIC radius 0)
     get ``r_mic = 0`` and NaN elsewhere. Lengths in any unit (results scale as in
-    :func:`mechopt.performance.global_indices`); r1, r2 in [LENGTH_MIN, LENGTH_MAX] and
-    r3 in [0, LENGTH_MAX] of :mod:`mechopt.validation`.
+    :func:`mechopt.analysis.performance.global_indices`); r1, r2 in [LENGTH_MIN, LENGTH_MAX] and
+    r3 in [0, LENGTH_MAX] of :mod:`mechopt.core.validation`.
     """
     arrays = []
     for name, v, lo in (("r1", r1, _v.LENGTH_MIN), ("r2", r2, _v.LENGTH_MIN), ("r3", r3, 0.0)):
@@ -236,13 +236,13 @@ class _ChunkStore:
     the chunk index, a digest of the chunk's designs, the shape and a SHA-256 of the
     values. On reuse every field is checked; a chunk that fails (edited, truncated,
     empty, swapped, another shape or dtype, another kernel path) is recomputed with
-    one line saying why (``warn``). Files are fsynced before the rename (mechopt.io).
+    one line saying why (``warn``). Files are fsynced before the rename (mechopt.run.io).
     """
 
     def __init__(self, folder, settings: dict, warn=None):
         import json
 
-        from . import io as _io
+        from mechopt.run import io as _io
 
         self.folder, self.settings = folder, settings
         self.warn = warn if warn is not None else (lambda msg: None)
@@ -307,7 +307,7 @@ class _ChunkStore:
     def save(self, i, designs, values):
         import json
 
-        from . import io as _io
+        from mechopt.run import io as _io
 
         header = json.dumps(self._header(i, designs, values), sort_keys=True)
         with _io.atomic_path(self.path(i)) as tmp, open(tmp, "wb") as fh:
@@ -335,7 +335,7 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
     indices : str or sequence
         Index groups of :data:`INDEX_GROUPS` (``gvi`` gives ``gvi_max, gvi_min``, ...).
     quadrature : {"area", "polar"}
-        Rule of the disk means (:mod:`mechopt.quadrature`).
+        Rule of the disk means (:mod:`mechopt.core.quadrature`).
     mode : {"+-", "-+", "++", "--"}
         Working mode (Liu's atlases are ``"+-"``).
     n_jobs : int
@@ -354,8 +354,8 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
     """
     import pandas as pd
 
-    from .parallel import chunks, parallel_map
-    from .quadrature import QUADRATURES
+    from mechopt.run.parallel import chunks, parallel_map
+    from mechopt.core.quadrature import QUADRATURES
 
     cols = index_columns(indices)
     _v.choice("quadrature", quadrature, QUADRATURES)
@@ -382,8 +382,8 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
     if chunk_dir is not None:
         from pathlib import Path
 
-        from . import __version__
-        from .parallel import kernel_path
+        from mechopt import __version__
+        from mechopt.run.parallel import kernel_path
 
         store = _ChunkStore(Path(chunk_dir), {"step": float(step), "quadrature": quadrature,
                                               "mode": mode, "chunk_size": int(chunk_size),
@@ -566,15 +566,15 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
 
     Writes ``atlas.csv``, ``atlas.json`` (settings, counts, timings),
     ``atlas_<column>.png`` per index column and, with ``where``, ``region.csv``,
-    as one set (:func:`mechopt.io.output_set`: ``manifest.json`` says last that the
+    as one set (:func:`mechopt.run.io.output_set`: ``manifest.json`` says last that the
     set is complete). Every input is checked before any work starts. A folder
     holding an atlas of other settings (or another kernel path) is refused unless
     ``overwrite``; the same command again resumes from the finished chunks.
     Returns the contents of ``atlas.json``.
     """
-    from . import io as _io
-    from .conditions import parse_condition
-    from .quadrature import QUADRATURES
+    from mechopt.run import io as _io
+    from mechopt.core.conditions import parse_condition
+    from mechopt.core.quadrature import QUADRATURES
 
     t0 = time.perf_counter()
     step = check_step(step)
@@ -606,9 +606,9 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
 def _run_atlas(out, run, step, groups, cols, quadrature, mode, n_jobs, dask, dask_timeout, where, cond,
                figures, chunk_size, verbose, t0):
     """The computation and the files of :func:`run_atlas` (its inputs checked)."""
-    from . import io as _io
-    from .parallel import connect
-    from .progress import Progress
+    from mechopt.run import io as _io
+    from mechopt.run.parallel import connect
+    from mechopt.run.progress import Progress
 
     client = connect(dask, timeout=dask_timeout) if dask is not None else None
     try:
@@ -659,7 +659,7 @@ ATLAS_OUTPUTS = ("atlas.csv", "region.csv", "atlas.json", "atlas_*.png")
 def _write_atlas(stage, table, groups, cols, cond, where, quadrature, figures, t0, t_compute, step, mode,
                  dask, n_jobs):
     """The atlas's files, written into the staging folder of its output set."""
-    from . import io as _io
+    from mechopt.run import io as _io
 
     _io.write_csv(table, stage / "atlas.csv")
     region = None

@@ -1,7 +1,7 @@
 """One seeded runner for every Problem: ``optimize`` and weighted-sum ``sweep``.
 
 Population evaluation goes through the Problem's chunked
-:func:`mechopt.parallel.parallel_map` (joblib or Dask), so the same seed gives
+:func:`mechopt.run.parallel.parallel_map` (joblib or Dask), so the same seed gives
 the same front for any ``n_jobs`` and either backend. ``n_jobs=None`` (the
 default) chooses: the first two generations run in this process and are timed
 (CPU time, so that a busy machine does not mislead it); if a generation takes
@@ -11,7 +11,7 @@ algorithm is a name of :data:`ALGORITHMS` (the problem's ``default_algorithm``
 by default) or any pymoo algorithm object, the termination ``("n_gen", gen)``,
 a tolerance ``tol`` (pymoo's default termination with that ``ftol``, ``gen``
 its maximum) or any pymoo termination (a tuple or a ``Termination`` object).
-Outputs go through :mod:`mechopt.io` (atomic writes):
+Outputs go through :mod:`mechopt.run.io` (atomic writes):
 
 ``front.csv``    one row per non-dominated feasible design (variables, objectives
                  with their natural sign, constraint values, derived indices)
@@ -21,7 +21,7 @@ Outputs go through :mod:`mechopt.io` (atomic writes):
                  that optimum; empty while no design is feasible); with two or more
                  objectives ``hypervolume``: of the feasible optimum in objectives
                  normalised to [0, 1] by their declared bounds
-                 (:class:`mechopt.problems.base.Objective`), against the reference
+                 (:class:`mechopt.run.problem.Objective`), against the reference
                  point 1.1 in every direction, so it lies in [0, 1.1^m], rises with
                  real progress and compares between runs and seeds of a problem (0
                  while nothing is feasible; empty if an objective declares no bounds)
@@ -59,10 +59,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from . import __version__
-from . import io as _io
-from . import validation as _v
-from .progress import Progress
+from mechopt import __version__
+from mechopt.run import io as _io
+from mechopt.core import validation as _v
+from mechopt.run.progress import Progress
 
 __all__ = ["ALGORITHMS", "make_algorithm", "optimize", "resume", "sweep", "parse_weights", "RunResult",
            "infeasible_line", "describe_algorithm", "describe_termination", "PARALLEL_SECONDS"]
@@ -453,19 +453,19 @@ def optimize(problem, algorithm=None, pop: int | None = None, gen: int | None = 
     With ``checkpoint_every=K`` (needs ``out``) the whole algorithm state (population,
     random generator, termination, history) is saved atomically to
     ``out/checkpoint.pkl`` every K generations, authenticated (see
-    :mod:`mechopt.checkpoint`); :func:`resume` continues from it and ends with the
+    :mod:`mechopt.run.checkpoint`); :func:`resume` continues from it and ends with the
     same ``front.csv``, byte for byte, as an uninterrupted run. The saved algorithm
-    (``mechopt.checkpoint.read(path)[1]["algorithm_state"]``) can also be stepped
+    (``mechopt.run.checkpoint.read(path)[1]["algorithm_state"]``) can also be stepped
     directly with ``has_next()``/``next()``.
 
     Before the first evaluation the run's memory and time are estimated
-    (:mod:`mechopt.budget`): a run that cannot fit in memory, or would take longer
+    (:mod:`mechopt.run.budget`): a run that cannot fit in memory, or would take longer
     than 30 days, is refused with the estimate; one above an hour says so.
 
     The outputs (``front.csv``, ``history.csv``, ``run.json``, ``front.png``) are
     written as one set, and ``out/manifest.json`` records the run (its problem,
     settings, algorithm and seed) and, last, that the set is complete
-    (:func:`mechopt.io.output_set`). A folder holding another run is refused unless
+    (:func:`mechopt.run.io.output_set`). A folder holding another run is refused unless
     ``overwrite`` (then the files that run wrote are replaced); files no manifest
     accounts for are refused, never removed.
     """
@@ -509,7 +509,7 @@ def optimize(problem, algorithm=None, pop: int | None = None, gen: int | None = 
 
 
 #: the names a run writes into its folder: such files that no manifest of a mechopt run
-#: accounts for are refused (:func:`mechopt.io.claim_out`)
+#: accounts for are refused (:func:`mechopt.run.io.claim_out`)
 RUN_OUTPUTS = ("front.csv", "history.csv", "run.json", "front.png", "sweep.csv", "sweep.png", CHECKPOINT)
 
 
@@ -520,12 +520,12 @@ def _run_key(problem, algo, seed) -> dict:
 
 
 def _check_budget(problem, algo):
-    """Refuse a run that cannot fit in memory or would take years (mechopt.budget);
+    """Refuse a run that cannot fit in memory or would take years (mechopt.run.budget);
     print a line for one estimated above an hour."""
     import math
     import sys
 
-    from . import budget
+    from mechopt.run import budget
 
     term = algo.termination
     max_gen = _max_gen(term)
@@ -554,7 +554,7 @@ def resume(out, n_jobs: int | None = None, client=None, progress: bool = True, p
            expect: dict | None = None) -> RunResult:
     """Continue the run whose checkpoint is ``out/checkpoint.pkl`` (see :func:`optimize`).
 
-    The checkpoint is authenticated before it is loaded (:mod:`mechopt.checkpoint`)
+    The checkpoint is authenticated before it is loaded (:mod:`mechopt.run.checkpoint`)
     and must belong to the run ``out/manifest.json`` records. ``expect`` holds
     options the caller asks for (the keys of the checkpoint's ``options``: problem,
     algorithm, pop, gen, seed, tol, the operator settings, checkpoint_every, and
@@ -562,7 +562,7 @@ def resume(out, n_jobs: int | None = None, client=None, progress: bool = True, p
     refused with the list. A finished run, and one stopped before its first
     checkpoint, say so. Every refusal is a one-line ValueError.
     """
-    from . import checkpoint as _ck
+    from mechopt.run import checkpoint as _ck
 
     n_jobs = _n_jobs(n_jobs)
     out = Path(out)
@@ -619,7 +619,7 @@ def _manifest_for(out: Path, where: str, manifest, header: dict) -> dict:
     """The run manifest a resumed checkpoint continues: the folder's, if the
     checkpoint is that run's; a new one for a folder without (an older mechopt's),
     unless its run.json names another problem."""
-    from .io import MANIFEST
+    from mechopt.run.io import MANIFEST
 
     if manifest is not None:
         if manifest.get("run_id") != header.get("run_id"):
@@ -670,9 +670,9 @@ def _steppable(algo):
 
 
 def _save_checkpoint(algo, state, out: Path):
-    """The algorithm and the runner's state, authenticated (mechopt.checkpoint), with a
+    """The algorithm and the runner's state, authenticated (mechopt.run.checkpoint), with a
     header naming the run, so that ``--resume`` can check it before loading it."""
-    from . import checkpoint as _ck
+    from mechopt.run import checkpoint as _ck
 
     header = {"run_id": state.get("run_id"), "problem": algo.problem.name,
               "key": _run_key(algo.problem, algo, state["seed"]), "options": state.get("options"),
@@ -756,7 +756,7 @@ def _drive(algo, state, n_jobs, client, out, progress, plot, manifest=None) -> R
             _io.write_csv(history, stage / "history.csv")
             _io.write_json(info, stage / "run.json")
             if plot:
-                from .plotting import plot_front
+                from mechopt.run.plotting import plot_front
 
                 _io.save_figure(plot_front(problem, front, history, population, info), stage / "front.png")
         if (out / CHECKPOINT).exists():
@@ -824,7 +824,7 @@ def _run_info(problem, algo, state, n_jobs, client, wall) -> dict:
     }
 
 
-#: sweep weights are checked where every input is (:func:`mechopt.validation.weights`)
+#: sweep weights are checked where every input is (:func:`mechopt.core.validation.weights`)
 parse_weights = _v.weights
 
 
@@ -873,7 +873,7 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | Non
 
 def _sweep(problem, weights, pop, gen, seed, n_jobs, client, out, progress, run_kw, manifest):
     """The runs of :func:`sweep` (its inputs checked) and, with ``out``, its files."""
-    from .problems.weighted import WeightedSum  # noqa: F401 (installed sub-package)
+    from mechopt.run.weighted import WeightedSum  # noqa: F401 (installed sub-package)
 
     front_run = optimize(problem, "nsga2", pop, gen, seed, n_jobs, client, None, progress, plot=False, **run_kw)
     F = np.column_stack([ob.sense * front_run.front[ob.name].to_numpy(float) for ob in problem.objectives])
@@ -902,7 +902,7 @@ def _sweep(problem, weights, pop, gen, seed, n_jobs, client, out, progress, run_
     table = pd.DataFrame(rows).reindex(columns=["weight", *columns, "feasible", "violation"])
     table.attrs["sweep"] = info = _sweep_info(problem, runs, table)
     if out is not None:
-        from .plotting import plot_front, plot_sweep
+        from mechopt.run.plotting import plot_front, plot_sweep
 
         keep = [*problem.var_names, "violation"]  # every run's final population, for the figure
         population = pd.concat([r.population[keep] for r in runs], ignore_index=True)

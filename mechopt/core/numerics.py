@@ -1,10 +1,10 @@
 """Numerical building blocks shared by the analyses: one golden-section search.
 
-:func:`golden_section_max` is the search of the MIC centre (:mod:`mechopt.workspace`,
+:func:`golden_section_max` is the search of the MIC centre (:mod:`mechopt.analysis.workspace`,
 both the rays method and the NumPy port of the atlas kernel), of the best LCI on a
-disk's rim (:mod:`mechopt.performance`, many searches at once) and of the placement
-that maximises a design's smallest margin (:mod:`mechopt.design`). The compiled twins
-in :mod:`mechopt.kernels` run the same steps in numba.
+disk's rim (:mod:`mechopt.analysis.performance`, many searches at once) and of the placement
+that maximises a design's smallest margin (:mod:`mechopt.workflows.design`). The compiled twins
+in :mod:`mechopt.mechanisms.five_bar.kernels` run the same steps in numba.
 """
 from __future__ import annotations
 

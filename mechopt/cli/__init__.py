@@ -13,7 +13,7 @@ import math
 import os
 import sys
 
-from . import __version__
+from mechopt import __version__
 
 EXIT_USAGE = 2
 #: what ``mechopt --help`` says above the commands
@@ -51,8 +51,8 @@ def _print_table(d: dict, title: str):
 def _cmd_evaluate(args):
     """``mechopt evaluate <mechanism> ...``: any registered mechanism (generated from its
     declared parameters, :func:`_add_evaluate_parsers`)."""
-    from .evaluate import evaluate
-    from .mechanisms import get
+    from mechopt.analysis.evaluate import evaluate
+    from mechopt.mechanisms import get
 
     cls = get(args.mechanism)
     mech = cls.from_parameters(**{p.name: getattr(args, p.name) for p in cls.parameters})
@@ -68,7 +68,7 @@ def _cmd_evaluate(args):
 def _disk_options(cls):
     if not cls.disk_indices:
         return ()
-    from .evaluate import DISK_OPTIONS
+    from mechopt.analysis.evaluate import DISK_OPTIONS
 
     return DISK_OPTIONS
 
@@ -80,7 +80,7 @@ _KIND_TYPES = {"length": float, "length0": float, "position": float, "angle_deg"
 
 
 def _add_parameter(parser, p):
-    """One ``--name`` option of a declared :class:`~mechopt.mechanisms.base.Parameter`."""
+    """One ``--name`` option of a declared :class:`~mechopt.core.protocol.Parameter`."""
     unit = f" [{p.unit}]" if p.unit not in ("-", "") and f"[{p.unit}]" not in p.help else ""
     extra = ""
     if p.choices and not all(c in p.help for c in p.choices):
@@ -92,7 +92,7 @@ def _add_parameter(parser, p):
 
 
 def _add_evaluate_parsers(sub):
-    from .mechanisms import registry
+    from mechopt.mechanisms import registry
 
     ev = sub.add_parser("evaluate", help="evaluate one design (every registered mechanism)",
                         description="Evaluate one design of a registered mechanism. Lengths [L] are in "
@@ -132,13 +132,13 @@ def _print_result(res: dict, title: str, as_json: bool):
 
 
 def _cmd_reproduce(args):
-    from .reproduce import reproduce
+    from mechopt.workflows.reproduce import reproduce
 
     def log(msg):
         print(msg, file=sys.stderr, flush=True)
 
-    from .published import counts
-    from .reproduce import counts_line
+    from mechopt.core.published import counts
+    from mechopt.workflows.reproduce import counts_line
 
     table = reproduce(args.paper, out=args.out, quick=args.quick, force=args.force, log=log,
                       progress=True)
@@ -149,7 +149,7 @@ def _cmd_reproduce(args):
 def _cmd_report(args):
     from pathlib import Path
 
-    from .report import write_report
+    from mechopt.workflows.report import write_report
 
     path = write_report(args.results, out=args.html)
     print(f"report: {Path(path).resolve()}")
@@ -157,7 +157,7 @@ def _cmd_report(args):
 
 
 def _cmd_problems(args):
-    from .problems import available
+    from mechopt.problems import available
 
     rows = available()
     w = max(len(n) for n, _ in rows)
@@ -167,14 +167,14 @@ def _cmd_problems(args):
 
 
 def _client(args):
-    from .parallel import connect
+    from mechopt.run.parallel import connect
 
     return connect(args.dask) if args.dask else None
 
 
 def _cmd_optimize(args):
-    from .problems import get
-    from .runner import infeasible_line, optimize, resume
+    from mechopt.problems import get
+    from mechopt.run.runner import infeasible_line, optimize, resume
 
     if args.resume is not None:
         args.out = args.resume
@@ -210,8 +210,8 @@ def _cmd_optimize(args):
 
 
 def _cmd_sweep(args):
-    from .problems import get
-    from .runner import infeasible_line, parse_weights, sweep
+    from mechopt.problems import get
+    from mechopt.run.runner import infeasible_line, parse_weights, sweep
 
     problem = get(args.problem, **_problem_options(args))
     weights = parse_weights(args.weights)
@@ -237,8 +237,9 @@ def _cmd_design(args):
     """``mechopt design MECHANISM --task ... --out DIR``: size a mechanism for a task."""
     import math
 
-    from . import design as _d
-    from . import validation as _v
+    from mechopt.analysis import task as _task
+    from mechopt.workflows.design import design
+    from mechopt.core import validation as _v
 
     def pair_list(text, what, n_allowed):
         vals = [_v.finite_number(what, v) for v in str(text).split(",")]
@@ -247,7 +248,7 @@ def _cmd_design(args):
                              f"got {text!r}")
         return vals
 
-    task = _d.parse_task(args.task, unit=args.unit)
+    task = _task.parse_task(args.task, unit=args.unit)
     jl = None
     if args.joint_limits is not None:
         vals = [math.radians(v) for v in pair_list(args.joint_limits, "--joint-limits (deg)", (2, 4))]
@@ -256,14 +257,14 @@ def _cmd_design(args):
     if args.link_angle is not None:
         la = tuple(math.radians(v) for v in pair_list(args.link_angle, "--link-angle (deg)", (2,)))
     shape = pair_list(args.shape, "--shape", (1, 2, 3)) if args.shape is not None else None
-    req = _d.Requirements(min_lci=args.min_lci, joint_limits=jl, link_angle=la, max_stroke=args.max_stroke,
+    req = _task.Requirements(min_lci=args.min_lci, joint_limits=jl, link_angle=la, max_stroke=args.max_stroke,
                           min_speed=args.min_speed, min_force=args.min_force,
                           actuator_speed=args.actuator_speed, actuator_torque=args.actuator_torque,
                           payload=args.payload)
     objectives = tuple(o.strip() for o in args.objectives.split(",") if o.strip())
     client = _client(args)
     try:
-        res = _d.design(args.mechanism, task, req, objectives, mode=args.mode, place=args.place,
+        res = design(args.mechanism, task, req, objectives, mode=args.mode, place=args.place,
                         min_length=args.min_length, max_length=args.max_length, shape=shape,
                         algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
                         n_jobs=args.n_jobs, client=client, out=args.out, progress=True, pick=args.pick,
@@ -354,9 +355,9 @@ def _remove_if_we_made_it_empty(out_before):
 
 
 def _cmd_atlas_five_bar(args):
-    from .atlas import run_atlas
+    from mechopt.run.atlas import run_atlas
 
-    from .atlas import DEFAULT_INDICES
+    from mechopt.run.atlas import DEFAULT_INDICES
 
     run_atlas(args.out, step=args.step, indices=args.index or DEFAULT_INDICES, quadrature=args.quadrature,
               mode=args.mode, n_jobs=2 if args.n_jobs is None else args.n_jobs, dask=args.dask,
@@ -367,7 +368,7 @@ def _cmd_atlas_five_bar(args):
 
 
 def _add_atlas_parsers(subparsers):
-    """``mechopt atlas five-bar`` (:func:`mechopt.atlas.run_atlas`)."""
+    """``mechopt atlas five-bar`` (:func:`mechopt.run.atlas.run_atlas`)."""
     # the atlas module (and numba with it) is imported by the command only: every other
     # command starts without it
     at = subparsers.add_parser("atlas", help="performance atlases over a whole design space")
@@ -520,10 +521,10 @@ def _resume_hint(out) -> str:
 
 
 def _run_locked(args, out):
-    """Run the command holding its output folder's lock (mechopt.io.out_lock)."""
+    """Run the command holding its output folder's lock (mechopt.run.io.out_lock)."""
     if out is None:
         return args.func(args)
-    from .io import out_lock
+    from mechopt.run.io import out_lock
 
     with out_lock(out):
         return args.func(args)
@@ -552,14 +553,14 @@ def main(argv=None) -> int:
         print(f"mechopt: error: {msg}", file=sys.stderr)
         return EXIT_USAGE
     except (KeyboardInterrupt, _Terminated) as exc:
-        from .parallel import stop_workers
+        from mechopt.run.parallel import stop_workers
 
         stop_workers()
         _remove_if_we_made_it_empty(out_before)
         print(f"mechopt: interrupted{_resume_hint(out)}", file=sys.stderr)
         return EXIT_SIGINT if isinstance(exc, KeyboardInterrupt) else EXIT_SIGTERM
     except OSError as exc:  # the disk, not the input: no space, quota, permission, name too long
-        from .parallel import stop_workers
+        from mechopt.run.parallel import stop_workers
 
         stop_workers()
         _remove_if_we_made_it_empty(out_before)

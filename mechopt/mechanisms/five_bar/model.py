@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import fast_lci as _fast_lci
-from .. import validation as _v
-from .base import Parameter, PlanarMechanism, as_points
+from mechopt.mechanisms.five_bar import lci as _fast_lci
+from mechopt.core import validation as _v
+from mechopt.core.protocol import Parameter, PlanarMechanism, as_points
 
 __all__ = ["FiveBar", "MODES", "ASSEMBLY_MODES"]
 
@@ -233,7 +233,7 @@ class FiveBar(PlanarMechanism):
     def lci(self, x, y):
         """Local conditioning index ``1/kappa_J`` in [0, 1]; 0 where unreachable or singular.
 
-        Fused fast path (:func:`mechopt.fast_lci.five_bar_lci`: elbows by circle
+        Fused fast path (:func:`mechopt.mechanisms.five_bar.lci.five_bar_lci`: elbows by circle
         intersection and the closed-form 2x2 LCI in one pass, numba-compiled when
         numba is importable). Same values as the generic
         ``indices.lci(self.jacobian(x, y))`` to rounding (tested to 1e-12).

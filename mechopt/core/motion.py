@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from . import validation as _v
+from mechopt.core import validation as _v
 
 __all__ = ["trapezoidal_profile", "wu2008_trajectory"]
 
@@ -68,7 +68,7 @@ def trapezoidal_profile(p0, p1, v_max, a_max, t):
 def wu2008_trajectory(n: int = 651):
     """The motion of Wu Table 3 (``(-0.25, 0.5) -> (0.25, 0.5)`` m, 1 m/s, 6.67 m/s^2) at
     ``n`` equally spaced times over ``[0, Tf]``; ``T0 = 0.150 s``, ``Tf = 0.650 s``."""
-    from .data import published_values
+    from mechopt.data import published_values
 
     pub = published_values("wu2008")
     val = {k: pub[("table3", k)][0] for k in ("x0", "y0", "x1", "y1", "v_max", "a_s")}

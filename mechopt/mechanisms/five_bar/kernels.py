@@ -1,6 +1,6 @@
 """Batch kernels for the symmetric five-bar: local indices, disk means and a fast MIC.
 
-They carry the performance atlas (:mod:`mechopt.atlas`, Liu 2006 Fig. 2-8): tens
+They carry the performance atlas (:mod:`mechopt.run.atlas`, Liu 2006 Fig. 2-8): tens
 of thousands of designs, each needing its MIC and about 10^4 local evaluations.
 
 Every kernel exists twice, with the same formulas in the same order:
@@ -11,9 +11,9 @@ Every kernel exists twice, with the same formulas in the same order:
 
 ``tests/test_atlas.py`` checks that both paths agree (local indices to 1e-12,
 MIC and disk means to rounding) and that the fast MIC and disk means agree with
-the reference :func:`mechopt.workspace.mic` + :func:`mechopt.performance.global_indices`.
+the reference :func:`mechopt.analysis.workspace.mic` + :func:`mechopt.analysis.performance.global_indices`.
 
-Geometry and conventions are those of :mod:`mechopt.mechanisms.five_bar`
+Geometry and conventions are those of :mod:`mechopt.mechanisms.five_bar.model`
 (DESIGN.md): ``A1 = (-r3, 0)``, ``A2 = (r3, 0)``, crank ``r1``, distal link ``r2``,
 working-mode signs ``s1, s2`` (``+1`` for ``"+"``); elbows by circle intersection
 (no trigonometry); ``J = B^-1 A`` with ``theta_dot = J p_dot``. The kernels work
@@ -52,7 +52,7 @@ The radius is maximised over ``yc`` in the serial-feasible interval: 128 coarse
 centres, then for the two best local maxima the locus is re-sampled 16x finer
 around the samples nearest to nine centres of the bracketing interval, and a
 golden-section search on that dense cloud gives the centre. Against
-:func:`mechopt.workspace.mic` (root finding, ~1e-7) the radius agrees to a few
+:func:`mechopt.analysis.workspace.mic` (root finding, ~1e-7) the radius agrees to a few
 1e-6 (relative) for mode ``"+-"``; where they differ by more, the reference
 missed a better centre or a small type-II lobe (see ``tests/test_atlas.py``).
 
@@ -60,10 +60,10 @@ Disk means and the MCI (:func:`disk_stats_batch`)
 -------------------------------------------------
 GCI is the mean LCI over the MIC disk, GVI/GPI/GSI the means of the extremes
 over the concentric half-radius disk (Liu 2006 eq. 4, 11, 14, 19), with the
-nodes and weights of :func:`mechopt.quadrature.disk_rule`. The MCI
+nodes and weights of :func:`mechopt.core.quadrature.disk_rule`. The MCI
 (:func:`_mci_nb`) works on the isotropy residual ``r = (G11 - G22, 2 G12) / tr G``
 of ``G = J^T J`` (``r = 0`` exactly where ``LCI = 1``; ``|r|^2`` is smooth where
-LCI has a cone apex), as :func:`mechopt.performance.max_lci`:
+LCI has a cone apex), as :func:`mechopt.analysis.performance.max_lci`:
 
 1. isotropic points. For the mirror-symmetric modes (``"+-"``, ``"-+"``) ``r_2 =
    0`` exactly on the y axis, so an isotropic point there is a sign change of
@@ -125,7 +125,7 @@ _MCI_STARTS = 3
 _DIRS = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0],
                   [1.0, 1.0], [1.0, -1.0], [-1.0, 1.0], [-1.0, -1.0]])
 _GOLD = (math.sqrt(5.0) - 1.0) / 2.0
-#: isotropy search of the MCI (as mechopt.performance.max_lci): ``g = |r|^2`` below
+#: isotropy search of the MCI (as mechopt.analysis.performance.max_lci): ``g = |r|^2`` below
 #: which a point counts as isotropic, most Newton iterations, the polar grid of
 #: its starts (a quarter of max_lci's 64 x 128 grid in each direction)
 _G_ISO = 1e-26
@@ -340,7 +340,7 @@ def lci_points(r1, r2, r3, x, y, mode="+-", compiled=None):
 
 def local_points(r1, r2, r3, x, y, mode="+-", compiled=None):
     """``(7, n)`` array of ``lci, v_max, v_min, tau_max, tau_min, d_max, d_min``
-    (:data:`mechopt.indices.LOCAL_INDEX_NAMES`, Liu 2006 eq. 3, 10, 13, 18) at the
+    (:data:`mechopt.core.indices.LOCAL_INDEX_NAMES`, Liu 2006 eq. 3, 10, 13, 18) at the
     points; the extremes are NaN where a point is unreachable."""
     s1, s2 = _signs(mode)
     r1, r2, r3, L = _design(r1, r2, r3)
@@ -1016,7 +1016,7 @@ def _newton_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, which, n_iter):
 @_njit
 def _tr_step_nb(gx, gy, hxx, hxy, hyy, delta):
     """Minimiser of the model ``grad.d + d.H.d/2`` over ``|d| <= delta`` (the exact
-    2x2 trust-region subproblem of :func:`mechopt.performance._trust_region_step`):
+    2x2 trust-region subproblem of :func:`mechopt.analysis.performance._trust_region_step`):
     ``(dx, dy, predicted decrease)``."""
     disc = math.hypot(0.5 * (hxx - hyy), hxy)
     l1 = 0.5 * (hxx + hyy) - disc  # smaller eigenvalue
@@ -1064,7 +1064,7 @@ def _tr_step_nb(gx, gy, hxx, hxy, hyy, delta):
 @_njit
 def _tr_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, delta, n_iter):
     """Trust-region Newton minimising ``g = |r|^2`` (maximising LCI) from ``(px,
-    py)``, as :func:`mechopt.performance._trust_region`: gradient and Hessian from
+    py)``, as :func:`mechopt.analysis.performance._trust_region`: gradient and Hessian from
     central differences of ``r`` (6-point stencil), trial points projected into
     the disk, a step kept only if it lowers ``g``. Returns the LCI at the end."""
     h = max(1e-5 * R, 1e-12 * (abs(cy) + R))
@@ -1157,7 +1157,7 @@ def _rim_nb(r1sq, half_d, r3, s1, s2, cy, R, n_rim):
 @_njit_inline
 def _iso_r_nb(r1sq, half_d, r3, s1, s2, x, y):
     """Isotropy residual ``r = (G11 - G22, 2 G12) / tr G`` of ``G = M^T M`` (that of
-    ``J^T J``: r is scale-free), as :func:`mechopt.performance._iso_residual`:
+    ``J^T J``: r is scale-free), as :func:`mechopt.analysis.performance._iso_residual`:
     ``r = 0`` exactly where LCI = 1, ``g = |r|^2`` smooth and decreasing in LCI.
     NaN where unreachable or M = 0."""
     a, b, c, d, kk, ok = _mrows_nb(r1sq, half_d, r3, s1, s2, x, y)
@@ -1228,7 +1228,7 @@ def _axis_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, n_ax, n_iter):
 
 @_njit
 def _iso_newton_nb(r1sq, half_d, r3, s1, s2, cy, R, sx, sy, n_iter, n_min, wk):
-    """Isotropic points as :func:`mechopt.performance._newton_isotropy`: plain
+    """Isotropic points as :func:`mechopt.analysis.performance._newton_isotropy`: plain
     Newton on ``r = 0`` (central differences, no descent test: it crosses the long
     curved valleys of near-isotropy that a monotone method does not) from the
     starts ``R (sx, sy)`` at once, steps capped at R/2, iterates projected into
@@ -1320,7 +1320,7 @@ def _mci_nb(r1sq, half_d, r3, s1, s2, cy, R, ux, uy, lv, step0, n_iter, dirs, n_
        modes a root of the isotropy residual on the y axis
        (:func:`_axis_iso_nb`), else (all modes) plain Newton on the residual
        from the starts ``R (sx, sy)`` (:func:`_iso_newton_nb`, the search of
-       :func:`mechopt.performance.max_lci`); the first found ends the search;
+       :func:`mechopt.analysis.performance.max_lci`); the first found ends the search;
     2. otherwise, from each of ``n_start`` nodes (the best one, then the best one
        farther than R/3 from the nodes already used) a compass search, then
        damped Newton iterations on both isotropy conditions (J a scaled rotation
@@ -1867,12 +1867,12 @@ def _disk_stats_np(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, n_rim, n
 def _iso_starts(s1, s2):
     """Unit-disk starts of the isotropy Newton (:func:`_iso_newton_nb`) and the
     count of starts above which the worse half is dropped: the nodes of the polar
-    ``_ISO_N_R x _ISO_N_THETA`` grid, as in :func:`mechopt.performance.max_lci`. For
+    ``_ISO_N_R x _ISO_N_THETA`` grid, as in :func:`mechopt.analysis.performance.max_lci`. For
     the mirror-symmetric modes only the nodes with ``x > 0`` (none is on the axis):
     there ``r(-x, y) = (r_1, -r_2)(x, y)`` holds exactly, so the mirrored start runs
     the mirrored iteration with the same ``g``, and the half grid does what the
     whole grid does (with 4 instead of 8 starts as the floor of the halving)."""
-    from mechopt.quadrature import disk_rule
+    from mechopt.core.quadrature import disk_rule
 
     sx, sy, _ = disk_rule(1.0, "polar", n_r=_ISO_N_R, n_theta=_ISO_N_THETA)
     if s1 != s2:
@@ -1886,13 +1886,13 @@ def disk_stats_batch(r1, r2, r3, center_y, radius, mode="+-", quadrature="area",
     """``(n, 8)`` array of :data:`DISK_STAT_NAMES` for designs with a known MIC.
 
     GCI is the mean LCI over the MIC disk and MCI its maximum (the search of
-    :func:`_mci_nb`, which follows :func:`mechopt.performance.max_lci`); the
+    :func:`_mci_nb`, which follows :func:`mechopt.analysis.performance.max_lci`); the
     velocity, payload and stiffness means are over the concentric disk of half
     radius (Liu 2006 eq. 4, 11, 14, 19). The rule is
-    :func:`mechopt.quadrature.disk_rule` (``area`` or ``polar``). NaN rows for a
+    :func:`mechopt.core.quadrature.disk_rule` (``area`` or ``polar``). NaN rows for a
     radius <= 0 (no singularity-free disk).
     """
-    from mechopt.quadrature import DEFAULT_N_R, DEFAULT_N_THETA, disk_rule
+    from mechopt.core.quadrature import DEFAULT_N_R, DEFAULT_N_THETA, disk_rule
 
     s1, s2 = _signs(mode)
     n_r = DEFAULT_N_R if n_r is None else int(n_r)

@@ -31,12 +31,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import validation as _v
-from . import workspace as _ws
-from .mechanisms.base import Parameter
-from .performance import global_indices, region_indices
-from .quadrature import MAX_NODES, QUADRATURES
-from .workspace import gcw, joint_ranges, largest_square
+from mechopt.core import validation as _v
+from mechopt.analysis import workspace as _ws
+from mechopt.core.protocol import Parameter
+from mechopt.analysis.performance import global_indices, region_indices
+from mechopt.core.quadrature import MAX_NODES, QUADRATURES
+from mechopt.analysis.workspace import gcw, joint_ranges, largest_square
 
 __all__ = ["DISK_KEYS", "DISK_OPTIONS", "disk_powers", "Evaluation", "evaluate",
            "disk_evaluation", "unit_of"]
@@ -175,8 +175,8 @@ def disk_evaluation(fb, quadrature: str = "area", gamma: float = 0.5, step=None)
         names the smallest step that does).
 
     Raises ValueError (one line naming the design's inputs) when it has no MIC or a
-    usable workspace too thin for the raster (see :func:`mechopt.workspace.no_mic_message`
-    and :func:`mechopt.workspace.unusable_message`).
+    usable workspace too thin for the raster (see :func:`mechopt.analysis.workspace.no_mic_message`
+    and :func:`mechopt.analysis.workspace.unusable_message`).
 
     Returns a dict with :data:`DISK_KEYS`; ranges are ``[lo, hi]`` in degrees
     over the GCW. An empty GCW (no usable point with LCI >= gamma, e.g. Liu's

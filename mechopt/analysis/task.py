@@ -2,8 +2,8 @@
 
 A designer starts from a task ("cover this 100 x 60 mm rectangle 180 mm in front
 of the base with LCI >= 0.4 everywhere, links at most 250 mm"), not from a
-non-dimensional atlas. This module states such a problem and solves it on the
-shared evaluators and the seeded runner:
+non-dimensional atlas. This module states such a problem on the shared evaluators;
+:func:`mechopt.workflows.design.design` solves it with the seeded runner:
 
 * :class:`Task` - the region to cover (:meth:`Task.rect`, :meth:`Task.circle`,
   :meth:`Task.polygon`, :meth:`Task.points`), in the user's length unit, in the
@@ -11,10 +11,10 @@ shared evaluators and the seeded runner:
   ``"fixed"``, ``"free-y"`` (moved along y) or ``"free"`` (moved in x and y).
 * :class:`Requirements` - inequality constraints that must hold over the WHOLE task.
 * objectives (:data:`OBJECTIVES`) - any non-empty subset.
-* :func:`design` - builds :class:`mechopt.problems.design.DesignProblem`, runs it
-  through :func:`mechopt.runner.optimize`, certifies every front design with a finer
-  sampling (:func:`certify`) and returns a :class:`DesignResult` (front as a
-  DataFrame, :meth:`DesignResult.pick`, :meth:`DesignResult.knee`).
+* :func:`mechopt.workflows.design.design` - builds :class:`mechopt.problems.design.DesignProblem`, runs it
+  through :func:`mechopt.run.runner.optimize`, certifies every front design with a finer
+  sampling (:func:`certify`) and returns a :class:`~mechopt.workflows.design.DesignResult` (front as a
+  DataFrame, :meth:`~mechopt.workflows.design.DesignResult.pick`, ``knee``).
 
 Mechanisms (:data:`MECHANISMS`) and their design variables, in the task's unit:
 
@@ -100,21 +100,17 @@ task's unit per second (prismatic); ``actuator_torque`` in N m (revolute) or N;
 """
 from __future__ import annotations
 
-import json
 import math
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
-from . import indices as _ix
-from . import validation as _v
-from .numerics import golden_section_max
+from mechopt.core import indices as _ix
+from mechopt.core import validation as _v
 
 __all__ = ["Task", "Requirements", "OBJECTIVES", "MECHANISMS", "PLACEMENTS", "DesignEvaluator",
-           "design", "DesignResult", "NoFeasibleDesign", "certify", "parse_task", "knee_index",
-           "plot_design"]
+           "NoFeasibleDesign", "Sampling", "certify", "parse_task", "knee_index"]
 
 #: length units a task may be given in, and their value in metres
 UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
@@ -493,7 +489,7 @@ class Requirements:
     joint_limits : tuple, optional
         ``((lo1, hi1), (lo2, hi2))`` (or one ``(lo, hi)`` for both) crank angles
         [rad] of the five-bar, as :meth:`FiveBar.ik
-        <mechopt.mechanisms.five_bar.FiveBar.ik>` returns them (unwrapped).
+        <mechopt.mechanisms.five_bar.model.FiveBar.ik>` returns them (unwrapped).
     link_angle : tuple, optional
         ``(lo, hi)`` [rad]: ``lo <= |theta_i| <= hi`` for the angle of each link from
         the slider direction (biglide, gantry; Wu 2008 eq. 1, 13).
@@ -652,7 +648,7 @@ class _FiveBarSpec(_Spec):
     angular = True
 
     def __init__(self):
-        from .mechanisms.five_bar import MODES
+        from mechopt.mechanisms.five_bar.model import MODES
 
         self.modes, self.default_mode = MODES, "+-"
 
@@ -660,7 +656,7 @@ class _FiveBarSpec(_Spec):
         return [lmin, lmin, 0.0]
 
     def build(self, v, mode, _samples=None, **_):
-        from .mechanisms.five_bar import FiveBar
+        from mechopt.mechanisms.five_bar.model import FiveBar
 
         return FiveBar(v["r1"], v["r2"], v["r3"], mode)
 
@@ -695,7 +691,7 @@ class _BiglideSpec(_SliderSpec):
     lengths = ("l1", "l2")
 
     def __init__(self):
-        from .mechanisms.biglide import MODES
+        from mechopt.mechanisms.biglide import MODES
 
         self.modes, self.default_mode = MODES, "--"
 
@@ -703,7 +699,7 @@ class _BiglideSpec(_SliderSpec):
         return (v["l1"] - v["l2"]) / lmax + 1e-9
 
     def raw(self, v, mode):
-        from .mechanisms.biglide import Biglide
+        from mechopt.mechanisms.biglide import Biglide
 
         return Biglide(v["l1"], v["l2"], -1.0, 1.0, mode=mode)
 
@@ -711,7 +707,7 @@ class _BiglideSpec(_SliderSpec):
         return self.raw(v, mode).slider_positions(x, y)
 
     def build(self, v, mode, strokes=None, pad=0.0):
-        from .mechanisms.biglide import Biglide
+        from mechopt.mechanisms.biglide import Biglide
 
         (a1, b1), (a2, b2) = strokes
         return Biglide(v["l1"], v["l2"], a1 - pad, b1 + pad, a2 - pad, b2 + pad, mode=mode)
@@ -745,7 +741,7 @@ class _GantrySpec(_SliderSpec):
     lengths = ("d1", "l")
 
     def __init__(self):
-        from .mechanisms.gantry import MODES
+        from mechopt.mechanisms.gantry import MODES
 
         self.modes, self.default_mode = MODES, "--"
 
@@ -762,7 +758,7 @@ class _GantrySpec(_SliderSpec):
         return y + s1 * w1, y + s2 * w2
 
     def build(self, v, mode, strokes=None, pad=0.0):
-        from .mechanisms.gantry import Gantry
+        from mechopt.mechanisms.gantry import Gantry
 
         (a1, b1), (a2, b2) = strokes
         lo, hi = min(a1, a2) - pad, max(b1, b2) + pad
@@ -807,7 +803,7 @@ class _BipodSpec(_SliderSpec):
         return np.hypot(x + 0.5 * b, y), np.hypot(x - 0.5 * b, y)
 
     def build(self, v, mode, strokes=None, pad=0.0):
-        from .mechanisms.bipod import Bipod
+        from mechopt.mechanisms.bipod import Bipod
 
         (a1, b1), (a2, b2) = strokes
         lo = lambda a: max(a - pad, 1e-9 * v["b"])  # noqa: E731
@@ -864,7 +860,7 @@ class DesignEvaluator:
                  place="fixed", min_length=None, max_length=None, shape=None):
         self.spec = get_spec(mechanism)
         if not isinstance(task, Task):
-            raise ValueError(f"task must be a mechopt.design.Task, got {type(task).__name__}")
+            raise ValueError(f"task must be a mechopt.workflows.design.Task, got {type(task).__name__}")
         self.task = task
         self.unit = task.unit
         self.req = (requirements or Requirements()).checked(self.spec)
@@ -1404,809 +1400,3 @@ def _parse_weights(weights, objectives):
     if not out or not any(out.values()):
         raise ValueError("--pick needs at least one positive weight")
     return out
-
-
-@dataclass
-class DesignResult:
-    """The outcome of :func:`design`: ``front`` (one row per certified Pareto design),
-    ``info`` (run.json), ``evaluator`` (re-evaluates any design), ``run`` (the
-    runner's :class:`~mechopt.runner.RunResult`)."""
-
-    front: pd.DataFrame
-    info: dict
-    evaluator: DesignEvaluator
-    run: object = None
-    chosen_index: int = 0
-
-    def _F(self):
-        ev = self.evaluator
-        return np.column_stack([OBJECTIVES[o][0] * self.front[o].to_numpy(float) for o in ev.objectives])
-
-    def knee(self) -> int:
-        return knee_index(self._F())
-
-    def pick(self, weights=None) -> dict:
-        """The chosen design as a dict (variables, objectives, margins, mechanism):
-        the knee without ``weights``; otherwise the design minimising the weighted
-        sum of the normalised objectives (``{"size": 1, "min-lci": 2}`` or
-        ``"size=1,min-lci=2"``)."""
-        if weights is None:
-            i = self.knee()
-        else:
-            w = _parse_weights(weights, self.evaluator.objectives)
-            F = self._F()
-            lo, hi = F.min(0), F.max(0)
-            Z = (F - lo) / np.where(hi > lo, hi - lo, 1.0)
-            wv = np.array([w.get(o, 0.0) for o in self.evaluator.objectives])
-            i = int(np.argmin(Z @ wv))
-        return self.design_at(i)
-
-    def design_at(self, i) -> dict:
-        row = self.front.iloc[int(i)].to_dict()
-        v = {k: row[k] for k in (*self.evaluator.spec.lengths, "mode", "task_x", "task_y")}
-        if "D" in row:
-            v["D"] = row["D"]
-        res = certify(self.evaluator, v)
-        return _design_record(self.evaluator, v, res, int(i))
-
-    def mechanism(self, weights=None):
-        return self.pick(weights)["mechanism"]
-
-
-def _design_record(ev, v, res, index) -> dict:
-    rec = {"index": index, "mechanism_name": ev.spec.name, "unit": ev.unit,
-           "variables": {k: v[k] for k in (*ev.spec.lengths, "mode")},
-           "task_placement": {"task_x": v["task_x"], "task_y": v["task_y"]},
-           "objectives": dict(zip(ev.objectives, ev.objective_values(res))),
-           "objective_units": ev.units(),
-           "margins": dict(res["margin"]), "constraints_g": dict(res["g"]),
-           "feasible": res.get("feasible", all(g <= 0 for g in res["g"].values())),
-           "values": dict(res["values"]), "tolerance": res.get("tolerance", {}),
-           "mechanism": res["mechanism"], "repr": repr(res["mechanism"])}
-    if "D" in v:
-        rec["variables"]["D"] = v["D"]
-    d = res["derived"]
-    if "joint_ranges" in d:
-        rec["joint_ranges_deg"] = [[math.degrees(a), math.degrees(b)] for a, b in d["joint_ranges"]]
-    if "strokes" in d:
-        rec["strokes"] = [list(s) for s in d["strokes"]]
-        rec["stroke"] = d["stroke"]
-    for leg in (1, 2):
-        if f"link_angle{leg}" in d:
-            rec[f"link{leg}_angle_deg"] = [math.degrees(a) for a in d[f"link_angle{leg}"]]
-    return rec
-
-
-def _json_record(rec) -> dict:
-    out = {k: val for k, val in rec.items() if k != "mechanism"}
-
-    def clean(x):
-        if isinstance(x, dict):
-            return {k: clean(val) for k, val in x.items()}
-        if isinstance(x, (list, tuple)):
-            return [clean(val) for val in x]
-        if isinstance(x, (float, np.floating)):
-            return float(x) if math.isfinite(x) else None
-        if isinstance(x, (np.integer,)):
-            return int(x)
-        if isinstance(x, np.bool_):
-            return bool(x)
-        return x
-
-    return clean(out)
-
-
-# ------------------------------------------------------------------ polishing
-# The genetic search ends near, not at, the corner where the requirements are active.
-# The polish walks into it from several front designs (:func:`_polish_front`). With a
-# free placement the feasible set is thin along the placement: for given lengths the
-# task fits in a short window of heights, which closes at the smallest design. A
-# search over lengths and placement together must stay inside that wedge and stalls
-# on the face it started from; so for an objective that the placement does not change
-# (the size) the placement is solved inside each evaluation instead
-# (:func:`_polish_lengths`): the lengths are searched, each candidate gets the
-# placement that maximises its smallest margin (:func:`_peak`), and a candidate is
-# feasible when some placement is.
-
-#: placement variables (free task placement), searched apart from the lengths
-_PLACEMENT_VARS = ("task_x_rel", "task_y_rel")
-
-
-def _rows_eval(problem, X, j, sampling):
-    """Objective ``j`` (minimisation form) and the constraints ``G`` of the rows ``X``
-    evaluated with ``sampling`` (the polish uses the certification's, so what it accepts
-    is feasible by :func:`certify`, not only by the search's coarser sampling)."""
-    ev = problem.evaluator
-    sense = OBJECTIVES[ev.objectives[j]][0]
-    X = np.atleast_2d(np.asarray(X, float))
-    f = np.empty(len(X))
-    G = np.empty((len(X), len(problem.constr_names)))
-    for i, x in enumerate(X):
-        res = ev.evaluate(ev.decode(x), sampling)
-        f[i] = sense * ev.objective_values(res)[j]
-        G[i] = [res["g"][n] for n in problem.constr_names]
-    f = np.where(np.isfinite(f), f, 1e300)
-    G = np.where(np.isfinite(G), G, 1e3)
-    return f, G
-
-
-def _phi(G):
-    """Smallest normalised margin of each row (``>= 0``: feasible)."""
-    G = np.atleast_2d(G)
-    return -G.max(axis=1) if G.shape[1] else np.zeros(len(G))
-
-
-def _best_row(f, G):
-    """Index of the best row: feasible first; among feasible rows the lowest ``f``, ties
-    (equal to 1e-12, e.g. the size, which no placement changes) broken by the largest
-    smallest margin; without a feasible row the largest smallest margin."""
-    phi = _phi(G)
-    ok = phi >= 0
-    if not ok.any():
-        return int(np.argmax(phi))
-    fb = f[ok].min()
-    tie = ok & (f <= fb + 1e-12 * max(abs(fb), 1.0))
-    return int(np.flatnonzero(tie)[np.argmax(phi[tie])])
-
-
-class _Evals:
-    """``evals(X) -> (f, G)``: :func:`_rows_eval` of one objective and sampling,
-    counting the rows evaluated (``n``)."""
-
-    def __init__(self, problem, j, sampling):
-        self.problem, self.j, self.sampling, self.n = problem, j, sampling, 0
-
-    def __call__(self, X):
-        X = np.atleast_2d(np.asarray(X, float))
-        self.n += len(X)
-        return _rows_eval(self.problem, X, self.j, self.sampling)
-
-
-def _placement_index(problem):
-    return [i for i, name in enumerate(problem.var_names) if name in _PLACEMENT_VARS]
-
-
-def _placement_free(problem, j) -> bool:
-    """Objective ``j`` does not depend on the task placement (the size, for the
-    mechanisms whose size is their link lengths)."""
-    ev = problem.evaluator
-    return ev.objectives[j] == "size" and ev.spec.size_from_lengths
-
-
-def _place(problem, x, j, sampling, n=33, levels=3):
-    """``x`` with its placement variables re-chosen for its lengths: a deterministic
-    scan of the placement range (``n`` points; ``n // 3 + 1`` per variable for
-    ``free``), then ``levels`` zooms of 5 points per variable, each halving the step,
-    keeping the best row by :func:`_best_row` (``x`` itself is a candidate). For an
-    objective the placement does not change this centres the task in the window where
-    the design covers it (largest smallest margin); for the others it is the design's
-    best feasible placement for the objective."""
-    idx = _placement_index(problem)
-    x = np.asarray(x, float)
-    if not idx:
-        return x
-    lo, hi = problem.xl[idx], problem.xu[idx]
-    m = n if len(idx) == 1 else n // 3 + 1
-    axes = [np.linspace(a, b, m) for a, b in zip(lo, hi)]
-    P = np.array(np.meshgrid(*axes, indexing="ij")).reshape(len(idx), -1).T
-    X = np.repeat(x[None, :], len(P) + 1, axis=0)
-    X[1:, idx] = P
-    f, G = _rows_eval(problem, X, j, sampling)
-    k = _best_row(f, G)
-    best, fbest, Gbest = X[k].copy(), f[k], G[k]
-    h = (hi - lo) / (m - 1)
-    off = np.linspace(-1.0, 1.0, 5)
-    for _ in range(levels):
-        O = np.array(np.meshgrid(*[off] * len(idx), indexing="ij")).reshape(len(idx), -1).T
-        O = O[np.any(O != 0, axis=1)]
-        C = np.repeat(best[None, :], len(O), axis=0)
-        C[:, idx] = np.clip(best[idx] + O * h, lo, hi)
-        fc, Gc = _rows_eval(problem, C, j, sampling)
-        k = _best_row(np.r_[fbest, fc], np.vstack([Gbest, Gc]))
-        if k:
-            best, fbest, Gbest = C[k - 1].copy(), fc[k - 1], Gc[k - 1]
-        h = 0.5 * h
-    return best
-
-
-def _concave_peak_bound(ts, ps, plateau=-0.5):
-    """Upper bound of the peak of a concave function sampled at increasing ``ts``
-    (values ``ps``): in each interval next to the best sample the function lies below
-    the secants of the two samples on its left and of the two on its right, extended.
-    ``inf`` when a side lacks two samples or uses one at or below ``plateau`` (out of
-    reach: ``phi`` is flat there, not concave). Used only to stop a 1-D search early
-    (a wrong bound loses a candidate, never admits an infeasible one)."""
-    n = len(ts)
-    i = int(np.argmax(ps))
-    if i == 0 or i == n - 1:
-        return math.inf
-    bound = float(ps[i])
-    for k in (i - 1, i):  # the peak in [ts[k], ts[k + 1]]
-        a, b, c, d = k - 1, k, k + 1, k + 2
-        if a < 0 or d >= n or min(ps[a], ps[b], ps[c], ps[d]) <= plateau:
-            return math.inf
-        sl = (ps[b] - ps[a]) / (ts[b] - ts[a])
-        sr = (ps[d] - ps[c]) / (ts[d] - ts[c])
-        left = lambda t: ps[b] + sl * (t - ts[b])  # noqa: E731
-        right = lambda t: ps[c] + sr * (t - ts[c])  # noqa: E731
-        cand = [min(left(ts[b]), right(ts[b])), min(left(ts[c]), right(ts[c]))]
-        if sl != sr:
-            t = (ps[c] - ps[b] + sl * ts[b] - sr * ts[c]) / (sl - sr)
-            if ts[b] < t < ts[c]:
-                cand.append(left(t))
-        bound = max(bound, max(cand))
-    return bound
-
-
-def _peak(problem, evals, x, need=False, known=None, h0=0.005, tol=2e-4):
-    """Placement of the lengths of ``x`` that maximises the smallest margin ``phi``,
-    one placement variable at a time (two sweeps for ``free``), from ``x``'s placement.
-
-    Each 1-D search brackets the peak (steps of ``h0`` of the variable's range, doubled
-    while ``phi`` rises) and narrows it by golden section to ``tol``: ``phi`` is the
-    minimum of margins that rise and margins that fall with the placement, so it has
-    one peak in the window. With ``need`` it ends at the first ``phi >= 0`` (the
-    lengths are feasible; that is all a candidate needs) or once the peak is bounded
-    below 0 (by the largest slope seen, doubled, over the bracket, or by the secants of
-    :func:`_concave_peak_bound`). ``known`` is ``(phi, f)`` at ``x``; ``evals`` is an
-    :class:`_Evals`. Returns ``(x, phi, f)`` at the best placement seen."""
-    x = np.array(x, float)
-    idx = _placement_index(problem)
-    if known is None:
-        fk, Gk = evals(x[None, :])
-        known = (float(_phi(Gk)[0]), float(fk[0]))
-    best = (known[0], known[1], x.copy())
-    if not idx or (need and best[0] >= 0):
-        return best[2], best[0], best[1]
-    for i in idx * (1 if len(idx) == 1 else 2):
-        lo, hi = float(problem.xl[i]), float(problem.xu[i])
-        base = best[2]
-        seen = {float(base[i]): best[0]}
-
-        def P(t):
-            nonlocal best
-            t = float(min(max(t, lo), hi))
-            if t not in seen:
-                xx = base.copy()
-                xx[i] = t
-                fz, Gz = evals(xx[None, :])
-                seen[t] = float(_phi(Gz)[0])
-                if seen[t] > best[0]:
-                    best = (seen[t], float(fz[0]), xx)
-            return seen[t]
-
-        def stop(L, R):
-            if need and best[0] >= 0:
-                return True
-            if not need or len(seen) < 3:
-                return False
-            ts = np.array(sorted(seen))
-            ps = np.array([seen[t] for t in ts])
-            slope = float(np.max(np.abs(np.diff(ps) / np.diff(ts))))
-            return best[0] + 2.0 * slope * (R - L) < 0 or _concave_peak_bound(ts, ps) < 0
-
-        h = h0 * (hi - lo)
-        t0 = float(base[i])
-        p0, pa, pb = seen[t0], P(t0 - h), P(t0 + h)
-        if stop(t0 - h, t0 + h):
-            if need and best[0] >= 0:
-                break
-            continue
-        if pa <= p0 and pb <= p0:
-            if pa == pb == p0:
-                continue  # flat here (e.g. out of reach all around): nothing to follow
-            L, R = max(t0 - h, lo), min(t0 + h, hi)
-        else:
-            d = 1.0 if pb > pa else -1.0
-            prev, cur, pc = t0, min(max(t0 + d * h, lo), hi), max(pa, pb)
-            while True:
-                h *= 2.0
-                nxt = min(max(cur + d * h, lo), hi)
-                pn = P(nxt)
-                if pn <= pc or nxt in (lo, hi) or stop(min(prev, nxt), max(prev, nxt)):
-                    if pn > pc:
-                        prev, cur = cur, nxt
-                    break
-                prev, cur, pc = cur, nxt, pn
-            L, R = min(prev, nxt), max(prev, nxt)
-        golden_section_max(P, L, R, tol=tol * (hi - lo), stop=stop)  # P keeps the best seen
-        if need and best[0] >= 0:
-            break
-    return best[2], best[0], best[1]
-
-
-def _polish_lengths(problem, x0, j, sampling, seed=0, iters=100, step_min=1e-4, max_evals=6000):
-    """Direct search over the lengths for the size (an objective the placement does not
-    change, :func:`_placement_free`), the placement solved by :func:`_peak` for each
-    candidate (the comment above :data:`_PLACEMENT_VARS`).
-
-    Extreme barrier (a candidate is accepted when it is better and some placement makes
-    it feasible); polled per step: the last successful direction, the coordinate
-    directions and 2 seeded random ones, in that order, the first success taken; the
-    step (in units of each variable's range) doubled on success up to 0.2, halved on
-    failure, from 0.01 down to ``step_min``. The accepted design is re-centred
-    (:func:`_peak` to the peak). Returns ``(x, f)``; ``x0`` must be feasible."""
-    idx = set(_placement_index(problem))
-    cont = np.array([i for i, n in enumerate(problem.var_names) if n != "mode" and i not in idx], int)
-    span = np.where(problem.xu > problem.xl, problem.xu - problem.xl, 1.0)
-    rng = np.random.default_rng(seed)
-    evals = _Evals(problem, j, sampling)
-    ev = problem.evaluator
-
-    def size_of(xx):  # the objective without an evaluation (it is the size from the lengths)
-        return ev.spec.size_of(ev.decode(xx))
-
-    x, phi, f = _peak(problem, evals, x0)
-    if cont.size == 0 or phi < 0:
-        return x, f
-    n = cont.size
-    step, last = 0.01, None
-    z = (x[cont] - problem.xl[cont]) / span[cont]
-    for _ in range(iters):
-        dirs = np.vstack([np.eye(n), -np.eye(n), rng.normal(size=(2, n))])
-        dirs /= np.linalg.norm(dirs, axis=1, keepdims=True)
-        if last is not None:
-            dirs = np.vstack([last, dirs])
-        found = None
-        for d in dirs:
-            zc = np.clip(z + step * d, 0.0, 1.0)
-            if np.array_equal(zc, z):
-                continue
-            xc = x.copy()
-            xc[cont] = problem.xl[cont] + zc * span[cont]
-            if not size_of(xc) < f - 1e-9 * max(abs(f), 1.0):
-                continue  # no better whatever the placement
-            fc, Gc = evals(xc[None, :])
-            if not fc[0] < f - 1e-12 * max(abs(f), 1.0):
-                continue
-            xc, pc, fcc = _peak(problem, evals, xc, need=True, known=(float(_phi(Gc)[0]), float(fc[0])))
-            if pc >= 0:
-                found = (xc, fcc, zc, d)
-                break
-        if found is not None:
-            x, f, z, last = found
-            x, _, _ = _peak(problem, evals, x)  # centre it: room for the next step
-            step = min(2.0 * step, 0.2)
-        else:
-            last = None
-            step *= 0.5
-            if step < step_min:
-                break
-        if evals.n > max_evals:
-            break
-    return x, f
-
-
-def _polish(problem, x0, j, iters=40, seed=0, sampling=None):
-    """Local improvement of objective ``j`` from the feasible design ``x0``: SLSQP
-    (finite-difference gradients, a quadratic model: it walks along a smooth active
-    constraint), COBYLA (linear models of the constraints: it walks along an active
-    constraint where gradients jump), each from the best feasible design seen so far,
-    then a seeded direct search with extreme barrier (only feasible, better designs are accepted;
-    coordinate and 8 random directions per step, the step doubled on success and
-    halved on failure, from 1 % of each variable's range down to 1e-7). Active
-    constraints make the optimum a corner the genetic search only approaches; this
-    walks into it. Evaluations use ``sampling`` (default the certification's,
-    :meth:`Sampling.fine`); the result is re-checked by :func:`certify` and pulled back
-    toward ``x0`` until it passes. Returns the new X row or None."""
-    sampling = sampling or Sampling.fine()
-    span = np.where(problem.xu > problem.xl, problem.xu - problem.xl, 1.0)
-    ev = problem.evaluator
-    cont = np.array([i for i, n in enumerate(problem.var_names) if n != "mode"])
-    if cont.size == 0:
-        return None
-    rng = np.random.default_rng(seed)
-
-    def full(z):
-        x = np.array(x0, float)
-        x[cont] = problem.xl[cont] + np.clip(z, 0.0, 1.0) * span[cont]
-        return x
-
-    def batch(Z):
-        f, G = _rows_eval(problem, np.array([full(z) for z in Z]), j, sampling)
-        return f, np.all(G <= 0, axis=1)
-
-    z = (np.asarray(x0, float)[cont] - problem.xl[cont]) / span[cont]
-    f, ok = batch([z])
-    if not ok[0]:
-        return None
-    f, f0, z0 = f[0], f[0], z.copy()
-    import warnings
-
-    from scipy.optimize import minimize
-
-    cache = {}
-
-    def one(zz):
-        key = tuple(np.round(np.clip(zz, 0.0, 1.0), 15))
-        if key not in cache:
-            fz, Gz = _rows_eval(problem, full(zz)[None, :], j, sampling)
-            cache[key] = (float(fz[0]), Gz[0])
-        return cache[key]
-
-    def best_seen():
-        feas = [(v[0], k) for k, v in cache.items() if np.all(v[1] <= 0)]
-        return min(feas) if feas else (math.inf, None)
-
-    # SLSQP (finite-difference gradients: where one constraint is active and its level
-    # set runs nearly parallel to the objective's, a direct search sees a cone of
-    # descent too narrow to hit; a quadratic model walks along it), then COBYLA (linear
-    # models of the constraints: walks along an active one where the gradients jump)
-    for method, opts, margin in (("SLSQP", {"eps": 1e-5, "maxiter": 50, "ftol": 1e-10}, 1e-7),
-                                 ("COBYLA", {"rhobeg": 0.01, "maxiter": 200, "tol": 1e-9}, 1e-9)):
-        if method == "SLSQP":
-            cons = [{"type": "ineq", "fun": (lambda zz: -one(zz)[1] - margin)}]
-        else:
-            cons = [{"type": "ineq", "fun": (lambda zz, k=k: -one(zz)[1][k] - margin)}
-                    for k in range(problem.n_ieq_constr)]
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                minimize(lambda zz: one(zz)[0] / max(abs(f0), 1e-300), z, method=method,
-                         constraints=cons, bounds=[(0.0, 1.0)] * len(z), options=opts)
-        except (ValueError, ArithmeticError):
-            pass
-        fb, kb = best_seen()  # the best feasible design either method evaluated
-        if fb < f:
-            z, f = np.array(kb), fb
-    n = cont.size
-    step = 0.01
-    for _ in range(iters):
-        dirs = np.vstack([np.eye(n), -np.eye(n), rng.normal(size=(8, n))])
-        dirs /= np.linalg.norm(dirs, axis=1, keepdims=True)
-        cand = np.clip(z + step * dirs, 0.0, 1.0)
-        fc, okc = batch(cand)
-        fc = np.where(okc, fc, np.inf)
-        k = int(np.argmin(fc))
-        if fc[k] < f - 1e-12 * max(abs(f), 1.0):
-            z, f = cand[k], fc[k]
-            step = min(2.0 * step, 0.2)
-        else:
-            step *= 0.5
-            if step < 1e-7:
-                break
-    if not f < f0:
-        return None
-    for _ in range(40):  # the fine check; pull back toward x0 until it passes
-        x = full(z)
-        if certify(ev, ev.decode(x))["feasible"]:
-            return x
-        z = z0 + 0.5 * (z - z0) if _ % 2 else z0 + 0.9 * (z - z0)
-    return None
-
-
-def _polish_start(item):
-    """One start of :func:`_polish_front` (module level: it runs in workers). For an
-    objective the placement does not change, with a free placement: the placement scan
-    of :func:`_place` (without zoom), then :func:`_polish_lengths`. Otherwise (a fixed
-    placement, or an objective that depends on it) up to ``rounds`` rounds of
-    :func:`_place` and :func:`_polish`, until a round gains less than 0.1 %.
-    Every evaluation uses the certification's sampling. Returns ``(x, f)`` of a
-    certified design better than the start, or None."""
-    problem, x, j, seed, rounds = item
-    fine = Sampling.fine()
-    ev = problem.evaluator
-    x = np.asarray(x, float)
-    f, G = _rows_eval(problem, x[None, :], j, fine)
-    f0 = float(f[0]) if np.all(G <= 0) else math.inf
-    if _placement_free(problem, j) and _placement_index(problem):
-        placed = _place(problem, x, j, fine, levels=0)
-        fp, Gp = _rows_eval(problem, placed[None, :], j, fine)
-        if not np.all(Gp <= 0):
-            return None
-        cur, f_cur = _polish_lengths(problem, placed, j, fine, seed=seed)
-    else:
-        cur, f_cur = x, f0
-        for r in range(rounds):
-            placed = _place(problem, cur, j, fine)
-            fp, Gp = _rows_eval(problem, placed[None, :], j, fine)
-            if not np.all(Gp <= 0):
-                break
-            new = _polish(problem, placed, j, seed=seed + 1000 * r, sampling=fine)
-            new = placed if new is None else new
-            fn = float(_rows_eval(problem, new[None, :], j, fine)[0][0])
-            gain = (f_cur - fn) / max(abs(f_cur), 1e-300) if math.isfinite(f_cur) else math.inf
-            if fn < f_cur:
-                cur, f_cur = new, fn
-            if not gain > 1e-3:
-                break
-    if not f_cur < f0 or not certify(ev, ev.decode(cur))["feasible"]:
-        return None
-    return cur, float(f_cur)
-
-
-def _polish_front(problem, X, objectives=None, n_starts=None, rounds=3, seed=0, n_jobs=1, client=None):
-    """Multi-start polish of each objective ``j`` in ``objectives`` (default all): from
-    the front's best design for ``j`` and ``n_starts - 1`` more front designs, evenly
-    spaced in rank over the better half for ``j`` (the genetic search leaves each on
-    whatever face it reached), each by :func:`_polish_start`, all starts of all
-    objectives mapped together over ``n_jobs`` workers (seeded per start: the result
-    does not depend on ``n_jobs``). ``n_starts`` defaults to 3 for an objective the
-    placement does not change when the placement is free (the thin feasible wedge of
-    the module comment above: the face a start sits on decides where a local search
-    ends; about a thousand evaluations a start) and to 1 otherwise (more starts did
-    not improve the fixed-placement size or the LCI extreme on the benchmarks). With
-    a fixed placement a start is one round (the rounds re-choose the placement).
-    Returns ``{j: improved rows, best first}``."""
-    objectives = range(problem.n_obj) if objectives is None else objectives
-    items, owner = [], []
-    for j in objectives:
-        if not len(X):
-            break
-        wedge = _placement_free(problem, j) and bool(_placement_index(problem))
-        m = n_starts if n_starts is not None else (3 if wedge else 1)
-        fj, _ = _rows_eval(problem, X, j, problem.sampling)  # the search's own values rank the starts
-        order = np.argsort(fj, kind="stable")
-        ranks = np.unique(np.round(np.linspace(0, (len(X) - 1) / 2.0, m)).astype(int))
-        for k, r in enumerate(ranks):
-            items.append((problem, X[order[r]], j, seed + 7919 * k + 104729 * j,
-                          rounds if _placement_index(problem) else 1))
-            owner.append(j)
-    # the long starts (placement-dependent objectives) first: the workers end together
-    first = sorted(range(len(items)), key=lambda i: _placement_free(problem, owner[i]))
-    items, owner = [items[i] for i in first], [owner[i] for i in first]
-    from .parallel import parallel_map
-
-    out = {j: [] for j in objectives}
-    for j, r in zip(owner, parallel_map(_polish_start, items, n_jobs or 1, client) if items else []):
-        if r is not None:
-            out[j].append(r)
-    return {j: [x for x, _ in sorted(rs, key=lambda r: r[1])] for j, rs in out.items()}
-
-
-# ------------------------------------------------------------------ design
-def design(mechanism, task, requirements: Requirements | None = None, objectives=("size", "min-lci"),
-           *, mode=None, place="fixed", min_length=None, max_length=None, shape=None,
-           algorithm=None, pop=None, gen=None, seed=1, n_jobs=1, client=None, out=None,
-           progress=False, polish=True, pick=None, checkpoint_every=None, plot=True,
-           overwrite=False) -> DesignResult:
-    """Size ``mechanism`` (one of :data:`MECHANISMS`) for ``task``.
-
-    Builds :class:`mechopt.problems.design.DesignProblem`, runs it with
-    :func:`mechopt.runner.optimize` (seeded; ``n_jobs``/``client`` as there), polishes
-    each objective locally from the front (``polish``; :func:`_polish_front`, on the
-    same workers, with the certification's sampling; with a free placement the size
-    is searched over the lengths, each candidate placed where its margins are largest,
-    from 3 front designs; the result does not depend on ``n_jobs``), certifies every
-    front design with :func:`certify` (designs that fail the fine check are dropped and
-    counted in ``info["dropped_by_certification"]``) and returns a
-    :class:`DesignResult`. With ``out``, writes ``front.csv``, ``design.json`` (the
-    knee, or ``pick`` weights), ``run.json``, ``history.csv``, ``front.png`` and
-    ``design.png`` as one set (:func:`mechopt.io.output_set`, with ``manifest.json``
-    written last), so a failed run leaves nothing half-written; a folder holding
-    another run is refused unless ``overwrite``.
-
-    Raises :class:`NoFeasibleDesign` (a ValueError) naming the requirement that
-    fails most when no design is feasible.
-    """
-    from . import io as _io
-    from .problems import get as _problem
-
-    # the registered "design" problem (mechopt.problems.design.DesignProblem), built on
-    # this module's evaluator: through the registry, so that the two modules do not
-    # import each other
-    problem = _problem("design", mechanism=mechanism, task=task, requirements=requirements,
-                       objectives=objectives, mode=mode, place=place, min_length=min_length,
-                       max_length=max_length, shape=shape)
-    ev = problem.evaluator
-    if pick is not None:
-        _parse_weights(pick, ev.objectives)
-    if checkpoint_every is not None:
-        raise ValueError("design runs are not checkpointed; run mechopt.runner.optimize on the "
-                         "registered 'design' problem to checkpoint one")
-    manifest = None
-    if out is not None:
-        out = _io.prepare_out_dir(out)
-        key = {"mechanism": mechanism, "task": _task_digest(task), "requirements": repr(requirements),
-               "objectives": list(objectives), "mode": mode, "place": place, "min_length": min_length,
-               "max_length": max_length, "shape": shape, "algorithm": repr(algorithm), "pop": pop, "gen": gen,
-               "seed": seed, "polish": polish, "pick": pick}
-        with _io.run_in(out, "design", key, DESIGN_OUTPUTS, overwrite) as manifest:
-            return _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress,
-                           polish, manifest)
-    return _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, None, progress, polish, None)
-
-
-def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest):
-    """The run, polish and certification of :func:`design`, and its files with ``out``."""
-    from . import io as _io
-    from .runner import optimize
-
-    run = optimize(problem, algorithm, pop, gen, seed, n_jobs, client, None, progress=progress,
-                   plot=False)
-    info = dict(run.info)
-    if not len(run.front):
-        raise _no_design(problem, run)
-    X = run.front[list(problem.var_names)].to_numpy(float)
-    polished = []
-    if polish:
-        new = _polish_front(problem, X, seed=seed, n_jobs=info.get("n_jobs") or n_jobs or 1, client=client)
-        for j, rows_j in new.items():
-            if rows_j:
-                X = np.vstack([X, *rows_j])
-                polished.append(ev.objectives[j])
-    rows, kept, dropped = [], [], 0
-    for x in X:
-        v = ev.decode(x)
-        res = certify(ev, v)
-        if not res["feasible"]:
-            dropped += 1
-            continue
-        rows.append(ev.row(v, res))
-        kept.append(ev.objective_values(res))
-    if not rows:
-        raise _no_design(problem, run, certified=True)
-    F = np.array(kept) * np.array([OBJECTIVES[o][0] for o in ev.objectives])
-    nd = _non_dominated(F)
-    front = pd.DataFrame([rows[i] for i in nd])
-    keys = list(ev.objectives)
-    front = front.sort_values(keys, kind="mergesort").drop_duplicates(
-        subset=[c for c in front.columns if c in (*ev.spec.lengths, "mode", "task_x", "task_y")]
-    ).reset_index(drop=True)
-    info.update(design=ev.settings(), polished=polished, dropped_by_certification=dropped,
-                front_size=int(len(front)), problem="design", certification=asdict(Sampling.fine()))
-    result = DesignResult(front, info, ev, run)
-    chosen = result.pick(pick)
-    result.chosen_index = chosen["index"]
-    info["chosen"] = {"index": chosen["index"], "by": "knee" if pick is None else f"weights {pick}"}
-    if out is not None:
-        from .plotting import plot_front
-
-        fig_front = plot_front(problem, front, run.history, run.population, info)
-        fig_design = plot_design(ev, chosen)
-        with _io.output_set(out, manifest) as stage:
-            _io.write_csv(front, stage / "front.csv")
-            _io.write_csv(run.history, stage / "history.csv")
-            _io.write_json(_json_record(chosen), stage / "design.json")
-            _io.write_json(info, stage / "run.json")
-            _io.save_figure(fig_front, stage / "front.png")
-            _io.save_figure(fig_design, stage / "design.png")
-    return result
-
-
-def _task_digest(task) -> str:
-    """sha256 of everything that defines ``task`` (its arrays byte for byte): a run
-    manifest's record of the task, whatever its size."""
-    import hashlib
-
-    h = hashlib.sha256()
-    for part in (task.kind, task.unit, task.center, task.radius):
-        h.update(repr(part).encode())
-    for arr in (task.vertices, task.pts):
-        h.update(b"-" if arr is None else np.ascontiguousarray(arr, dtype="<f8").tobytes())
-    return h.hexdigest()
-
-
-#: the names a design run writes (such files no run manifest accounts for are refused)
-DESIGN_OUTPUTS = ("front.csv", "history.csv", "design.json", "run.json", "front.png", "design.png")
-
-
-def _non_dominated(F):
-    keep = []
-    for i in range(len(F)):
-        dom = np.all(F <= F[i], axis=1) & np.any(F < F[i], axis=1)
-        if not dom.any():
-            keep.append(i)
-    return keep
-
-
-def _no_design(problem, run, certified=False) -> NoFeasibleDesign:
-    """``no design satisfies <requirement>`` from the least-violating design."""
-    ev = problem.evaluator
-    info = dict(run.info)
-    if certified or "constraint_violations" not in info:
-        names = problem.constr_names
-        G = run.population[[f"g_{n}" for n in names]].to_numpy(float)
-        k = int(np.argmin(np.maximum(G, 0).sum(1)))
-        per = {n: max(0.0, float(G[k, i])) for i, n in enumerate(names)}
-    else:
-        per = {k[2:]: v for k, v in info["constraint_violations"].items()}
-    # without reach (or across a singularity) the other margins mean nothing: name those first
-    worst = next((n for n in ("reach", "singular") if per.get(n, 0.0) > 0), None) or max(per, key=per.get)
-    # how many designs of the final population fail each requirement
-    fails = {n: int((run.population[f"g_{n}"] > 0).sum()) for n in problem.constr_names}
-    unit = ev.unit
-    msg = (f"no design satisfies {ev.req.describe(worst, unit)} (of {len(run.population)} designs in the final "
-           f"population, {fails[worst]} fail it; least-violating design misses it by {per[worst]:.3g} "
-           f"normalised){' after certification' if certified else ''}; relax it or raise --max-length")
-    return NoFeasibleDesign(msg, {"violations": per, "fails": fails})
-
-
-# ------------------------------------------------------------------ figure
-def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
-    """The chosen mechanism at the task's reference pose, the task, the good-conditioning
-    workspace ``{LCI >= gamma}`` of its singularity-free piece, the type-II locus, the
-    reachable boundary and the joint ranges, with units."""
-    from matplotlib.figure import Figure
-
-    mech = rec["mechanism"]
-    spec = ev.spec
-    v = {**rec["variables"], **rec["task_placement"]}
-    task = ev.task.moved_to(v["task_x"], v["task_y"])
-    unit = ev.unit
-    gamma = ev.req.min_lci if ev.req.min_lci is not None else 0.5
-    x0, x1, y0, y1 = task.bbox
-    bb = mech.bounding_box()
-    off = spec.to_mech(mech, 0.0, 0.0)[0]
-    bx0, bx1, by0, by1 = bb[0] - off, bb[1] - off, bb[2], bb[3]
-    X0, X1 = min(bx0, x0), max(bx1, x1)
-    Y0, Y1 = min(by0, y0, 0.0), max(by1, y1)
-    pad = 0.05 * max(X1 - X0, Y1 - Y0)
-    gx, gy = np.meshgrid(np.linspace(X0 - pad, X1 + pad, n), np.linspace(Y0 - pad, Y1 + pad, n))
-    mx, my = spec.to_mech(mech, gx, gy)
-    f = mech.type2_function(mx, my)
-    rx, ry = task.reference if task.is_region else (task.pts[:, 0].mean(), task.pts[:, 1].mean())
-    s0 = np.sign(mech.type2_function(*spec.to_mech(mech, np.float64(rx), np.float64(ry)))) or 1.0
-    lci = _ix.lci(mech.jacobian(mx, my))
-    good = (np.sign(f) == s0) & (lci >= gamma)
-    from scipy import ndimage
-
-    labels, _ = ndimage.label(np.sign(f) == s0)  # the singularity-free piece holding the task
-    i = int(np.clip(np.searchsorted(gy[:, 0], ry), 0, n - 1))
-    k = int(np.clip(np.searchsorted(gx[0], rx), 0, n - 1))
-    if labels[i, k]:
-        good &= labels == labels[i, k]
-    fig = Figure(figsize=(7.5, 6.5))
-    ax = fig.add_subplot()
-    ax.contourf(gx, gy, good.astype(float), levels=[0.5, 1.5], colors=["#cfe8cf"])
-    ax.contour(gx, gy, np.where(np.isfinite(f), f, np.nan), levels=[0.0], colors="tab:red", linewidths=1.0)
-    clr = mech.serial_clearance(mx, my)
-    ax.contour(gx, gy, clr, levels=[0.0], colors="0.4", linewidths=0.8, linestyles="--")
-    ox, oy = task.outline()
-    if task.is_region:
-        ax.plot(ox, oy, color="tab:blue", lw=2)
-    else:
-        ax.plot(ox, oy, ".", color="tab:blue", ms=3)
-    # the mechanism at the reference pose
-    px, py = float(rx), float(ry)
-    pmx, pmy = spec.to_mech(mech, np.float64(px), np.float64(py))
-    if spec.name == "five-bar":
-        b1x, b1y, b2x, b2y, _ = mech.elbows(px, py)
-        chain = [[(-mech.r3, 0), (float(b1x), float(b1y)), (px, py)],
-                 [(mech.r3, 0), (float(b2x), float(b2y)), (px, py)]]
-        bases = [(-mech.r3, 0), (mech.r3, 0)]
-    elif spec.name == "bipod":
-        chain = [[(-mech.b / 2, 0), (px, py)], [(mech.b / 2, 0), (px, py)]]
-        bases = [(-mech.b / 2, 0), (mech.b / 2, 0)]
-    else:
-        q1, q2, _ = mech.ik(pmx, pmy)
-        gxs = mech.guides
-        chain = [[(gxs[0], float(q1)), (px, py)], [(gxs[1], float(q2)), (px, py)]]
-        bases = [(gxs[0], float(q1)), (gxs[1], float(q2))]
-        for (gxx, (lo, hi)) in zip(gxs, rec.get("strokes", [])):
-            ax.plot([gxx, gxx], [lo, hi], color="k", lw=4, alpha=0.3, solid_capstyle="butt")
-    for c in chain:
-        c = np.array(c)
-        ax.plot(c[:, 0], c[:, 1], "-o", color="k", lw=2, ms=4)
-    ax.plot(*np.array(bases).T, "s", color="k", ms=7)
-    lines = [f"{spec.name} ({rec['variables']['mode']}): " + ", ".join(
-        f"{k} = {rec['variables'][k]:.4g} {unit}" for k in spec.lengths)]
-    if "joint_ranges_deg" in rec:
-        for i, (a, b) in enumerate(rec["joint_ranges_deg"], 1):
-            lines.append(f"theta{i} in [{a:.1f}, {b:.1f}] deg over the task")
-            if spec.name == "five-bar":
-                base = bases[i - 1]
-                t = np.radians(np.linspace(a, b, 60))
-                rr = 0.35 * mech.r1
-                ax.plot(base[0] + rr * np.cos(t), base[1] + rr * np.sin(t), color="tab:purple", lw=1.5)
-    if "strokes" in rec:
-        for i, (lo, hi) in enumerate(rec["strokes"], 1):
-            lines.append(f"q{i} in [{lo:.4g}, {hi:.4g}] {unit} (stroke {hi - lo:.4g} {unit})")
-    for k, val in rec["objectives"].items():
-        lines.append(f"{k} = {val:.5g} {rec['objective_units'][k]}")
-    ax.text(0.01, 0.99, "\n".join(lines), transform=ax.transAxes, va="top", fontsize=7,
-            bbox=dict(boxstyle="round", fc="white", alpha=0.8))
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
-
-    ax.legend(handles=[Line2D([], [], color="tab:blue", lw=2, label="task"),
-                       Patch(color="#cfe8cf", label=f"GCW: LCI >= {gamma:g}, same type-II sign"),
-                       Line2D([], [], color="tab:red", lw=1, label="type-II singularity"),
-                       Line2D([], [], color="0.4", lw=0.8, ls="--", label="reachable boundary"),
-                       Line2D([], [], color="tab:purple", lw=1.5, label="crank ranges")],
-              loc="lower right", fontsize=7)
-    ax.set_aspect("equal")
-    ax.set_xlabel(f"x [{unit}]")
-    ax.set_ylabel(f"y [{unit}]")
-    ax.set_title(f"{spec.name} sized for {ev.task.label}")
-    return fig
