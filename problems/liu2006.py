@@ -85,11 +85,11 @@ def designs(X):
 def liu_indices(r1, r2, r3, quadrature: str = "polar") -> dict:
     """Global indices of designs ``(r1, r2, r3)`` (arrays); NaN where a design has no MIC.
 
-    Vectorised over the designs through :func:`mechopt.run.atlas.evaluate_designs`
+    Vectorised over the designs through :func:`mechopt.mechanisms.five_bar.batch.evaluate_designs`
     (the explicit-locus MIC and the compiled disk means; agreement with
     :func:`mechopt.analysis.performance.global_indices` is tested in ``tests/test_atlas.py``).
     """
-    from mechopt.run.atlas import RESULT_COLUMNS
+    from mechopt.mechanisms.five_bar.batch import RESULT_COLUMNS
 
     r1, r2, r3 = (np.atleast_1d(np.asarray(v, float)) for v in (r1, r2, r3))
     res = _evaluate_memo(r1, r2, r3, quadrature)
@@ -100,7 +100,7 @@ def liu_indices(r1, r2, r3, quadrature: str = "polar") -> dict:
 
 
 #: designs evaluated by this process: (quadrature, r1, r2, r3) -> row of
-#: :func:`mechopt.run.atlas.evaluate_designs`. A GA meets the same designs again (the
+#: :func:`mechopt.mechanisms.five_bar.batch.evaluate_designs`. A GA meets the same designs again (the
 #: weighting sweep's NSGA-II run is the front run of the same seed, every weight's GA
 #: starts from the same population); the kernels evaluate each design on its own, so
 #: a remembered row is the row a new evaluation would give, bit for bit
@@ -110,7 +110,7 @@ MEMO_SIZE = 400_000
 
 
 def _evaluate_memo(r1, r2, r3, quadrature):
-    from mechopt.run.atlas import RESULT_COLUMNS, evaluate_designs
+    from mechopt.mechanisms.five_bar.batch import RESULT_COLUMNS, evaluate_designs
 
     # keyed by the bits (so that -0.0 and 0.0 stay apart)
     keys = list(map(tuple, np.column_stack([r1, r2, r3]).astype(float).view(np.uint64).tolist()))

@@ -27,8 +27,8 @@ from scipy.optimize import minimize, minimize_scalar
 from mechopt import FiveBar
 from mechopt.core import indices as ix
 from mechopt.mechanisms.five_bar import kernels as K
-from mechopt.run.atlas import (RESULT_COLUMNS, compute_atlas, design_grid, evaluate_designs,
-                           index_columns, plane_coordinates, run_atlas)
+from mechopt.mechanisms.five_bar.batch import RESULT_COLUMNS, evaluate_designs
+from mechopt.run.atlas import compute_atlas, design_grid, index_columns, plane_coordinates, run_atlas
 from mechopt.cli import main
 from mechopt.analysis.performance import global_indices, max_lci
 from mechopt.core.quadrature import disk_rule

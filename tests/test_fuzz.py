@@ -1380,6 +1380,7 @@ def extreme_designs(draw):
 
 @target
 def atlas(draw):
+    from mechopt.mechanisms.five_bar.batch import evaluate_designs
     from mechopt.run import atlas as A
 
     what = draw(st.sampled_from(["step", "indices", "grid", "compute", "run", "evaluate"]))
@@ -1406,7 +1407,7 @@ def atlas(draw):
         elif what == "compute":
             A.compute_atlas(step if cheap else 0, indices, quad, mode, n_jobs=n_jobs, chunk_size=chunk)
         elif what == "evaluate":
-            A.evaluate_designs(*r, quadrature=quad, mode=mode)
+            evaluate_designs(*r, quadrature=quad, mode=mode)
         else:
             out = _CACHE["root"] / f"atlas{next(_counter)}"
             A.run_atlas(out, step if cheap else 0, indices, quad, mode, n_jobs=n_jobs, where=where,

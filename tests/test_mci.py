@@ -4,7 +4,7 @@
   ``mech.lci`` and ``mech.jacobian``); Newton on the isotropy residual of
   ``J^T J`` from a grid of starts, trust-region Newton on a smooth surrogate from
   the best grid maxima, golden section along the rim.
-* the atlas kernel, :func:`mechopt.run.atlas.evaluate_designs` (``kernels._mci_nb``
+* the atlas kernel, :func:`mechopt.mechanisms.five_bar.batch.evaluate_designs` (``kernels._mci_nb``
   and its NumPy twin ``kernels._mci_search_np``): five-bar specific and
   compiled; for the mirror-symmetric modes a bracketed root of the isotropy
   residual on the y axis, then (all modes) the plain multi-start Newton of
@@ -39,7 +39,7 @@ from scipy.optimize import brentq, minimize
 
 from mechopt import FiveBar
 from mechopt.mechanisms.five_bar import kernels as K
-from mechopt.run.atlas import RESULT_COLUMNS, evaluate_designs
+from mechopt.mechanisms.five_bar.batch import RESULT_COLUMNS, evaluate_designs
 from mechopt.analysis.performance import global_indices, max_lci
 from mechopt.core.quadrature import disk_rule
 from mechopt.analysis.workspace import mic

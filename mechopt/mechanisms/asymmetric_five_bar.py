@@ -31,10 +31,10 @@ import numpy as np
 
 from mechopt.core import validation as _v
 from mechopt.core.protocol import Parameter, PlanarMechanism, as_points
+from mechopt.mechanisms.five_bar.model import MODES
 
 __all__ = ["AsymmetricFiveBar", "MODES", "ASSEMBLY_MODES"]
 
-MODES = ("+-", "-+", "++", "--")
 ASSEMBLY_MODES = ("up", "down")
 _SIGN = {"+": 1.0, "-": -1.0}
 #: raster cells across the smaller side of the bounding box for the area means

@@ -44,18 +44,18 @@ from pathlib import Path
 import numpy as np
 
 from mechopt.mechanisms.five_bar import kernels as _k
+from mechopt.mechanisms.five_bar.batch import RESULT_COLUMNS, evaluate_designs
+from mechopt.mechanisms.five_bar.model import MODES
 from mechopt.core import validation as _v
 
 __all__ = [
     "INDEX_GROUPS",
     "DEFAULT_INDICES",
-    "RESULT_COLUMNS",
     "R3_MAX",
     "check_step",
     "parse_indices",
     "plane_coordinates",
     "design_grid",
-    "evaluate_designs",
     "compute_atlas",
     "draw_atlas",
     "run_atlas",
@@ -71,15 +71,11 @@ INDEX_GROUPS = {
     "r_mic": ("r_mic",),
 }
 DEFAULT_INDICES = ("gci", "mci", "gvi", "gpi", "gsi", "r_mic")
-#: what :func:`evaluate_designs` returns, in order
-RESULT_COLUMNS = ("r_mic", "mic_center_y") + _k.DISK_STAT_NAMES
 #: Liu's design space: r1 + r2 + r3 = SUM, 0 <= r3 <= R3_MAX
 SUM = 3.0
 R3_MAX = 1.5
 STEP_MAX = 0.5
 STEP_MIN = 0.001
-#: a MIC radius below this (relative to the length scale 1) counts as none
-_MIN_RADIUS = 1e-9
 
 _TITLES = {
     "r_mic": "MIC radius $r_{MIC}$",
@@ -172,42 +168,6 @@ def design_grid(step):
 
 
 # --- evaluation -------------------------------------------------------------
-def evaluate_designs(r1, r2, r3, quadrature: str = "area", mode: str = "+-", compiled=None):
-    """``(n, 10)`` array of :data:`RESULT_COLUMNS` for arrays of designs.
-
-    The fast path of :mod:`mechopt.mechanisms.five_bar.kernels`; degenerate designs (MIC radius 0)
-    get ``r_mic = 0`` and NaN elsewhere. Lengths in any unit (results scale as in
-    :func:`mechopt.analysis.performance.global_indices`); r1, r2 in [LENGTH_MIN, LENGTH_MAX] and
-    r3 in [0, LENGTH_MAX] of :mod:`mechopt.core.validation`.
-    """
-    arrays = []
-    for name, v, lo in (("r1", r1, _v.LENGTH_MIN), ("r2", r2, _v.LENGTH_MIN), ("r3", r3, 0.0)):
-        try:
-            a = np.asarray(v)
-        except (TypeError, ValueError):  # e.g. ragged lists
-            a = None
-        if a is None or a.dtype.kind not in "biuf":
-            raise ValueError(f"{name} must be a number or an array of numbers, got {_v.show(v)}")
-        a = a.astype(float)
-        if not np.all((a >= lo) & (a <= _v.LENGTH_MAX)):  # NaN fails too
-            raise ValueError(f"{name} must hold lengths in [{lo:g}, {_v.LENGTH_MAX:g}], got {_v.show(v)}")
-        arrays.append(a)
-    try:
-        r1, r2, r3 = (a.ravel() for a in np.broadcast_arrays(*arrays))
-    except ValueError:
-        raise ValueError(f"r1, r2 and r3 must broadcast to one shape, got "
-                         f"{', '.join(str(a.shape) for a in arrays)}") from None
-    R, yc = _k.mic_batch(r1, r2, r3, mode=mode, compiled=compiled)
-    scale = (r1 + r2 + r3) / 3.0
-    ok = R > _MIN_RADIUS * scale
-    R = np.where(ok, R, 0.0)
-    stats = _k.disk_stats_batch(r1, r2, r3, yc, R, mode=mode, quadrature=quadrature,
-                                compiled=compiled)
-    out = np.column_stack([R, np.where(ok, yc, np.nan), stats])
-    out[~ok, 1:] = np.nan
-    return out
-
-
 def _atlas_chunk(task):
     """One work unit of :func:`compute_atlas` (module level, so it pickles)."""
     r1, r2, r3, quadrature, mode = task
@@ -359,7 +319,7 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
 
     cols = index_columns(indices)
     _v.choice("quadrature", quadrature, QUADRATURES)
-    _v.choice("mode", mode, ("+-", "-+", "++", "--"))
+    _v.choice("mode", mode, MODES)
     grid = design_grid(step)
     n = len(grid)
     if client is not None:
@@ -581,7 +541,7 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
     groups = parse_indices(indices)
     cols = index_columns(groups)
     _v.choice("quadrature", quadrature, QUADRATURES)
-    _v.choice("mode", mode, ("+-", "-+", "++", "--"))
+    _v.choice("mode", mode, MODES)
     if dask is None:
         nj = _v.finite_number("n_jobs", n_jobs)
         if nj < 1 or nj != int(nj):

@@ -92,6 +92,8 @@ import os
 
 import numpy as np
 
+from mechopt.mechanisms.five_bar.model import MODES
+
 __all__ = [
     "HAVE_NUMBA",
     "use_numba",
@@ -301,8 +303,8 @@ def _local_points_nb(r1, r2, r3, s1, s2, x, y, out):
 
 
 def _signs(mode):
-    if mode not in ("+-", "-+", "++", "--"):
-        raise ValueError(f"mode must be one of '+-', '-+', '++', '--', got {mode!r}")
+    if mode not in MODES:
+        raise ValueError(f"mode must be one of {', '.join(map(repr, MODES))}, got {mode!r}")
     return (1.0 if mode[0] == "+" else -1.0), (1.0 if mode[1] == "+" else -1.0)
 
 
