@@ -167,6 +167,6 @@ def test_the_layer_check_sees_lazy_imports(tmp_path):
 def test_the_checker_sees_imports():
     """The graph is not empty by accident: known edges are found."""
     assert "mechopt.core.protocol" in GRAPH["mechopt.mechanisms.five_bar.model"]
-    assert "mechopt.run.runner" in GRAPH["mechopt.cli"]
+    assert "mechopt.run.runner" in GRAPH["mechopt.cli.optimize"]
     assert "mechopt.mechanisms.five_bar.batch" in GRAPH["mechopt.problems.liu2006"]
     assert "mechopt.run.atlas" in GRAPH["mechopt.experiments.liu2006_figures"]

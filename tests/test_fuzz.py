@@ -392,10 +392,10 @@ def option_tokens(draw, spec, required=()):
 
 
 def _evaluate_specs():
-    """``{mechanism: (option specs, required options)}`` of ``mechopt evaluate``, from each
-    registered mechanism's declared parameters (the same declarations the CLI is
-    generated from), with this file's value generators per parameter kind."""
-    from mechopt.analysis.evaluate import DISK_OPTIONS
+    """``{mechanism: (option specs, required options)}`` of ``mechopt evaluate``, from the
+    options the CLI generates its sub-commands from (:func:`mechopt.cli.evaluate.options`),
+    with this file's value generators per parameter kind."""
+    from mechopt.cli.evaluate import options
     from mechopt.mechanisms import registry
 
     by_kind = {"length": "pos", "length0": "nonneg", "position": "real", "angle_deg": "deg",
@@ -404,7 +404,7 @@ def _evaluate_specs():
                   frozenset(("up", "down", "full")): "branch", frozenset(("mm", "m")): "unit_name"}
     specs = {}
     for name, cls in registry().items():
-        params = cls.parameters + (DISK_OPTIONS if cls.disk_indices else ())
+        params = options(cls)
         spec = [(p.option, by_choices[frozenset(p.choices)] if p.choices else by_kind[p.kind])
                 for p in params] + [("--json", "flag")]
         specs[name] = (spec, tuple(p.option for p in params if p.required))

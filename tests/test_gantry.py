@@ -384,7 +384,7 @@ def test_k_av_literal_against_independent_quadrature(deg):
 
 def test_k_av_literal_value_and_monotonicity():
     g = wu2008_gantry(10.0)
-    assert g.k_av() == pytest.approx(1.78715, abs=5e-6)  # the "about 1.79" of DESIGN.md
+    assert g.k_av() == pytest.approx(1.78715, abs=5e-6)  # eq. (6)-(7) read literally (a plain mean of cot theta); Wu prints k_av = 1.05
     th = np.radians(np.linspace(1.0, 44.0, 200))
     k = k_av_literal_of_design(th)
     assert np.all(np.diff(k) < 0) and k[-1] > 1.0  # "k_av descends" (sec. 4.3)

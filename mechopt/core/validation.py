@@ -25,6 +25,10 @@ __all__ = [
     "integer",
     "real_array_dtype",
     "show",
+    "step",
+    "stroke",
+    "weights",
+    "MAX_WEIGHTS",
 ]
 
 #: admissible magnitudes of a length, in any unit: the kinematics square and
@@ -183,14 +187,6 @@ def open_unit_interval(name: str, value) -> float:
     if not 0.0 < out < 1.0:
         raise ValueError(f"{name} must lie in the open interval (0, 1), got {show(value)}")
     return out
-
-
-def positive_int(name: str, value, minimum: int = 1) -> int:
-    """An integer count (population, generations, workers) of at least ``minimum``."""
-    out = finite_number(name, value)
-    if out != int(out) or out < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
-    return int(out)
 
 
 def step(name: str, value, upper: float) -> float:

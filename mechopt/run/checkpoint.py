@@ -29,7 +29,7 @@ from pathlib import Path
 
 from mechopt.run import io as _io
 
-__all__ = ["MAGIC", "UnreadableCheckpoint", "key_path", "write", "read"]
+__all__ = ["MAGIC", "UnreadableCheckpoint", "key_path", "write", "read", "read_header"]
 
 MAGIC = b"MECHOPT-CHECKPOINT 1\n"
 #: a header line longer than this is not ours (read before anything is trusted)

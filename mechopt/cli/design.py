@@ -1,0 +1,116 @@
+"""``mechopt design MECHANISM --task TASK --out DIR [requirements] [run options]``: size a
+mechanism for a task region.
+
+Reads the task (:func:`mechopt.analysis.task.parse_task`, lengths in ``--unit``: mm, cm,
+m or in) and the requirements over the whole task
+(:class:`mechopt.analysis.task.Requirements`; angles given in deg, passed on in rad),
+then runs :func:`mechopt.workflows.design.design`, which writes ``front.csv``,
+``design.json`` (the chosen design: the knee, or the ``--pick`` weights), ``run.json``,
+``history.csv``, ``front.png`` and ``design.png`` into ``DIR``. Prints one line: the
+number of certified designs on the front, the chosen design with its objectives in
+their units, the wall time [s].
+"""
+from __future__ import annotations
+
+import json
+import math
+
+from mechopt.cli import _common
+
+NAME = "design"
+
+
+def add_parser(subparsers):
+    """Register ``design``."""
+    ds = subparsers.add_parser(NAME, help="size a mechanism for a task region (requirements over the whole task)")
+    ds.add_argument("mechanism", help="five-bar, biglide, bipod or gantry")
+    ds.add_argument("--task", required=True,
+                    help="rect:W,H@X,Y | circle:R@X,Y | polygon:x1,y1;x2,y2;... | points:FILE.csv; "
+                         "lengths [unit] of --unit, in the base frame (base midpoint at the origin, "
+                         "y away from the base)")
+    ds.add_argument("--unit", default="mm",
+                    help="length unit of the task and of every length: mm, cm, m or in (default mm)")
+    ds.add_argument("--min-lci", type=float, default=None,
+                    help="LCI >= this everywhere on the task (dimensionless, in (0, 1))")
+    ds.add_argument("--mode", default=None, help="working mode (five-bar: +-, -+, ++, --; bipod: up, down) or any")
+    ds.add_argument("--place", default="fixed", help="fixed (default), free-y or free: task placement")
+    ds.add_argument("--objectives", default="size,min-lci",
+                    help="comma list of size, footprint, min-lci, mean-lci, speed, force, torque")
+    ds.add_argument("--max-length", type=float, default=None, help="longest link [unit] (default 4 x task extent)")
+    ds.add_argument("--min-length", type=float, default=None, help="shortest link [unit]")
+    ds.add_argument("--joint-limits", default=None, metavar="LO,HI[,LO2,HI2]", help="crank angle limits [deg]")
+    ds.add_argument("--link-angle", default=None, metavar="LO,HI",
+                    help="|link angle from the slider axis| limits [deg] (gantry, biglide; Wu: 15,75)")
+    ds.add_argument("--max-stroke", type=float, default=None, help="longest actuator stroke [unit] (sliders)")
+    ds.add_argument("--shape", default=None, metavar="R1,R2,R3",
+                    help="fix the link ratios (non-dimensional); the design variable is the scale "
+                         "D [unit] (Liu 2006 sec. 3.2.3)")
+    ds.add_argument("--actuator-speed", type=float, default=None, help="actuator speed limit [rad/s or unit/s]")
+    ds.add_argument("--actuator-torque", type=float, default=None, help="actuator torque limit [N m or N]")
+    ds.add_argument("--min-speed", type=float, default=None, help="guaranteed speed in every direction [unit/s]")
+    ds.add_argument("--min-force", type=float, default=None, help="guaranteed force in every direction [N]")
+    ds.add_argument("--payload", type=float, default=None, help="payload force [N] for the torque objective")
+    ds.add_argument("--pick", default=None, metavar="NAME=W,...",
+                    help="choose design.json by weights of the normalised objectives (default: the knee)")
+    ds.add_argument("--algorithm", default=None,
+                    help="ga, de, nsga2, nsga2-mnn or nsga3 (default: ga for one objective, else nsga2)")
+    ds.add_argument("--pop", type=int, default=None, help="population size (default 40)")
+    ds.add_argument("--gen", type=int, default=None, help="generations (default 50)")
+    ds.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    ds.add_argument("--overwrite", action="store_true",
+                    help="replace another run that --out holds (only the files that run wrote)")
+    ds.add_argument("--n-jobs", type=int, default=2, help="joblib worker processes (default 2)")
+    ds.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None, help="evaluate on a Dask cluster")
+    ds.add_argument("--no-polish", action="store_true",
+                    help="skip the local polish of each objective's best design (SLSQP, COBYLA and a "
+                         "direct search; with a free placement, lengths searched with the best "
+                         "height for each)")
+    ds.add_argument("--out", required=True, help="output folder")
+
+
+def _numbers(text, what, n_allowed) -> list:
+    """The comma-separated finite numbers of an option, ``len in n_allowed``."""
+    from mechopt.core import validation as _v
+
+    vals = [_v.finite_number(what, v) for v in str(text).split(",")]
+    if len(vals) not in n_allowed:
+        raise ValueError(f"{what} must be {' or '.join(str(k) for k in n_allowed)} comma-separated numbers, "
+                         f"got {text!r}")
+    return vals
+
+
+def run(args) -> int:
+    """Parse the task and the requirements, run the design, print its one-line summary."""
+    from pathlib import Path
+
+    from mechopt.analysis import task as _task
+    from mechopt.workflows.design import design
+
+    task = _task.parse_task(args.task, unit=args.unit)
+    jl = None
+    if args.joint_limits is not None:
+        vals = [math.radians(v) for v in _numbers(args.joint_limits, "--joint-limits (deg)", (2, 4))]
+        # two values: the same limits for both cranks
+        jl = (vals[:2], vals[2:] if len(vals) == 4 else vals[:2])
+    la = None
+    if args.link_angle is not None:
+        la = tuple(math.radians(v) for v in _numbers(args.link_angle, "--link-angle (deg)", (2,)))
+    shape = _numbers(args.shape, "--shape", (1, 2, 3)) if args.shape is not None else None
+    req = _task.Requirements(min_lci=args.min_lci, joint_limits=jl, link_angle=la, max_stroke=args.max_stroke,
+                             min_speed=args.min_speed, min_force=args.min_force,
+                             actuator_speed=args.actuator_speed, actuator_torque=args.actuator_torque,
+                             payload=args.payload)
+    objectives = tuple(o.strip() for o in args.objectives.split(",") if o.strip())
+    with _common.dask_client(args) as client:
+        res = design(args.mechanism, task, req, objectives, mode=args.mode, place=args.place,
+                     min_length=args.min_length, max_length=args.max_length, shape=shape,
+                     algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
+                     n_jobs=args.n_jobs, client=client, out=args.out, progress=True, pick=args.pick,
+                     polish=not args.no_polish, overwrite=args.overwrite)
+    chosen = json.loads((Path(args.out) / "design.json").read_text())
+    obj = ", ".join(f"{k} {v:.5g} {chosen['objective_units'][k]}".rstrip(" -")
+                    for k, v in chosen["objectives"].items())
+    print(f"{len(res.front)} certified designs on the front; chosen ({res.info['chosen']['by']}): "
+          f"{chosen['repr']}; {obj}; wrote {args.out}/front.csv, design.json, run.json, design.png "
+          f"({res.info['wall_time_s']:.1f} s)")
+    return 0
