@@ -43,8 +43,6 @@ REGIONS = {
             ("gpi_max", ">", 1.0), ("gpi_min", ">", 0.6), ("gsi_max", "<", 2.85),
             ("gsi_min", "<", 1.2)],  # sec. 3.1.5, Fig. 15
 }
-_INDEX_KEYS = ("r_mic", "mic_center_y", "gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min",
-               "gsi_max", "gsi_min")
 #: Liu's space r1 + r2 + r3 = 3
 SUM = 3.0
 #: smallest share u of r1 in r1 + r2 (and of r2): keeps both links positive
@@ -93,7 +91,7 @@ def liu_indices(r1, r2, r3, quadrature: str = "polar") -> dict:
 
     r1, r2, r3 = (np.atleast_1d(np.asarray(v, float)) for v in (r1, r2, r3))
     res = _evaluate_memo(r1, r2, r3, quadrature)
-    out = {name: res[:, j] for j, name in enumerate(RESULT_COLUMNS) if name in _INDEX_KEYS}
+    out = {name: res[:, j] for j, name in enumerate(RESULT_COLUMNS)}
     out["r_mic"] = np.where(out["r_mic"] > 0, out["r_mic"], np.nan)
     out.update(r1=r1, r2=r2, r3=r3)
     return out

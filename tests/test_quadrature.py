@@ -3,7 +3,8 @@ import numpy as np
 import pytest
 
 from mechopt import FiveBar
-from mechopt.analysis.performance import GLOBAL_INDEX_NAMES, global_indices
+from mechopt.analysis.performance import global_indices
+from mechopt.core.indices import GLOBAL_INDEX_NAMES
 from mechopt.core.quadrature import disk_rule, grid_over
 from mechopt.analysis.workspace import mic
 

@@ -23,11 +23,7 @@ from mechopt.core.numerics import golden_section_max
 from mechopt.core.quadrature import QUADRATURES, disk_rule
 from mechopt.analysis.workspace import MIC, Region, _blocks, mic as _mic
 
-__all__ = ["GLOBAL_INDEX_NAMES", "disk_mean", "global_indices", "region_indices", "max_lci"]
-
-GLOBAL_INDEX_NAMES = (
-    "gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min", "gsi_max", "gsi_min",
-)
+__all__ = ["disk_mean", "global_indices", "region_indices", "max_lci"]
 # local index behind each global mean over the half-radius disk
 _HALF_DISK = {
     "gvi_max": "v_max", "gvi_min": "v_min",
@@ -314,7 +310,7 @@ def max_lci(mech, center_y, radius, n_r=64, n_theta=128, iters=40, n_seeds=6):
 def global_indices(mech, quadrature: str = "area", mic: MIC | None = None, **rule) -> dict:
     """Liu 2006 global indices of ``mech`` (eq. 4, 11, 14, 19) with the named quadrature.
 
-    Returns a dict with ``r_mic``, ``mic_center_y`` and :data:`GLOBAL_INDEX_NAMES`.
+    Returns a dict with ``r_mic``, ``mic_center_y`` and :data:`mechopt.core.indices.GLOBAL_INDEX_NAMES`.
     Lengths are those of ``mech`` [L]; GVI scales as L, GPI as 1/L, GSI as L^2.
     ``mci`` is the maximum LCI over the MIC by :func:`max_lci` (at its defaults; a
     maximum, so it depends on neither ``quadrature`` nor ``rule``). The atlas

@@ -31,8 +31,16 @@ __all__ = [
     "tqi",
     "manipulability",
     "LOCAL_INDEX_NAMES",
+    "GLOBAL_INDEX_NAMES",
     "local_indices",
 ]
+
+#: the global indices of Liu 2006, in the order of every table and array: GCI (eq. 4,
+#: the mean LCI over the MIC), MCI (the largest LCI over the MIC), and the extremes of
+#: GVI (eq. 11), GPI (eq. 14) and GSI (eq. 19), means over the disk of radius r_MIC / 2
+GLOBAL_INDEX_NAMES = (
+    "gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min", "gsi_max", "gsi_min",
+)
 
 LOCAL_INDEX_NAMES = (
     "lci",
