@@ -7,7 +7,8 @@ Thin script over :mod:`mechopt.problems.le2013` and the runner. Writes ``curve.c
 
 Every printed number comes from ``mechopt/data/le2013.csv`` (:func:`mechopt.core.published.lookup`);
 its tolerance is half a unit of its last printed digit in its printed unit (our own
-accuracy, :data:`A_ABS_TOL`, is finer). Besides the literal rows the table shows:
+accuracy of a side, the class ``square_search`` of :data:`mechopt.core.published.ACCURACY`,
+is finer). Besides the literal rows the table shows:
 
 * the flowchart reading (Le sec. III, Fig. 4): ``a`` starts at ``sqrt(2) r_MIC`` and is
   decreased in fixed steps until the square fulfils (23)-(26) (:func:`flowchart_a_max`).
@@ -40,22 +41,16 @@ from mechopt.run import io as _io
 from mechopt.run.parallel import parallel_map
 from mechopt.problems import get
 from mechopt.problems.le2013 import GAMMA, RHO_BOUNDS, THETA_LIMITS, square_side, tied_half_base
-from mechopt.core.published import claim_row, compare, comparison_row, lookup
+from mechopt.core.published import cite, claim_row, compare, lookup, not_reported
 from mechopt.run.runner import optimize, parse_weights, sweep
 from mechopt.analysis.workspace import mic
 
-__all__ = ["run", "run_part", "PARTS", "A_ABS_TOL", "FLOWCHART_STEPS", "flowchart_a_max", "golden_section_max",
+__all__ = ["run", "run_part", "PARTS", "FLOWCHART_STEPS", "flowchart_a_max", "golden_section_max",
            "contact_side", "corner_side", "corner_switch_rho", "lower_switch_rho", "joint_limits_hold",
            "square_feasible"]
 
 PAPER = "le2013"
 SQRT2 = float(np.sqrt(2.0))
-
-#: our accuracy of a side length [l1]: the square search bisects to 1e-6 relative on
-#: 257 points per edge (corners included, where the LCI binds); it agrees with the
-#: exact corner roots (:func:`corner_side`) to about 1e-6. Finer than the printed
-#: half digit (5e-5), which therefore sets the tolerance of every length row.
-A_ABS_TOL = 1e-5
 
 #: decrements of ``a`` tried for the flowchart of Le Fig. 4 (the figure is not in the
 #: text we have; sec. III only says "decrease a gradually"). 0.1 makes the top level of
@@ -284,7 +279,7 @@ def _fig5(curve, paper_rho, paper_a, ours, golden, top):
     ax.plot([ours["rho"]], [ours["a_max"]], "k^", label=f"mechopt GA: rho*={ours['rho']:.4f}, a={ours['a_max']:.4f}")
     ax.set_xlabel(r"$\rho = l_2/l_1$ [-]")
     ax.set_ylabel(r"$a_{MAX}$ [$l_1$]")
-    ax.set_title(r"Le 2013 Fig. 5 redrawn: $\gamma$ = 0.5, $\theta \in [-\pi/3, 4\pi/3]$")
+    ax.set_title(rf"Le 2013 Fig. 5 redrawn: $\gamma$ = {GAMMA:g}, $\theta \in [-\pi/3, 4\pi/3]$")
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     return fig
@@ -366,12 +361,12 @@ def _reading_rows(fa, switch, at_paper):
            f"staircase; sqrt(2) - 0.1 = {SQRT2 - 0.1:.6f} is the printed {a_rec.value} to its digits")
     s1, s2 = fa[0.1], fa[GOLDEN_STEP]
     rows = [
-        compare(a_rec, s1["level"], tol_abs=A_ABS_TOL, kind="reading",
+        compare(a_rec, s1["level"], kind="reading",
                 quantity="a_max[flowchart step=0.1]",
                 note=f"{why}; top level of the staircase over rho in {rng}; " + _stair_note(fa, 0.1)
                 + (" (both first probes lie below the plateau, so the search leaves it)"
                    if max(s1["probe_a"]) < s1["interval_level"] - LEVEL_ATOL else "")),
-        compare(a_rec, s2["golden_a"], tol_abs=A_ABS_TOL, kind="reading",
+        compare(a_rec, s2["golden_a"], kind="reading",
                 quantity=f"a_max[flowchart step={GOLDEN_STEP:g}]",
                 note=f"{why}; golden section on {bracket} of the staircase; " + _stair_note(fa, GOLDEN_STEP)
                 + f"; over all of {rng} this step's top level would be {s2['level']:.5f}"),
@@ -382,7 +377,7 @@ def _reading_rows(fa, switch, at_paper):
                       f"sqrt(2) - 0.1, rho = {s2['golden_rho']:.5f} "
                       f"({s2['golden_rho'] / rho_rec.value - 1:+.2%} from the paper; the independent "
                       f"check's 1.9628); a staircase has no unique maximiser, so the printed rho* is "
-                      f"where the paper's own a_MAX(rho) crosses that level: 1.9721 if its a_MAX "
+                      f"where the paper's own a_MAX(rho) crosses that level: {rho_rec.printed} if its a_MAX "
                       f"there were {s2['golden_a']:.4f} rather than our {at_paper['a_max']:.4f} "
                       f"({s2['golden_a'] / at_paper['a_max'] - 1:+.2%})")),
         compare(rho_rec, switch, kind="reading", quantity="rho_star[corner switch]",
@@ -409,7 +404,7 @@ def _claim_rows(curve, fa, lower, at_paper):
     interior = 0 < j < len(rg) - 1
     st = fa[GOLDEN_STEP]
     rows.append(claim_row(
-        "claim:single_optimum_in_(1.8,2.3)", lo_rec.citation, unimodal and interior,
+        f"claim:single_optimum_in_({g_lo:g},{g_hi:g})", lo_rec.citation, unimodal and interior,
         f"a_MAX on {len(rg)} points of [{g_lo}, {g_hi}]: unimodal = {unimodal} ({int((d < 0).sum())} of "
         f"{d.size} steps fall), maximum {av[j]:.5f} at rho = {rg[j]:.2f} "
         f"({'interior' if interior else 'an end of the interval'}); the curve's peak is "
@@ -421,8 +416,9 @@ def _claim_rows(curve, fa, lower, at_paper):
         f"{st['interval_level']:.5f} on [{g_lo}, {st['interval_end']:.4f}], not a single point"))
     # increases up to about 2, then decreases ("about 2" read as the paper's own bracket)
     peak = fa["peak_rho"]
+    about = _rec("rho_increase_end")
     rows.append(claim_row(
-        "claim:a_max_increases_to_about_2", _rec("rho_increase_end").citation, g_lo < peak < g_hi,
+        f"claim:a_max_increases_to_about_{about.printed}", about.citation, g_lo < peak < g_hi,
         f"our a_MAX rises from {curve['a_max'].iloc[0]:.4f} at rho = {curve['rho'].iloc[0]:g} to "
         f"{fa['peak_a']:.5f} at rho = {peak:.4f} and falls after it ({_a_max(2.0):.5f} at rho = 2): "
         f"the peak is {'' if g_lo < peak < g_hi else 'not '}'about 2' (read as inside the paper's "
@@ -434,7 +430,7 @@ def _claim_rows(curve, fa, lower, at_paper):
     mono = bool(np.all(np.diff(before) >= -LEVEL_ATOL) and np.all(np.diff(after) <= LEVEL_ATOL)
                 and (after.size == 0 or after[0] < s["level"] - LEVEL_ATOL))
     rows.append(claim_row(
-        "claim:a_max_increases_to_about_2[flowchart step=0.1]", _rec("rho_increase_end").citation,
+        f"claim:a_max_increases_to_about_{about.printed}[flowchart step=0.1]", about.citation,
         mono and g_lo < s["end"] < g_hi,
         f"flowchart reading, step 0.1, on the curve.csv grid: the staircase never falls up to "
         f"rho = {s['end']:.4f} (level {s['level']:.5f} from rho = {s['start']:.4f}) and never rises "
@@ -449,7 +445,7 @@ def _claim_rows(curve, fa, lower, at_paper):
     lci_e = float(fb.lci(0.0, ey))
     inside = abs(ey - m.center_y) <= at_paper["a_max"] / 2.0
     rows.append(claim_row(
-        "claim:isotropic_point_E", "Le 2013 sec. III, eq. (21)-(22); sec. IV, Fig. 6 text",
+        "claim:isotropic_point_E", cite(PAPER, "sec. III, eq. (21)-(22); sec. IV, Fig. 6 text"),
         err < 1e-9 and inside,
         f"LCI at E = (0, sqrt(2)/2 (l1 + l2)) = 1 within {err:.1e} for all {len(curve)} tied designs "
         f"of curve.csv (rho in [{curve['rho'].min():g}, {curve['rho'].max():g}]); at rho* = {rho_star}: "
@@ -501,9 +497,9 @@ def run(out: Path, quick: bool = False, parts: bool = True) -> pd.DataFrame:
 
     joints = "never bind" if curve["joint_limits_hold"].all() else "bind somewhere"
     why_opt = (
-        f"LCI = 0.5 bounds the square on its bottom edge below rho = {lower:.4f}, at "
+        f"LCI = {GAMMA:g} bounds the square on its bottom edge below rho = {lower:.4f}, at "
         f"its top corners up to rho = {switch:.4f} (computed root of the two corner sides; the "
-        f"switch is not 'exactly' the paper's 1.9721, which lies {paper_rho / switch - 1:+.2%} "
+        f"switch is not 'exactly' the paper's {rho_rec.printed}, which lies {paper_rho / switch - 1:+.2%} "
         f"above it) and at its bottom corners above; the joint limits (25)-(26) {joints} (they hold "
         f"on the whole inscribed square of every curve.csv design); our a_MAX(rho) (curve.csv, "
         f"fig5) peaks at rho = {fa['peak_rho']:.4f} (a = {fa['peak_a']:.4f}) where the first two "
@@ -516,17 +512,18 @@ def run(out: Path, quick: bool = False, parts: bool = True) -> pd.DataFrame:
     if abs(ey - m.center_y) <= at_paper["a_max"] / 2.0:
         lci_max = max(lci_max, float(fb.lci(0.0, ey)))
     corner_gap = at_paper["a_max"] - min(corner_side(paper_rho, True), corner_side(paper_rho, False))
+    lci_min_rec = _rec("lci_min_in_square")
     rows = _setting_rows() + [
         compare(rho_rec, best["rho"], note="GA (runner, seed 1) on le2013; " + why_opt),
-        compare(a_rec, best["a_max"], tol_abs=A_ABS_TOL, note="best square side of our GA; " + why_opt),
-        compare(a_rec, at_paper["a_max"], tol_abs=A_ABS_TOL, quantity="a_max_at_paper_rho",
+        compare(a_rec, best["a_max"], note="best square side of our GA; " + why_opt),
+        compare(a_rec, at_paper["a_max"], quantity="a_max_at_paper_rho",
                 note=(f"our a_MAX at the paper's rho* = {paper_rho} (l0 by eq. 24, MIC centre); the "
                       f"bottom-corner LCI binds there (square search - exact corner root = "
                       f"{corner_gap:+.1e} l1)")),
-        claim_row("lci_min_in_square", _rec("lci_min_in_square").citation,
+        claim_row("lci_min_in_square", lci_min_rec.citation,
                   bool(at_paper["lci_min"] >= GAMMA - 1e-6),
                   f"min LCI on an 81 x 81 grid of the square at rho* = {paper_rho}: "
-                  f"{at_paper['lci_min']:.6f} >= gamma = {GAMMA}; the printed 0.5 is the threshold "
+                  f"{at_paper['lci_min']:.6f} >= gamma = {GAMMA}; the printed {lci_min_rec.printed} is the threshold "
                   f"gamma itself (setting row), reached where the constraint binds, so it is "
                   f"checked as a claim, not counted as a match"),
         compare(_rec("lci_max_in_square"), lci_max,
@@ -535,9 +532,9 @@ def run(out: Path, quick: bool = False, parts: bool = True) -> pd.DataFrame:
                       f"claim:isotropic_point_E")),
     ]
     rows += _reading_rows(fa, switch, at_paper)
-    rows.append(comparison_row(
-        "a_max_relaxed", "Le 2013 eq. (24) dropped (mechopt variant)", None, relaxed["a_max"],
-        a_rec.unit, a_rec.digits, 0.0, kind="reading",
+    rows.append(not_reported(
+        "a_max_relaxed", cite(PAPER, "eq. (24) dropped (mechopt variant)"), relaxed["a_max"],
+        a_rec.unit, kind="reading",
         note=(f"l0 free: best a = {relaxed['a_max']:.4f} at rho = {relaxed['rho']:.4f}, "
               f"l0 = {relaxed['l0']:.4f}; with eq. (24): {best['a_max']:.4f} "
               f"({(relaxed['a_max'] / best['a_max'] - 1):+.2%})")))

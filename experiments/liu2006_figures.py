@@ -2,7 +2,8 @@
 
 Figs. 8-16 (example designs with MIC and usable workspace), 17-28 (LCI and index
 maps, usable workspaces, GCW, the maximal square). The atlases (Figs. 2-6) and
-optimum regions (Figs. 7, 9, 11, 13, 15) come from :mod:`mechopt.run.atlas`.
+optimum regions (Figs. 7, 9, 11, 13, 15) come from :mod:`mechopt.run.atlas`. Designs
+are named by their keys ``"r1/r2/r3"`` in ``mechopt/data/liu2006.csv``.
 """
 from __future__ import annotations
 
@@ -19,14 +20,23 @@ from mechopt.analysis.workspace import gcw, largest_square, mic, usable_region
 
 __all__ = ["draw_all", "atlas_figures", "design_figures", "EXAMPLES"]
 
-#: sec. 3.1.1-3.1.5: the example design of each optimum region
+#: sec. 3.1.1-3.1.5: the example design (its key in liu2006.csv) of each optimum region
 EXAMPLES = {
-    "W-GCI (Fig. 8)": (1.1, 1.65, 0.25),
-    "W-GCI-GVI (Fig. 10)": (1.5, 1.2, 0.3),
-    "W-GCI-GPI (Fig. 12)": (0.7, 1.7, 0.6),
-    "W-GCI-GSI (Fig. 14)": (0.85, 1.6, 0.55),
-    "All (Fig. 16)": (1.17, 1.45, 0.38),
+    "W-GCI (Fig. 8)": "1.1/1.65/0.25",
+    "W-GCI-GVI (Fig. 10)": "1.5/1.2/0.3",
+    "W-GCI-GPI (Fig. 12)": "0.7/1.7/0.6",
+    "W-GCI-GSI (Fig. 14)": "0.85/1.6/0.55",
+    "All (Fig. 16)": "1.17/1.45/0.38",
 }
+#: sec. 3.2: the design of the GCW and its square (Figs. 17, 23-28), of Fig. 20 and of
+#: Figs. 21-22, and the pair of usable workspaces of Figs. 18-19
+GCW_EXAMPLE, FIG20, FIGS21_22 = "0.85/1.6/0.55", "1.1/1.65/0.25", "1.5/1.2/0.3"
+USABLE_PAIR = ("0.4/2.33/0.27", "0.65/1.62/0.73")
+
+
+def _lengths(key: str) -> tuple:
+    """``(r1, r2, r3)`` of a design key ``"r1/r2/r3"``."""
+    return tuple(float(v) for v in key.split("/"))
 
 
 def _mechanism_lines(ax, fb, m):
@@ -58,13 +68,14 @@ def _disk_region(fb, m, radius, step):
 
 def fig_examples(step):
     fig = Figure(figsize=(16, 3.6), layout="constrained")
-    for k, (name, r) in enumerate(EXAMPLES.items()):
+    for k, (name, key) in enumerate(EXAMPLES.items()):
+        r = _lengths(key)
         fb = FiveBar(*r)
         m = mic(fb)
         u = usable_region(fb, step=step, center=(0.0, m.center_y))
         ax = fig.add_subplot(1, 5, k + 1)
         X, Y = u.grid.points()
-        ax.contourf(X, Y, u.mask.astype(float), levels=[0.5, 1.5], colors=["0.85"])
+        ax.contourf(X, Y, u.mask.astype(float), levels=[0.5, 1.5], colors=["0.85"])  # not a printed number
         ax.add_patch(Circle((0, m.center_y), m.radius, fill=False, color="C3", lw=1.2))
         _mechanism_lines(ax, fb, m)
         workspace_axes(ax)
@@ -82,7 +93,7 @@ def fig_lci_usable(fb, step, title):
 
 def fig_usable_pair(step):
     fig = Figure(figsize=(11, 4), layout="constrained")
-    for k, r in enumerate([(0.4, 2.33, 0.27), (0.65, 1.62, 0.73)]):
+    for k, r in enumerate(_lengths(key) for key in USABLE_PAIR):
         fb = FiveBar(*r)
         u = usable_region(fb, step=step)
         X, Y = u.grid.points()
@@ -132,9 +143,11 @@ ATLAS_FIGURES = {"gci": "fig02", "mci": "fig03", "gvi_max": "fig04a", "gvi_min":
                  "gpi_max": "fig05a", "gpi_min": "fig05b", "gsi_max": "fig06a", "gsi_min": "fig06b",
                  "r_mic": "ref19_fig19"}
 #: Figs. 7, 9, 11, 13, 15: each optimum region with the example design of its section
-REGION_FIGURES = {"w-gci": ("fig07a", None), "w-gci-prime": ("fig07b", (1.1, 1.65, 0.25)),
-                  "w-gci-gvi": ("fig09", (1.5, 1.2, 0.3)), "w-gci-gpi": ("fig11", (0.7, 1.7, 0.6)),
-                  "w-gci-gsi": ("fig13", (0.85, 1.6, 0.55)), "all": ("fig15", (1.17, 1.45, 0.38))}
+REGION_FIGURES = {"w-gci": ("fig07a", None), "w-gci-prime": ("fig07b", EXAMPLES["W-GCI (Fig. 8)"]),
+                  "w-gci-gvi": ("fig09", EXAMPLES["W-GCI-GVI (Fig. 10)"]),
+                  "w-gci-gpi": ("fig11", EXAMPLES["W-GCI-GPI (Fig. 12)"]),
+                  "w-gci-gsi": ("fig13", EXAMPLES["W-GCI-GSI (Fig. 14)"]),
+                  "all": ("fig15", EXAMPLES["All (Fig. 16)"])}
 
 
 def atlas_figures(out, quick: bool = False):
@@ -151,7 +164,8 @@ def atlas_figures(out, quick: bool = False):
     for col, fig_id in ATLAS_FIGURES.items():
         _io.save_figure(draw_atlas(table, col, quadrature="polar"), out / f"{fig_id}_atlas_{col}.png")
     rows = []
-    for name, (fig_id, example) in REGION_FIGURES.items():
+    for name, (fig_id, key) in REGION_FIGURES.items():
+        example = None if key is None else _lengths(key)
         where = " and ".join(f"{q} {op} {t}" for q, op, t in REGIONS[name])
         mask = parse_condition(where, names=tuple(table.columns)).evaluate(table)
         fig = draw_atlas(table, "gci", region=mask, where=where, quadrature="polar")
@@ -184,15 +198,16 @@ def design_figures(out, quick: bool = False):
     """Figs. 8-28 of single designs (everything but the atlases and their regions)."""
     out = Path(out)
     step = 0.02 if quick else 0.005
-    opt = FiveBar(0.85, 1.6, 0.55)
+    r_opt, r20, r21 = _lengths(GCW_EXAMPLE), _lengths(FIG20), _lengths(FIGS21_22)
+    opt = FiveBar(*r_opt)
     _io.save_figure(fig_examples(step), out / "figs08-16_examples.png")
-    _io.save_figure(fig_lci_usable(opt, step, "Figs. 17/23: LCI on the usable workspace, r = (0.85, 1.6, 0.55)"),
+    _io.save_figure(fig_lci_usable(opt, step, f"Figs. 17/23: LCI on the usable workspace, r = {r_opt}"),
                     out / "fig17_23_lci_usable.png")
     _io.save_figure(fig_usable_pair(step), out / "figs18-19_usable.png")
-    _io.save_figure(fig_extremes_on_miw(FiveBar(1.1, 1.65, 0.25), ["lci"], step, "Fig. 20, r = (1.1, 1.65, 0.25)"),
+    _io.save_figure(fig_extremes_on_miw(FiveBar(*r20), ["lci"], step, f"Fig. 20, r = {r20}"),
                     out / "fig20_lci_miw.png")
-    _io.save_figure(fig_extremes_on_miw(FiveBar(1.5, 1.2, 0.3), ["v_max", "tau_min", "d_max"], step,
-                                        "Figs. 21-22, r = (1.5, 1.2, 0.3)"), out / "figs21-22_extremes_miw.png")
-    _io.save_figure(fig_extremes_on_miw(opt, ["d_max", "d_min"], step, "Fig. 24, r = (0.85, 1.6, 0.55)"),
+    _io.save_figure(fig_extremes_on_miw(FiveBar(*r21), ["v_max", "tau_min", "d_max"], step,
+                                        f"Figs. 21-22, r = {r21}"), out / "figs21-22_extremes_miw.png")
+    _io.save_figure(fig_extremes_on_miw(opt, ["d_max", "d_min"], step, f"Fig. 24, r = {r_opt}"),
                     out / "fig24_d_miw.png")
     _io.save_figure(fig_gcw_and_square(opt, step), out / "figs25-28_gcw_square.png")

@@ -16,7 +16,8 @@ of :mod:`mechopt.core.published`.
 ``fig29_tqi_bipod.png``       Fig. 29 redrawn: TQI over the Bipod workspace
                               (b = 60 mm, q in [80, 130] mm, y > 0)
 ``fig30_tqi_biglide.png``     Fig. 30 redrawn: TQI over the Biglide workspace
-                              (L1 = 1, L2 = 1.1, q in [0, 1], mode "--")
+                              (L1 = 1, L2 = 1.1, the middle of sec. 5.2's design
+                              range 1 < L2 < 1.2, q in [0, 1], mode "--")
 ``tradeoff_bipod.png``,       W_n and T over the design variable, and T against W_n,
 ``tradeoff_biglide.png``      with the paper's Table 2/3 optima and ours marked
 ``curves.csv``                W, W_n, T over a dense grid of each design variable
@@ -71,12 +72,14 @@ two interior weighted optima 1.1 and 1.1556 together with the T-only row L2 = 1;
 0.25: 1.106) would also give the 0.7/0.3 row, never the 0.3/0.7 row (always 1.2): a fit,
 not adopted.
 
-Tolerances (printed unit): half a unit of the last printed digit, or a stated class
-accuracy if larger (:mod:`mechopt.core.published`): an optimum of the one design variable
-gets :data:`ABS_TOL_OPTIMUM_FRACTION` of the design range, absolute (the location error
-of an optimum does not scale with its value); the literal workspace area 1 %
-(:data:`REL_TOL_AREA`, a raster count's error scales with the workspace); settings and
-the exact-area reading only the printed digits.
+Every printed number (value, unit, digits, source) comes from ``mechopt/data/stan2008.csv``
+through :func:`mechopt.core.published.lookup`. Tolerances (printed unit): half a unit of
+the last printed digit, or the accuracy class the data file names if larger
+(:data:`mechopt.core.published.ACCURACY`): an optimum of the one design variable is of
+class ``ga_optimum``, 1 % of the design range, absolute (the location error of an
+optimum does not scale with its value); the literal workspace area of class
+``raster``, 1 % (a raster count's error scales with the workspace); settings and the
+exact-area reading only the printed digits.
 """
 from __future__ import annotations
 
@@ -96,24 +99,33 @@ from mechopt.problems import get
 from mechopt.problems.stan2008 import Q_MAX_OVER_Q_MIN, StanBiglide
 from mechopt.run.weighted import WeightedSum
 from mechopt.run.plotting import labelled_colorbar
-from mechopt.core.published import (TABLE_COLUMNS, claim_row, compare, load, lookup,
-                               printed_half_unit)
+from mechopt.core.published import (ACCURACY, TABLE_COLUMNS, claim_row, compare, lookup,
+                                    printed_half_unit, records, tolerance)
 from mechopt.core.quadrature import grid_over
 from mechopt.run.runner import make_algorithm, optimize, parse_weights, sweep
 
-__all__ = ["run", "ABS_TOL_OPTIMUM_FRACTION", "REL_TOL_AREA", "SETTINGS", "WEIGHTS", "SEED",
+__all__ = ["run", "SETTINGS", "WEIGHTS", "SEED",
            "AREA_SEARCH", "AREA_READING_B", "BIGLIDE_L1", "BIGLIDE_STROKES", "paper_ga",
            "area_search", "retracted_pose_tqi", "bipod_t_readings"]
 
 PAPER = "stan2008"
-#: acceptance class of a GA optimum of the one design variable (q1/b or L2): 1 % of the
-#: design range, absolute in the variable (0.0083 for q1/b, 0.002 for L2). The paper's
-#: GAOT run, its unstated normalisation of W and aggregation of T make its optima no
-#: more precise than that; the location error of an optimum does not scale with its value.
-ABS_TOL_OPTIMUM_FRACTION = 0.01
-#: acceptance class of the literal workspace area: 1 % (the paper's area, if a raster
-#: count, eq. 1-3, of unstated resolution, has an error that scales with the workspace)
-REL_TOL_AREA = 0.01
+
+
+def _rec(design, quantity):
+    return lookup(PAPER, quantity, design)
+
+
+def _inputs() -> dict:
+    """The printed inputs of sec. 5.1 and eq. (12)-(13), ``{quantity: value}``: b,
+    strokes [mm], q1min/b (printed and bounds), q_max/q_min."""
+    return {r.quantity: r.value for r in records(PAPER) if r.design in ("bipod-sec5.1", "bipod-eq12-13")}
+
+
+def _comma(x: float) -> str:
+    """``x`` as the paper prints it, with a decimal comma (``1,35``)."""
+    return f"{x:g}".replace(".", ",")
+
+
 #: weights of the sweep (w = W2, the weight of W_n; W1 = 1 - w)
 WEIGHTS = "0:1:0.1"
 SEED = 1
@@ -122,7 +134,8 @@ SEED = 1
 #: the workspace area [mm], points of q1min/b for the readings of T and W, and the
 #: Biglide scan (L1 values, strokes, points of L2)
 SETTINGS = {
-    False: dict(pop=50, gen=100, n_curve=401, n_map=400, raster_steps=(2.0, 1.0, 0.5),
+    False: dict(pop=int(_rec("table1", "population").value), gen=int(_rec("table1", "generations").value),
+                n_curve=401, n_map=400, raster_steps=(2.0, 1.0, 0.5),
                 n_readings=831, scan_l1=tuple(np.round(np.arange(0.30, 1.0001, 0.02), 2)),
                 scan_strokes=(0.25, 0.5, 1.0, 2.0, 4.0), scan_n=101),
     True: dict(pop=10, gen=10, n_curve=41, n_map=80, raster_steps=(2.0, 1.0),
@@ -133,10 +146,18 @@ PROBLEMS = {"bipod": "stan2008-bipod", "biglide": "stan2008-biglide"}
 OPTIMA = (("bipod", "table2", "q1_over_b"), ("biglide", "table3", "L2"))
 #: the search box of the Bipod area (integers, mm, inclusive)
 AREA_SEARCH = {"b": (40, 80), "q_min": (60, 100), "q_max": (110, 150)}
-#: |area - 4693.33| [mm^2] up to which a design is written to area_search.csv
+#: |area - printed area| [mm^2] up to which a design is written to area_search.csv
 AREA_NEAR = 1.0
 #: base width [mm] of the area reading
 AREA_READING_B = 62.0
+#: the row of the area reading
+AREA_READING = f"workspace_area[b={AREA_READING_B:g}mm]"
+#: the tags of the readings of Table 2's optima: T-only as the TQI of the retracted pose,
+#: W-only as q1min/b of the design of the area reading
+RETRACTED_TAG = "retracted pose"
+DESIGN_TAG = f"design {_inputs()['q1_min']:g}/{AREA_READING_B:g}"
+#: the claim row of sec. 5.1's maximum workspace at the bound of eq. (12)
+MAX_CLAIM = f"claim:max_workspace_at_q1min/b={_rec('bipod-sec5.1', 'q1_min_over_b').value:g}"
 #: Biglide setup of the L1 reading (module docstring)
 BIGLIDE_L1 = 0.5
 BIGLIDE_STROKES = (0.0, 1.0)
@@ -146,19 +167,15 @@ _PROBE_STROKES = (0.5, 2.2)
 _LAMBDAS = np.concatenate([[0.0], np.logspace(-4, 5, 1801)])
 
 
-def _rec(design, quantity):
-    return lookup(PAPER, quantity, design)
+def _span(problem) -> float:
+    """The design range of a one-variable problem: the span of the ``ga_optimum`` class."""
+    return float(problem.xu[0] - problem.xl[0])
 
 
-def _opt_tol(problem) -> float:
-    return ABS_TOL_OPTIMUM_FRACTION * float(problem.xu[0] - problem.xl[0])
-
-
-def _labels(pub, table_id):
+def _labels(table_id):
     """``[(design, label, W1, W2)]`` of a Table in the order of the data file."""
     out = []
-    for design in sorted(set(pub.design[pub.design.str.startswith(table_id + ":")]),
-                         key=lambda d: pub.index[pub.design == d][0]):
+    for design in dict.fromkeys(r.design for r in records(PAPER) if r.design.startswith(table_id + ":")):
         label = design.split(":", 1)[1]
         w1, w2 = (float(t.split("=")[1]) for t in label.split(","))
         out.append((design, label, w1, w2))
@@ -314,15 +331,15 @@ def _area_rows(bip, inputs, steps, out):
     m62 = Bipod(AREA_READING_B, a, c)
     w62 = m62.workspace_area()
     literal = compare(
-        rec, bip.workspace_area(), tol_rel=REL_TOL_AREA,
+        rec, bip.workspace_area(),
         note=(f"exact area of the y > 0 half of the intersection of the annuli {a:g} <= |P - A_i| <= "
               f"{c:g} around A1 = (0, 0), A2 = ({b:g}, 0) (closed form, mechopt.mechanisms.bipod). "
               f"Not a raster artefact: cell-centre rasters (Stan eq. 1-3, cells of side h) give "
               f"{', '.join(rasters)} mm^2, converging to the exact value. Other readings of the "
-              f"paper's inconsistent inputs (80/60 = {a / b:.3f} vs printed q1min/b = {upper:g}; "
-              f"q_max = {c:g} vs {ratio:g}*{a:g}): {alt_txt} mm^2, none 4693.33. The base width "
-              f"b = {AREA_READING_B:g} mm reproduces it (row workspace_area[b=62mm]); this literal "
-              "row keeps the printed b = 60 mm"))
+              f"paper's inconsistent inputs ({a:g}/{b:g} = {a / b:.3f} vs printed q1min/b = {upper:g}; "
+              f"q_max = {c:g} vs {ratio:g}*{a:g}): {alt_txt} mm^2, none {rec.printed}. The base width "
+              f"b = {AREA_READING_B:g} mm reproduces it (row {AREA_READING}); this literal "
+              f"row keeps the printed b = {b:g} mm"))
     hit_txt = ", ".join(f"(b, q_min, q_max) = ({r.b:g}, {r.q_min:g}, {r.q_max:g}) mm: {r.area:.4f}"
                         for r in hits.itertuples()) or "none"
     near_txt = ", ".join(f"({r.b:g}, {r.q_min:g}, {r.q_max:g}): {r.area:.4f}"
@@ -332,23 +349,26 @@ def _area_rows(bip, inputs, steps, out):
     slope = (bipod_workspace_area(AREA_READING_B - 1, a, c, a, c)
              - bipod_workspace_area(AREA_READING_B + 1, a, c, a, c)) / 2.0
     box = AREA_SEARCH
+    w_only = _rec("table2:W1=0,W2=1", "q1_over_b")
     reading = compare(
-        rec, w62, quantity="workspace_area[b=62mm]", kind="reading",
+        rec, w62, accuracy="printed", quantity=AREA_READING, kind="reading",
         note=(f"reading: the printed struts {a:g}-{c:g} mm on a base b = {AREA_READING_B:g} mm instead of "
               f"the printed {b:g} mm: exact y > 0 area {w62:.6f} mm^2, which reproduces the printed "
-              f"4693.33 to its digits (|diff| {abs(w62 - rec.value):.4f} <= {half:g}). Systematic search "
+              f"{rec.printed} to its digits (|diff| {abs(w62 - rec.value):.4f} <= {half:g}). Systematic search "
               f"(area_search.csv) over every integer b in [{box['b'][0]}, {box['b'][1]}], q_min in "
               f"[{box['q_min'][0]}, {box['q_min'][1]}], q_max in [{box['q_max'][0]}, {box['q_max'][1]}] mm "
               f"(equal strokes, {info['searched']} designs): {len(hits)} hit(s) to the printed digits, "
-              f"{hit_txt}; nearest misses {near_txt}. At the printed struts the area equals 4693.33 "
+              f"{hit_txt}; nearest misses {near_txt}. At the printed struts the area equals {rec.printed} "
               f"exactly for b = {b_root:.5f} mm. Plausible, not a coincidence of the search: "
               f"{info['within_50']} designs of the box lie within +-50 mm^2, so about "
-              f"{info['expected_chance_hits']:.2f} chance hits are expected in the 0.01 mm^2 window over "
-              f"the whole box, and the hit keeps both printed strut lengths and moves only b by 2 mm "
+              f"{info['expected_chance_hits']:.2f} chance hits are expected in the {2 * half:g} mm^2 window over "
+              f"the whole box, and the hit keeps both printed strut lengths and moves only b by "
+              f"{AREA_READING_B - b:g} mm "
               f"(the area changes by {slope:.1f} mm^2 per mm of b there, so one integer b lands in the "
               f"window by chance with probability ~{2 * half / slope:.0e}); the paper's area is then an "
-              f"exact intersection area ('the area can be also computed', sec. 4.1) of a b = 62 mm "
-              f"design, and 80/62 = {a / AREA_READING_B:.3f} rounds to Table 2's W-only 1.3. The "
+              f"exact intersection area ('the area can be also computed', sec. 4.1) of a b = "
+              f"{AREA_READING_B:g} mm design, and {a:g}/{AREA_READING_B:g} = {a / AREA_READING_B:.3f} "
+              f"rounds to Table 2's W-only {w_only.printed}. The "
               "closed-form area has no quadrature error: only the printed digits are the tolerance"))
     return [literal, reading], {"b_root": b_root, "hits": hits, "w62": w62}
 
@@ -403,27 +423,30 @@ def _bipod_w_readings(u, paper_area):
     """Readings of W: ``(values, affine in the exact area)``."""
     k = Q_MAX_OVER_Q_MIN
     one = np.ones_like(u)
+    inp = _inputs()
+    b, qa = inp["b"], inp["q1_min"]  # sec. 5.1's base and shortest strut [mm]
+    qc = inp["q_max_over_q_min"] * qa  # its longest strut by eq. (13)
     W = bipod_workspace_area(one, u, k * u, u, k * u)
-    fixed = bipod_workspace_area(80.0 / u, 80.0 * one, 128.0 * one, 80.0 * one, 128.0 * one)
+    fixed = bipod_workspace_area(qa / u, qa * one, qc * one, qa * one, qc * one)
     return {
-        "W / W(1.35) (ours)": (W / W[-1], True),
+        f"W / W({inp['q1_min_over_b_upper']:g}) (ours)": (W / W[-1], True),
         "W [b^2], unnormalised": (W, True),
-        "W [mm^2] at b = 60 mm, unnormalised": (W * 3600.0, True),
-        f"W [mm^2] at b = 60 mm / {paper_area:g} mm^2": (W * 3600.0 / paper_area, True),
+        f"W [mm^2] at b = {b:g} mm, unnormalised": (W * (b * b), True),
+        f"W [mm^2] at b = {b:g} mm / {paper_area:g} mm^2": (W * (b * b) / paper_area, True),
         "(W - W_min) / (W_max - W_min)": ((W - W.min()) / np.ptp(W), True),
         "W / half annulus pi (q_max^2 - q_min^2) / 2": (W / (np.pi * (k * k - 1.0) * u * u / 2.0), False),
-        "W [mm^2] at q = 80-128 mm, b = 80 mm/u, / its max": (fixed / fixed.max(), False),
+        f"W [mm^2] at q = {qa:g}-{qc:g} mm, b = {qa:g} mm/u, / its max": (fixed / fixed.max(), False),
     }
 
 
-def _bipod_readings(pub, s, tol, out):
+def _bipod_readings(s, tol, out):
     rec_area = _rec("bipod-sec5.1", "workspace_area")
     lo, hi = (_rec("bipod-eq12-13", q).value for q in ("q1_min_over_b_lower", "q1_min_over_b_upper"))
     u = np.linspace(lo, hi, s["n_readings"])
     Ts = bipod_t_readings(u)
     Ws = _bipod_w_readings(u, rec_area.value)
     rows = []
-    for _, label, w1, w2 in _labels(pub, "table2"):
+    for _, label, w1, w2 in _labels("table2"):
         paper = _rec(f"table2:{label}", "q1_over_b").value
         for tn, T in Ts.items():
             for wn, (W, affine) in Ws.items():
@@ -436,7 +459,7 @@ def _bipod_readings(pub, s, tol, out):
     W_exact = Ws["W [b^2], unnormalised"][0]
     fam = []
     targets = [(label, _rec(f"table2:{label}", "q1_over_b").value)
-               for _, label, w1, w2 in _labels(pub, "table2") if w1 > 0 and w2 > 0]
+               for _, label, w1, w2 in _labels("table2") if w1 > 0 and w2 > 0]
     for tn, T in Ts.items():
         opt = _reachable_optima(u, T, W_exact)
         row = {"T_reading": tn, "peak_of_T": float(u[np.argmax(T)]),
@@ -462,9 +485,11 @@ def _bipod_weighted_analysis(pairs, family, paper):
     nl = nonlin.groupby("W_reading", sort=False)["optimum"]
     nl_txt = "; ".join(f"{name}: {', '.join(f'{v:.3f}' for v in sorted(set(np.round(g, 3))))}"
                        for name, g in nl)
+    upper = _inputs()["q1_min_over_b_upper"]
+    area = _rec("bipod-sec5.1", "workspace_area").printed
     return (f"readings analysis (bipod_readings.csv, bipod_reachable_optima.csv): for every reading of "
             f"T and every W that is an increasing affine function of the exact area (normalised by "
-            f"W(1.35), by its range or by 4693.33 mm^2, or unnormalised in b^2 or mm^2), all "
+            f"W({upper:g}), by its range or by {area} mm^2, or unnormalised in b^2 or mm^2), all "
             f"weightings together reach only these optima: {fam_txt}; so no such pair gives "
             f"{paper:g}. Of the {len(sel)} (T, W) pairs with these weights, {len(hits)} match"
             f"{hit_txt}; the nearest is {near.optimum:.3f} (T {near.T_reading}, {near.W_reading}); "
@@ -472,11 +497,11 @@ def _bipod_weighted_analysis(pairs, family, paper):
 
 
 # --- Biglide: the L1 reading and the scan -----------------------------------------------------
-def _biglide_scan(s, tol, paper):
+def _biglide_scan(s, span, paper):
     """Table 3's rows over a grid of L1 and strokes (``biglide_l1_scan.csv``); ``paper``
     maps ``(W1, W2)`` to the printed optimum's Record, each row's tolerance is that of
-    its table row (printed digits or ``tol``)."""
-    tols = {k: max(printed_half_unit(r.digits), tol) for k, r in paper.items()}
+    its table row (:func:`mechopt.core.published.tolerance`, ``span`` the design range)."""
+    tols = {k: tolerance(r, span=span) for k, r in paper.items()}
     val = {k: r.value for k, r in paper.items()}
     mixed = [k for k in paper if k[0] > 0 and k[1] > 0]
     (a1, a2), (b1, b2) = sorted(mixed, reverse=True)  # (0.7, 0.3), (0.3, 0.7)
@@ -516,9 +541,10 @@ def _convex_from(c):
     return float(x[1:-1][bad.max() + 1]) if bad.size else float(x[0])
 
 
-def _tolerance_remark(rec, reproduced, tol_abs, span):
-    """Say so when the printed-digit tolerance makes the status meaningless or fragile."""
-    tol = max(printed_half_unit(rec.digits), tol_abs)
+def _tolerance_remark(rec, reproduced, span):
+    """Say so when the printed-digit tolerance makes the status meaningless or fragile
+    (``span``: the design range)."""
+    tol = tolerance(rec, span=span)
     err = abs(reproduced - rec.value)
     if tol >= span:
         return (f"the paper prints {rec.value:g} with {rec.digits} decimals: its half-unit "
@@ -545,19 +571,23 @@ def _bipod_note(w1, w2, ours, paper, curve, run, w_ref_var, analysis, t_peaks):
     parts = [f"{_ga_text(run)} optimum of Z = {w1:g} T + {w2:g} W_n, W_n = W/W({var} = {w_ref_var:g}) "
              f"(the paper does not state its normalisation of W); on our curves Z(ours) = "
              f"{_z(curve, w1, w2, ours):.4f}, Z(paper's {paper:g}) = {_z(curve, w1, w2, paper):.4f}"]
+    label = f"W1={w1:g},W2={w2:g}"
     if w1 == 0:
+        inp = _inputs()
+        a, b = inp["q1_min"], inp["b"]
         parts.append(
             f"W grows monotonically with q1/b (W_n {Wn[0]:.3f} -> 1 over [{lo:g}, {hi:g}], "
             "curves.csv), so the W-only optimum is the upper bound of eq. (12) (claim row "
-            "claim:max_workspace_at_q1min/b=1.35); the paper's own sec. 5.1 text gives 1,35 for the "
-            "maximum workspace, Table 2 prints 1.3 (its design q1min = 80, b = 60 has q1min/b = 1.333; "
-            "row q1_over_b[W1=0,W2=1;design 80/62] the b = 62 mm reading)")
+            f"{MAX_CLAIM}); the paper's own sec. 5.1 text gives {_comma(inp['q1_min_over_b'])} for the "
+            f"maximum workspace, Table 2 prints {paper:g} (its design q1min = {a:g}, b = {b:g} has "
+            f"q1min/b = {a / b:.3f}; row q1_over_b[{label};{DESIGN_TAG}] the b = {AREA_READING_B:g} mm "
+            "reading)")
     elif w2 == 0:
         parts.append(
             f"our T (exact area mean of the TQI of eq. 9 over the y > 0 workspace) peaks at "
             f"q1/b = {x[i_t]:.3f} (T = {T[i_t]:.3f}); other readings of T peak at {t_peaks}; the "
-            "TQI at the retracted pose peaks at 1/sqrt(2) = 0.7071 and reproduces 0.71 (row "
-            "q1_over_b[W1=1,W2=0;retracted pose]); this literal row keeps the workspace mean")
+            f"TQI at the retracted pose peaks at 1/sqrt(2) = 0.7071 and reproduces {paper:g} (row "
+            f"q1_over_b[{label};{RETRACTED_TAG}]); this literal row keeps the workspace mean")
     else:
         parts.append(f"W and T are both convex in q1/b on [{_convex_from(curve):.3f}, {hi:g}] "
                      "(curves.csv grid)")
@@ -576,9 +606,10 @@ def _biglide_note(w1, w2, curve, run, w_ref_var, l1_trend):
              f"both W and T increase monotonically with L2 over [{lo:.4g}, {hi:g}] (curves.csv)"
              if mono else f"W and T over [{lo:.4g}, {hi:g}] in curves.csv"]
     if w1 > 0 and mono:
-        parts.append("so every weighting gives the bound 1.2; the paper's T-only optimum L2 = 1 needs T "
-                     "to fall with L2, which at the centre pose x = 0 needs L2 > sqrt(2) L1: L1 = 1 "
-                     "contradicts that row by construction")
+        t_only = _rec("table3:W1=1,W2=0", "L2").value
+        parts.append(f"so every weighting gives the bound {w_ref_var:g}; the paper's T-only optimum "
+                     f"L2 = {t_only:g} needs T to fall with L2, which at the centre pose x = 0 needs "
+                     "L2 > sqrt(2) L1: L1 = 1 contradicts that row by construction")
     if w2 == 0:
         parts.append(f"at L2 = L1 = 1 our workspace collapses to the line x = 0 (W = 0, T = {T[0]:.4f} "
                      f"at L2 = {lo:.7g})")
@@ -599,7 +630,7 @@ def _default_ga_text(pop):
             f"{float(mut.get_prob_var(one)):g}")
 
 
-def _ga_rows(pub, pop, gen, quick, rates, paper_runs):
+def _ga_rows(pop, gen, quick, rates, paper_runs):
     run_txt = ("quick run (quick=True): small sizes for a smoke test; the full run uses "
                "Table 1's value") if quick else "the full run uses Table 1's value"
     runs_txt = "; ".join(f"{k} W2={w:g}: {r[0]:.4f} ({r[1]} evaluations)"
@@ -627,7 +658,7 @@ def _ga_rows(pub, pop, gen, quick, rates, paper_runs):
             for q, (v, note) in ours.items()]
 
 
-def _claim_rows(curves, problems, pub):
+def _claim_rows(curves, problems):
     rows = []
     c = curves["bipod"]
     x, W = c["value"].to_numpy(), c["W"].to_numpy()
@@ -636,22 +667,24 @@ def _claim_rows(curves, problems, pub):
     inc = bool(np.all(np.diff(W) > 0))
     at_top = bool(np.argmax(W) == len(W) - 1 and np.isclose(x[-1], rec.value))
     uu = np.linspace(x[0], x[-1], len(x))
-    fixed = {qm: bipod_workspace_area(80.0 / uu, 80.0, qm, 80.0, qm) for qm in (128.0, 130.0)}
+    inp = _inputs()
+    b, qa, ratio = inp["b"], inp["q1_min"], inp["q_max_over_q_min"]
+    # sec. 5.1's shortest strut with its longest by eq. (13) and as printed
+    fixed = {qm: bipod_workspace_area(qa / uu, qa, qm, qa, qm) for qm in (ratio * qa, inp["q1_max"])}
     def trend(v):
         return "increasing" if np.all(np.diff(v) > 0) else f"not monotone, smallest at {uu[np.argmin(v)]:.3f}"
 
-    fixed_txt = "; ".join(f"with fixed struts 80-{qm:g} mm and b = 80 mm/(q1min/b) the area is largest "
+    fixed_txt = "; ".join(f"with fixed struts {qa:g}-{qm:g} mm and b = {qa:g} mm/(q1min/b) the area is largest "
                           f"at q1min/b = {uu[np.argmax(v)]:.3f} ({v.max():.2f} mm^2; {trend(v)})"
                           for qm, v in fixed.items())
     rows.append(claim_row(
-        "claim:max_workspace_at_q1min/b=1.35", rec.citation, inc and at_top,
-        f"the W of eq. (11)-(13) (b = 1, q_max = 1.6 q_min, exact y > 0 area) rises strictly over "
+        MAX_CLAIM, rec.citation, inc and at_top,
+        f"the W of eq. (11)-(13) (b = 1, q_max = {ratio:g} q_min, exact y > 0 area) rises strictly over "
         f"all {len(x)} points of [{x[0]:g}, {x[-1]:g}] (curves.csv; W from {W[0]:.4f} to {W[-1]:.4f} b^2, "
         f"smallest step {np.min(np.diff(W)):.2e}), so the maximum workspace of the design range is at "
         f"its upper bound q1min/b = {up:g}, as printed (at fixed b every strut length grows with "
         f"q1min/b, and so does the area); {fixed_txt}. The design the same sentence uses "
-        f"(q1min = 80, b = 60 mm) has q1min/b = 1.333, not 1.35"))
-    b = _rec("bipod-sec5.1", "b").value
+        f"(q1min = {qa:g}, b = {b:g} mm) has q1min/b = {qa / b:.3f}, not {rec.value:g}"))
     q_lo, q_hi = _rec("bipod-sec5.1", "q1_min").value, _rec("bipod-sec5.1", "q1_max").value
     sec51 = Bipod(b, q_lo, q_hi)
     wide = Bipod(b, 1.0, q_hi)  # the figures print no strokes: any strokes reaching the pose
@@ -665,7 +698,7 @@ def _claim_rows(curves, problems, pub):
         cls51 = str(np.ravel(sec51.classify_singularity(xp, yp))[0])
         mirror = np.isclose(xp + other[0], b) and np.isclose(yp, other[1])
         mirror_txt = (f"Its mirror image about x = b/2 = {b / 2:g} mm is the other figure's pose (q1, q2 "
-                      "swapped), which supports b = 60 mm in Figs. 9-10. " if mirror else "")
+                      f"swapped), which supports b = {b:g} mm in Figs. 9-10. " if mirror else "")
         rows.append(claim_row(
             f"claim:{fig}_pose_regular", _rec(fig, "x_p").citation, cls == "none",
             f"the text shows P = ({xp:g}, {yp:g}) mm as a Bipod configuration of the inverse-kinematics "
@@ -735,10 +768,9 @@ def run(out: Path, quick: bool = False) -> pd.DataFrame:
     beside them and the checked claims; files into ``out``."""
     out = _io.prepare_out_dir(out)
     s = SETTINGS[bool(quick)]
-    pub = load(PAPER)
-    inputs = pub[pub.design.isin(["bipod-sec5.1", "bipod-eq12-13"])].set_index("quantity")["value"]
+    inputs = _inputs()
     rates = (_rec("table1", "crossover_rate").value, _rec("table1", "mutation_rate").value)
-    table_w = {key: [w2 for _, _, _, w2 in _labels(pub, tid)] for key, tid, _ in OPTIMA}
+    table_w = {key: [w2 for _, _, _, w2 in _labels(tid)] for key, tid, _ in OPTIMA}
 
     jobs = [(key, _io.prepare_out_dir(out / key), s["pop"], s["gen"], table_w[key], rates)
             for key in PROBLEMS]
@@ -753,32 +785,42 @@ def run(out: Path, quick: bool = False) -> pd.DataFrame:
 
     rows = []
     # workspace area of sec. 5.1, literal and the b = 62 mm reading
-    bip = Bipod(inputs["b"], inputs["q1_min"], inputs["q1_max"], inputs["q2_min"], inputs["q2_max"])
+    b, a, c = inputs["b"], inputs["q1_min"], inputs["q1_max"]
+    bip = Bipod(b, a, c, inputs["q2_min"], inputs["q2_max"])
     area_rows, _ = _area_rows(bip, inputs, s["raster_steps"], out)
     rows += area_rows
 
     # readings of the Bipod's T and W, the Biglide's L1
-    tol = {k: _opt_tol(p) for k, p in problems.items()}
-    pairs, family, t_read, u_read = _bipod_readings(pub, s, tol["bipod"], out)
+    span = {k: _span(p) for k, p in problems.items()}
+    pairs, family, t_read, u_read = _bipod_readings(s, ACCURACY["ga_optimum"].absolute(span["bipod"]), out)
     t_peaks = ", ".join(f"{u_read[np.argmax(v)]:.3f} ({k})" for k, v in t_read.items()
                         if "ours" not in k)
     t_aggr = ", ".join(f"{u_read[np.argmax(v)]:.3f} ({k})" for k, v in t_read.items()
                        if "mean" in k or "minimum" in k)
-    paper3 = {(w1, w2): _rec(d, "L2") for d, _, w1, w2 in _labels(pub, "table3")}
-    scan = _biglide_scan(s, tol["biglide"], paper3)
+    paper3 = {(w1, w2): _rec(d, "L2") for d, _, w1, w2 in _labels("table3")}
+    scan = _biglide_scan(s, span["biglide"], paper3)
     _io.write_csv(scan, out / "biglide_l1_scan.csv")
     gl_read = StanBiglide(l1=BIGLIDE_L1, q_min=BIGLIDE_STROKES[0], q_max=BIGLIDE_STROKES[1])
     c_read = _curve(gl_read, s["n_curve"])
     dT = np.diff(c_read["T"].to_numpy())
     l1_trend = "falls" if np.all(dT < 0) else ("rises" if np.all(dT > 0) else "is not monotone")
+    # Table 3's weighted rows (0.7/0.3, then 0.3/0.7) and its T-only row
+    mixed = sorted((k for k in paper3 if k[0] > 0 and k[1] > 0), reverse=True)
+    t_only = next(r for (w1, w2), r in paper3.items() if w2 == 0)
 
     # Tables 2-3
     for key, table_id, qname in OPTIMA:
         tab, curve, p = tables[key], curves[key], problems[key]
         var = p.var_names[0]
         paper_opt, ours_opt = {}, {}
-        for design, label, w1, w2 in _labels(pub, table_id):
+        for design, label, w1, w2 in _labels(table_id):
             rec = _rec(design, qname)
+
+            def reading(x, tag, note, rec=rec, label=label, key=key, qname=qname):
+                """A reading of the row's printed optimum, within the row's tolerance."""
+                rows.append(compare(rec, x, span=span[key], kind="reading",
+                                    quantity=f"{qname}[{label};{tag}]", note=note))
+
             best = tab[np.isclose(tab["weight"], w2)]
             if len(best) != 1:
                 raise RuntimeError(f"the sweep has no weight {w2} for {key}")
@@ -790,77 +832,75 @@ def run(out: Path, quick: bool = False) -> pd.DataFrame:
                                    t_peaks)
             else:
                 note = _biglide_note(w1, w2, curve, s, float(p.xu[0]), l1_trend)
-            remark = _tolerance_remark(rec, x_opt, tol[key], float(p.xu[0] - p.xl[0]))
+            remark = _tolerance_remark(rec, x_opt, span[key])
             note = f"{note}; {remark}" if remark else note
-            rows.append(compare(rec, x_opt, tol_abs=tol[key], quantity=f"{qname}[{label}]", note=note))
+            rows.append(compare(rec, x_opt, span=span[key], quantity=f"{qname}[{label}]", note=note))
             # the same problem with Table 1's GA rates
             x_ga, n_ga, x_first, n_distinct = paper_runs[key][w2]
-            rows.append(compare(
-                rec, x_ga, tol_abs=tol[key], kind="reading", quantity=f"{qname}[{label};GA Table 1 rates]",
-                note=(f"the literal problem of row {qname}[{label}] solved by a GA with Table 1's rates "
-                      f"(crossover {rates[0]:g}, mutation {rates[1]:g}; pop {s['pop']}, {s['gen']} "
-                      f"generations, seed {SEED}, {n_ga} evaluations; operators in row "
-                      f"ga_crossover_rate): {x_ga:.4f}, {x_ga - x_opt:+.4f} from the default-operator GA's "
-                      f"{x_opt:.4f}. The best initial design was {x_first:.4f}; with so few crossovers "
-                      f"and mutations the population fills with copies of its best designs "
-                      f"({n_distinct} distinct in the final population) and moves only by the rare "
-                      "variations")))
+            reading(x_ga, "GA Table 1 rates",
+                    f"the literal problem of row {qname}[{label}] solved by a GA with Table 1's rates "
+                    f"(crossover {rates[0]:g}, mutation {rates[1]:g}; pop {s['pop']}, {s['gen']} "
+                    f"generations, seed {SEED}, {n_ga} evaluations; operators in row "
+                    f"ga_crossover_rate): {x_ga:.4f}, {x_ga - x_opt:+.4f} from the default-operator GA's "
+                    f"{x_opt:.4f}. The best initial design was {x_first:.4f}; with so few crossovers "
+                    f"and mutations the population fills with copies of its best designs "
+                    f"({n_distinct} distinct in the final population) and moves only by the rare "
+                    "variations")
             # readings of the optimum
             if key == "bipod" and w2 == 0:
                 lo, hi = float(p.xl[0]), float(p.xu[0])
                 u_ret = _maximise(lambda t: float(retracted_pose_tqi(t)), lo, hi, 84)
-                rows.append(compare(
-                    rec, u_ret, tol_abs=tol[key], kind="reading",
-                    quantity=f"{qname}[{label};retracted pose]",
-                    note=(f"reading: T = TQI at the retracted pose q1 = q2 = q_min (struts and base an "
-                          f"isosceles triangle, cos gamma = 1 - 1/(2 (q1min/b)^2)), maximised over "
-                          f"[{lo:g}, {hi:g}] (grid + bounded Brent): {u_ret:.6f} = 1/sqrt(2), the struts "
-                          f"perpendicular (TQI = 1). Reproduces the printed 0.71 to its digits; plausible "
-                          f"as the TQI of the home pose of the design (eq. 9 is a pose index and the paper "
-                          f"never states how T is aggregated), while every workspace aggregate of the "
-                          f"TQI peaks lower ({t_aggr}; bipod_readings.csv). The literal row "
-                          f"q1_over_b[{label}] keeps the workspace mean and its status")))
+                reading(u_ret, RETRACTED_TAG,
+                        f"reading: T = TQI at the retracted pose q1 = q2 = q_min (struts and base an "
+                        f"isosceles triangle, cos gamma = 1 - 1/(2 (q1min/b)^2)), maximised over "
+                        f"[{lo:g}, {hi:g}] (grid + bounded Brent): {u_ret:.6f} = 1/sqrt(2), the struts "
+                        f"perpendicular (TQI = 1). Reproduces the printed {rec.value:g} to its digits; "
+                        f"plausible as the TQI of the home pose of the design (eq. 9 is a pose index and "
+                        f"the paper never states how T is aggregated), while every workspace aggregate of "
+                        f"the TQI peaks lower ({t_aggr}; bipod_readings.csv). The literal row "
+                        f"q1_over_b[{label}] keeps the workspace mean and its status")
             if key == "bipod" and w1 == 0:
-                ratio = inputs["q1_min"] / AREA_READING_B
-                rows.append(compare(
-                    rec, ratio, tol_abs=tol[key], kind="reading", quantity=f"{qname}[{label};design 80/62]",
-                    note=(f"reading: Table 2's W-only entry as q1min/b of the design whose area sec. 5.1 "
-                          f"prints, under the b = {AREA_READING_B:g} mm reading (row "
-                          f"workspace_area[b=62mm]): 80/{AREA_READING_B:g} = {ratio:.4f}, 1.3 to the printed "
-                          f"decimal. Not discriminating: the printed design's 80/60 = 1.333 and the bound "
-                          f"1.35 are also within half a unit (0.05) of 1.3")))
+                ratio = a / AREA_READING_B
+                reading(ratio, DESIGN_TAG,
+                        f"reading: Table 2's W-only entry as q1min/b of the design whose area sec. 5.1 "
+                        f"prints, under the b = {AREA_READING_B:g} mm reading (row "
+                        f"{AREA_READING}): {a:g}/{AREA_READING_B:g} = {ratio:.4f}, {rec.value:g} to the "
+                        f"printed decimal. Not discriminating: the printed design's {a:g}/{b:g} = "
+                        f"{a / b:.3f} and the bound {inputs['q1_min_over_b_upper']:g} are also within half "
+                        f"a unit ({printed_half_unit(rec.digits):g}) of {rec.value:g}")
             if key == "biglide":
                 x_r = _problem_optimum(gl_read, w1, w2, s["n_curve"])
                 sc = scan[np.isclose(scan["stroke"], BIGLIDE_STROKES[1])]
                 t_ok = sc[sc["T_trend"] == "falls"]["L1"]
                 l1_falls = t_ok.max() if len(t_ok) else float("nan")
-                rows.append(compare(
-                    rec, x_r, tol_abs=tol[key], kind="reading",
-                    quantity=f"{qname}[{label};L1={BIGLIDE_L1:g}]",
-                    note=(f"reading: Biglide with L1 = {BIGLIDE_L1:g} (guides 2 L1 = 1 apart, L2 in units of "
-                          f"the guide distance as the Bipod's q1min/b is in units of b), strokes q in "
-                          f"[{BIGLIDE_STROKES[0]:g}, {BIGLIDE_STROKES[1]:g}], mode '--'; exact optimum of "
-                          f"Z = {w1:g} T + {w2:g} W_n on the problem's curve (grid + bounded Brent, no GA); "
-                          f"T {l1_trend} with L2 here. Chosen because the T-only row needs T to fall with L2 "
-                          f"(centre pose: L2 > sqrt(2) L1, i.e. L1 < 0.707; workspace mean, stroke "
-                          f"{BIGLIDE_STROKES[1]:g}: T falls for the scan's L1 <= "
-                          f"{l1_falls:g}; biglide_l1_scan.csv), not fitted "
-                          f"to the weighted rows: no (L1, stroke, normalisation) of the scan gives 1.1 and "
-                          f"1.1556 together with L2 = 1 (column some_c_gives_all_four: "
-                          f"{int(scan['some_c_gives_all_four'].sum())} of {len(scan)})")))
+                reading(x_r, f"L1={BIGLIDE_L1:g}",
+                        f"reading: Biglide with L1 = {BIGLIDE_L1:g} (guides 2 L1 = 1 apart, L2 in units of "
+                        f"the guide distance as the Bipod's q1min/b is in units of b), strokes q in "
+                        f"[{BIGLIDE_STROKES[0]:g}, {BIGLIDE_STROKES[1]:g}], mode '--'; exact optimum of "
+                        f"Z = {w1:g} T + {w2:g} W_n on the problem's curve (grid + bounded Brent, no GA); "
+                        f"T {l1_trend} with L2 here. Chosen because the T-only row needs T to fall with L2 "
+                        f"(centre pose: L2 > sqrt(2) L1, i.e. L1 < 0.707; workspace mean, stroke "
+                        f"{BIGLIDE_STROKES[1]:g}: T falls for the scan's L1 <= "
+                        f"{l1_falls:g}; biglide_l1_scan.csv), not fitted "
+                        f"to the weighted rows: no (L1, stroke, normalisation) of the scan gives "
+                        f"{paper3[mixed[0]].value:g} and {paper3[mixed[1]].value:g} together with "
+                        f"L2 = {t_only.value:g} (column some_c_gives_all_four: "
+                        f"{int(scan['some_c_gives_all_four'].sum())} of {len(scan)})")
         _io.save_figure(_tradeoff_figure(key, curve, paper_opt, ours_opt), out / f"tradeoff_{key}.png")
     # Table 1
-    rows += _ga_rows(pub, s["pop"], s["gen"], quick, rates, paper_runs)
+    rows += _ga_rows(s["pop"], s["gen"], quick, rates, paper_runs)
     # claims of sec. 5.1 and Figs. 9-10
-    rows += _claim_rows(curves, problems, pub)
+    rows += _claim_rows(curves, problems)
 
-    # Figs. 29-30 redrawn
+    # Figs. 29-30 redrawn; Fig. 30 at the middle of sec. 5.2's design range of L2
     gl = problems["biglide"]
-    _io.save_figure(_tqi_map(bip, s["n_map"], "Fig. 29 redrawn: TQI of the Bipod\n(b = 60 mm, "
-                             "q in [80, 130] mm, y > 0)", equal=True, unit="mm"), out / "fig29_tqi_bipod.png")
-    big = Biglide(gl.l1, 1.1, gl.q_min, gl.q_max)
+    _io.save_figure(_tqi_map(bip, s["n_map"], f"Fig. 29 redrawn: TQI of the Bipod\n(b = {b:g} mm, "
+                             f"q in [{a:g}, {c:g}] mm, y > 0)", equal=True, unit="mm"),
+                    out / "fig29_tqi_bipod.png")
+    l2 = 0.5 * (_rec("biglide-sec5.2", "L2_lower").value + _rec("biglide-sec5.2", "L2_upper").value)
+    big = Biglide(gl.l1, l2, gl.q_min, gl.q_max)
     _io.save_figure(_tqi_map(big, s["n_map"], f"Fig. 30 redrawn: TQI of the Biglide (L1 = {gl.l1:g}, "
-                             f"L2 = 1.1, q in [{gl.q_min:g}, {gl.q_max:g}], mode '--'): constant "
+                             f"L2 = {l2:g}, q in [{gl.q_min:g}, {gl.q_max:g}], mode '--'): constant "
                              "along y", equal=False, unit="L"),
                     out / "fig30_tqi_biglide.png")
     return pd.DataFrame(rows, columns=list(TABLE_COLUMNS))

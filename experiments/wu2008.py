@@ -13,6 +13,11 @@ code below only picks evaluation points, draws and writes (through
 :mod:`mechopt.run.io`). The paper prints no number for Figs 4-7, so those rows are
 ``not-reported`` and carry the checks of the text's qualitative statements.
 
+Every printed number (value, unit, digits, source; the inputs b, h, theta_1S too) comes
+from ``mechopt/data/wu2008.csv`` through :func:`mechopt.core.published.lookup`; the
+tolerance is half a unit of the last printed digit, for ``k_av`` the class
+``global_mean`` of :data:`mechopt.core.published.ACCURACY` (its quadrature is unstated).
+
 Modelling assumptions (stated in the notes of the rows they affect): the links'
 mass centres sit at mid-link (Table 2 prints no ``s_i2``); link ``A3B3`` loads the
 machine like ``A1B1`` (eq. 36-37); the symmetric variant of sec. 6.3 copies the
@@ -38,13 +43,11 @@ from mechopt.mechanisms.gantry_dynamics import (GantryDynamics, GantryInertia, r
                               wu2008_driving_forces)
 from mechopt.mechanisms.gantry import (Gantry, dimensional_synthesis, k_av_literal_of_design,
                                        wu2008_gantry)
-from mechopt.core.published import TABLE_COLUMNS, claim_row, compare, comparison_row, load, lookup
+from mechopt.core.published import TABLE_COLUMNS, cite, claim_row, compare, lookup, not_reported
 
-__all__ = ["run", "run_part", "PARTS", "REL_TOL", "ALTERNATIVE_READING", "QUANTITIES"]
+__all__ = ["run", "run_part", "PARTS", "ALTERNATIVE_READING", "QUANTITIES"]
 
-#: acceptance levels per quantity class (never tuned per row): the synthesis is closed
-#: form, so only the printed digits limit it; k_av is a mean whose quadrature is unstated
-REL_TOL = {"synthesis": 0.0, "k_av": 0.01}
+PAPER = "wu2008"
 
 #: the reading of eq. (6)-(7) reported as ``k_av_alternative`` (see its note)
 ALTERNATIVE_READING = "max_speed"
@@ -62,17 +65,27 @@ QUANTITIES = (
     "claim:2l_greater_than_2d1", "claim:k_av_descends_with_theta",
 )
 
-B_MM, H_MM = 500.0, 400.0  # task rectangle of sec. 4.2-4.3
-DESIGNS = {"theta_1S=15deg": 15.0, "table1": 10.0}
+
+def _rec(design: str, quantity: str):
+    return lookup(PAPER, quantity, design)
+
+
+#: the task rectangle [mm] of sec. 4.2-4.3 (the same for both designs)
+B_MM, H_MM = _rec("table1", "b").value, _rec("table1", "h").value
+#: theta_1S [deg] of the two designs: sec. 4.2's and Table 1's
+DESIGNS = {d: _rec(d, "theta_1S").value for d in ("theta_1S=15deg", "table1")}
+THETA_TABLE1 = DESIGNS["table1"]
 MASS_NOTE = "links' mass centres at mid-link (Table 2 prints no s_i2), A3B3 loads like A1B1 (eq. 36-37)"
-SYM_NOTE = ("symmetric variant of sec. 6.3: right slider, link and extra link A4B4 copy the left "
-            "chain, counterweights half the moving mass (250/80/80 kg, 528 kg each)")
 
 
-def _pub(design: str, quantity: str):
-    pub = load("wu2008")
-    rec = pub[(pub["design"] == design) & (pub["quantity"] == quantity)].iloc[0]
-    return float(rec["value"]), str(rec["unit"]), int(rec["digits"]), f"Wu 2008 {rec['source']}"
+def _sym_note() -> str:
+    sym = GantryInertia.wu2008().symmetric_variant()
+    return ("symmetric variant of sec. 6.3: right slider, link and extra link A4B4 copy the left "
+            f"chain, counterweights half the moving mass ({sym.m21:g}/{sym.m22:g}/{sym.m5:g} kg, "
+            f"{sym.m13:g} kg each)")
+
+
+SYM_NOTE = _sym_note()
 
 
 # --- sec. 4.2 and Table 1: dimensional synthesis ---------------------------------------------
@@ -81,10 +94,8 @@ def _synthesis_rows() -> list[dict]:
     for design, deg in DESIGNS.items():
         _, d1, l, stroke = dimensional_synthesis(B_MM, H_MM, math.radians(deg))
         for q, v in (("d1", d1), ("l", l), ("stroke", stroke)):
-            value, unit, digits, source = _pub(design, q)
-            note = f"eq. (14)-(16) with b = 500, h = 400 mm, theta_1S = {deg:g} deg"
-            rows.append(comparison_row(f"{q}[{design}]", source, value, v, unit, digits,
-                                       REL_TOL["synthesis"], note))
+            note = f"eq. (14)-(16) with b = {B_MM:g}, h = {H_MM:g} mm, theta_1S = {deg:g} deg"
+            rows.append(compare(_rec(design, q), v, quantity=f"{q}[{design}]", note=note))
     return rows
 
 
@@ -114,8 +125,9 @@ def _theta_where(reading: str, value: float) -> float:
 
 
 def _k_av_rows(out: Path, quick: bool) -> list[dict]:
-    value, _, digits, source = _pub("table1", "k_av")
-    g = wu2008_gantry(10.0)
+    rec = _rec("table1", "k_av")
+    value = rec.value
+    g = wu2008_gantry(THETA_TABLE1)
     literal = g.k_av(reading="literal")
     alt = g.k_av(reading=ALTERNATIVE_READING)
     displacement = g.k_av(reading="displacement")
@@ -123,27 +135,26 @@ def _k_av_rows(out: Path, quick: bool) -> list[dict]:
     v_max = float(np.sum(w * g.velocity_extremes(xs, ys)[0]))
     th_lit = _theta_where("literal", value)
     th_alt = _theta_where(ALTERNATIVE_READING, value)
-    g15 = wu2008_gantry(15.0)
+    deg15 = DESIGNS["theta_1S=15deg"]
+    g15 = wu2008_gantry(deg15)
     note_lit = (
         "literal reading: x-mean over [-b/2, b/2] (eq. 17-18) of k_v(1) = |x_dot/q_dot_1| = "
         "|cot theta_1| at y_dot = 0 (sec. 3.3), closed form; k_av(1) = k_av(2). Other readings "
         f"tried on the Table 1 design: max_speed {alt:.3f}, mean of Liu's velocity index "
         f"|V|max = 1/s_min(J) over W_t {v_max:.3f}, x travel / slider travel {displacement:.3f} "
         "(exactly 1 for every design of eq. 13), theta-mean of cot 1.420, geometric x-mean 1.362, "
-        "median 1.407 (tests/test_gantry.py); none gives 1.05. The literal value is 1.05 only at "
-        f"theta_1S = {th_lit:.1f} deg (15 deg design: {g15.k_av():.3f})")
+        f"median 1.407 (tests/test_gantry.py); none gives {value:g}. The literal value is {value:g} only at "
+        f"theta_1S = {th_lit:.1f} deg ({deg15:g} deg design: {g15.k_av():.3f})")
     note_alt = (
         f"reading '{ALTERNATIVE_READING}': x-mean of |x_dot| over the mean slider speed "
         "(|q_dot_1| + |q_dot_2|)/2 at y_dot = 0, i.e. 2/|tan theta_1 - tan theta_2| (equally: the "
         "largest |x_dot| with both sliders at unit speed). Sec. 3.3 compares 'the average output "
         "velocity' with 'the average input velocity', and with y_dot = 0 both sliders move; it "
-        f"exceeds 1 and descends with theta_1S as sec. 4.3 says. It gives 1.05 at theta_1S = "
-        f"{th_alt:.1f} deg (15 deg design: {g15.k_av(reading=ALTERNATIVE_READING):.3f}). Liu's "
+        f"exceeds 1 and descends with theta_1S as sec. 4.3 says. It gives {value:g} at theta_1S = "
+        f"{th_alt:.1f} deg ({deg15:g} deg design: {g15.k_av(reading=ALTERNATIVE_READING):.3f}). Liu's "
         f"|V|max mean ({v_max:.3f}) is as far off and ignores the y_dot = 0 condition")
-    rows = [comparison_row("k_av[table1]", source, value, literal, "-", digits, REL_TOL["k_av"],
-                           note_lit),
-            comparison_row("k_av_alternative[table1]", source, value, alt, "-", digits,
-                           REL_TOL["k_av"], note_alt, kind="reading")]
+    rows = [compare(rec, literal, quantity="k_av[table1]", note=note_lit),
+            compare(rec, alt, quantity="k_av_alternative[table1]", note=note_alt, kind="reading")]
 
     thetas = np.linspace(1.0, 44.0, 44 if quick else 431)
     curve = _k_av_curve(thetas)
@@ -161,8 +172,8 @@ def _plot_k_av(curve: pd.DataFrame, printed: float) -> Figure:
     ax.plot(th, curve["mean_v_max"], ls="--", label="mean |V|max = 1/s_min(J) (Liu 2006)")
     ax.plot(th, curve["k_av_displacement"], ls=":", label="x travel / slider travel")
     ax.axhline(printed, color="k", lw=0.8)
-    ax.axvline(10.0, color="0.5", lw=0.8, ls="--")
-    ax.annotate(f"Table 1: k_av = {printed:g} at theta_1S = 10 deg", (10.5, printed),
+    ax.axvline(THETA_TABLE1, color="0.5", lw=0.8, ls="--")
+    ax.annotate(f"Table 1: k_av = {printed:g} at theta_1S = {THETA_TABLE1:g} deg", (THETA_TABLE1 + 0.5, printed),
                 xytext=(12, 2.6), fontsize=8, arrowprops=dict(arrowstyle="->", lw=0.6))
     ax.set_ylim(0.5, 3.5)
     ax.set_xlabel("theta_1S [deg]")
@@ -229,7 +240,7 @@ def _dynamics(kind: str) -> GantryDynamics:
     inertia = GantryInertia.wu2008()
     if kind == "symmetric":
         inertia = inertia.symmetric_variant()
-    return GantryDynamics(wu2008_gantry(10.0, unit="m"), inertia)
+    return GantryDynamics(wu2008_gantry(THETA_TABLE1, unit="m"), inertia)
 
 
 def _kappa_profile(dyn: GantryDynamics, n: int = 2001):
@@ -244,7 +255,7 @@ def _dynamics_rows() -> list[dict]:
     built, sym = _dynamics("built"), _dynamics("symmetric")
     xmin, xmax, ymin, ymax = built.gantry.task_workspace
     centre = (0.5 * (xmin + xmax), 0.5 * (ymin + ymax))
-    src6, src7 = "Wu 2008 eq. (43)-(44), Fig. 6 (map only)", "Wu 2008 sec. 6.3, Fig. 7 (map only)"
+    src6, src7 = cite(PAPER, "eq. (43)-(44), Fig. 6 (map only)"), cite(PAPER, "sec. 6.3, Fig. 7 (map only)")
 
     x, k = _kappa_profile(built)
     i_min, i_max = int(np.argmin(k)), int(np.argmax(k))
@@ -254,29 +265,29 @@ def _dynamics_rows() -> list[dict]:
            if max(float(k[i_min]), kc) < min(edge_l, edge_r) else
            "NOT consistent with 'more isotropic in the centre' (sec. 6.2)")
     xs_note = "kappa_D depends on x only; over the closed task rectangle (2001 abscissae)"
-    rows.append(comparison_row(
-        "eta_d[built]", "Wu 2008 eq. (44), Fig. 6", None, built.eta_d(n=48), "-", 0, 0.0,
+    rows.append(not_reported(
+        "eta_d[built]", cite(PAPER, "eq. (44), Fig. 6"), built.eta_d(n=48), "-",
         f"area mean of kappa_D over W_t (48 x 48 Gauss-Legendre); {MASS_NOTE}; the paper prints "
         "no value"))
-    rows.append(comparison_row(
-        "eta_d_std[built]", "Wu 2008 abstract, sec. 7 item 2 (formula not printed)", None,
-        built.eta_d_std(n=48), "-", 0, 0.0,
+    rows.append(not_reported(
+        "eta_d_std[built]", cite(PAPER, "abstract, sec. 7 item 2 (formula not printed)"),
+        built.eta_d_std(n=48), "-",
         "area standard deviation of kappa_D over W_t: our reading of the second global index the "
         f"abstract announces (its formula is not printed); {MASS_NOTE}"))
-    rows.append(comparison_row(
-        "eta_d[symmetric]", "Wu 2008 sec. 6.3, Fig. 7", None, sym.eta_d(n=48), "-", 0, 0.0,
+    rows.append(not_reported(
+        "eta_d[symmetric]", cite(PAPER, "sec. 6.3, Fig. 7"), sym.eta_d(n=48), "-",
         f"area mean of kappa_D over W_t; {SYM_NOTE}; {MASS_NOTE}"))
-    rows.append(comparison_row(
-        "kappa_d_min[built]", src6, None, float(k[i_min]), "-", 0, 0.0,
+    rows.append(not_reported(
+        "kappa_d_min[built]", src6, float(k[i_min]), "-",
         f"at x = {1e3 * x[i_min]:.0f} mm (left of the centre: the machine is asymmetric, sec. 7 "
         f"item 2); {xs_note}; {iso}"))
-    rows.append(comparison_row(
-        "kappa_d_max[built]", src6, None, float(k[i_max]), "-", 0, 0.0,
+    rows.append(not_reported(
+        "kappa_d_max[built]", src6, float(k[i_max]), "-",
         f"at x = {1e3 * x[i_max]:.0f} mm (edges: left {edge_l:.3f}, right {edge_r:.3f}), where "
-        "a link is 80 deg from the vertical (theta_1 at x = +b/2, -theta_2 at x = -b/2); "
+        f"a link is {_rec('table1', 'theta_2L').value:g} deg from the vertical (theta_1 at x = +b/2, -theta_2 at x = -b/2); "
         f"{xs_note}"))
-    rows.append(comparison_row(
-        "kappa_d_centre[built]", src6, None, kc, "-", 0, 0.0,
+    rows.append(not_reported(
+        "kappa_d_centre[built]", src6, kc, "-",
         f"at the centre of W_t (0, {1e3 * centre[1]:.0f}) mm; {MASS_NOTE}"))
 
     xs, ks = _kappa_profile(sym)
@@ -285,8 +296,8 @@ def _dynamics_rows() -> list[dict]:
     _, _, angle = sym.inertia_ellipse(0.0, centre[1])
     lam = sym.inertia_matrix(0.0, centre[1])  # force per unit acceleration along x and y
     fx, fy = (float(np.linalg.norm(lam[:, c])) for c in (0, 1))
-    rows.append(comparison_row(
-        "kappa_d_min[symmetric]", src7, None, float(ks[j_min]), "-", 0, 0.0,
+    rows.append(not_reported(
+        "kappa_d_min[symmetric]", src7, float(ks[j_min]), "-",
         f"at x = {1e3 * xs[j_min]:.1f} mm: on the y axis and symmetric (max |kappa(x) - "
         f"kappa(-x)| = {asym:.1e}), as sec. 6.3 says. At x = 0 our acceleration ellipse "
         f"{{a : |(J^T)^-1 M a| <= 1}} has its major (easiest) axis at {math.degrees(float(angle)):.0f} "
@@ -294,8 +305,8 @@ def _dynamics_rows() -> list[dict]:
         "whereas the text says acceleration is maximum along y: that holds for the ellipse with "
         "semi-axes sigma_i of Lambda = (J^T)^-1 M, whose major axis is the hardest direction; "
         f"{SYM_NOTE}"))
-    rows.append(comparison_row(
-        "kappa_d_max[symmetric]", src7, None, float(ks[j_max]), "-", 0, 0.0,
+    rows.append(not_reported(
+        "kappa_d_max[symmetric]", src7, float(ks[j_max]), "-",
         f"at x = {1e3 * xs[j_max]:.0f} mm (both edges equal); {xs_note}; {SYM_NOTE}"))
     return rows
 
@@ -384,7 +395,7 @@ def _figures_5_to_7(out: Path, quick: bool):
 
 # --- Fig. 4: driving forces along the Table 3 trajectory -------------------------------------
 def _driving_force_rows(out: Path, quick: bool) -> list[dict]:
-    tr = wu2008_driving_forces(wu2008_gantry(10.0, unit="m"), n=651)
+    tr = wu2008_driving_forces(wu2008_gantry(THETA_TABLE1, unit="m"), n=651)
     dyn = _dynamics("built")
     F1g, F2g = dyn.driving_forces(tr["x"], tr["y"], tr["xd"], tr["yd"], tr["xdd"], tr["ydd"],
                                   gravity=False)
@@ -393,16 +404,17 @@ def _driving_force_rows(out: Path, quick: bool) -> list[dict]:
     _io.write_csv(data, out / "driving_forces.csv")
     _io.save_figure(_plot_forces(data, tr["T0"], tr["Tf"]), out / "fig4_driving_forces.png")
     rows = []
+    x1 = _rec("table3", "x1").value
     for i in (1, 2):
         F = data[f"F{i}"].to_numpy()
         j = int(np.argmax(np.abs(F)))
-        rows.append(comparison_row(
-            f"driving_force_peak_{i}", "Wu 2008 Fig. 4, Tables 2-3 (curves only)", None,
-            float(np.abs(F[j])), "N", 0, 0.0,
+        rows.append(not_reported(
+            f"driving_force_peak_{i}", cite(PAPER, "Fig. 4, Tables 2-3 (curves only)"),
+            float(np.abs(F[j])), "N",
             f"max |F{i}| over the Table 3 motion (651 instants, trapezoidal profile, T0 = "
             f"{tr['T0']:.3f} s, Tf = {tr['Tf']:.3f} s), at t = {data['t'].iloc[j]:.3f} s, x = "
             f"{1e3 * data['x'].iloc[j]:.0f} mm (F{i} = {F[j]:.0f} N); gravity included (sec. 5.2); "
-            f"{MASS_NOTE}; Table 3's x1 '0.25 mm' read as 0.25 m. Our forces jump at t = T0 and "
+            f"{MASS_NOTE}; Table 3's x1 '{x1:g} mm' read as {x1:g} m. Our forces jump at t = T0 and "
             "Tf - T0, where the trapezoidal profile's acceleration jumps; the text calls the "
             "paper's curves smooth"))
     return rows
@@ -443,42 +455,46 @@ def _claim_rows(curve: pd.DataFrame) -> list[dict]:
     """theta_2L, the counterweight rule, a_s and T0, 2l > 2d1, and k_av's descent."""
     rows = []
     # theta_2L: the largest angle of link 2 over the task rectangle of the Table 1 design
-    g = wu2008_gantry(10.0)
+    g = wu2008_gantry(THETA_TABLE1)
     xmin, xmax, ymin, ymax = g.task_workspace
     _, th2 = g.link_angles(np.array([xmin, xmin]), np.array([ymin, ymax]))
-    rec = lookup("wu2008", "theta_2L", "table1")
+    rec = _rec("table1", "theta_2L")
     rows.append(compare(rec, float(np.degrees(np.max(np.abs(th2)))), quantity="theta_2L[table1]",
                         note="largest |theta_2| over W_t of the Table 1 design (at x = -b/2); "
                              "eq. (11)-(13) make theta_1S + theta_2L = 90 deg"))
     # counterweights: "each is half of the masses of all moving parts" (sec. 6.2)
-    pub = load("wu2008").set_index(["design", "quantity"])["value"]
-    moving = sum(pub[("table2", k)] for k in ("m11", "m21", "m12", "m22", "m4", "mN"))
-    cw = pub[("table2", "m13")]
-    rows.append(claim_row("claim:counterweights_half_moving_mass", "Wu 2008 sec. 6.2, Table 2",
-                          cw == moving / 2 == pub[("table2", "m23")],
-                          f"moving parts 250 + 198 + 80 + 80 + 80 + 236 = {moving:g} kg, half "
+    def pub(design, quantity):
+        return _rec(design, quantity).value
+
+    parts = [pub("table2", k) for k in ("m11", "m21", "m12", "m22", "m4", "mN")]
+    moving = sum(parts)
+    cw = pub("table2", "m13")
+    rows.append(claim_row("claim:counterweights_half_moving_mass", cite(PAPER, "sec. 6.2, Table 2"),
+                          cw == moving / 2 == pub("table2", "m23"),
+                          f"moving parts {' + '.join(f'{m:g}' for m in parts)} = {moving:g} kg, half "
                           f"{moving / 2:g} kg; Table 2 prints m13 = m23 = {cw:g} kg"))
     # a_s = 6.67 m/s^2: accelerating time T0 = v_max / a_s (eq. 45 with equal phases)
-    v, a = pub[("table3", "v_max")], pub[("table3", "a_s")]
-    length = abs(pub[("table3", "x1")] - pub[("table3", "x0")])
+    a_rec = _rec("table3", "a_s")
+    v, a = pub("table3", "v_max"), a_rec.value
+    length = abs(pub("table3", "x1") - pub("table3", "x0"))
     T0, Tf = v / a, v / a + length / v
-    rows.append(claim_row("claim:a_s_gives_T0_0.15s", "Wu 2008 eq. (45), Table 3",
-                          round(1.0 / 0.15, 2) == a,
+    rows.append(claim_row("claim:a_s_gives_T0_0.15s", cite(PAPER, "eq. (45), Table 3"),
+                          round(1.0 / 0.15, a_rec.digits) == a,
                           f"T0 = v_max / a_s = {T0:.4f} s, Tf = T0 + |q1 - q0| / v_max = {Tf:.4f} s; "
-                          f"6.67 is 1/0.15 = {1 / 0.15:.4f} rounded to the printed 2 decimals, so the "
-                          "paper's T0 = 0.15 s, Tf = 0.65 s"))
+                          f"{a_rec.printed} is 1/0.15 = {1 / 0.15:.4f} rounded to the printed "
+                          f"{a_rec.digits} decimals, so the paper's T0 = 0.15 s, Tf = 0.65 s"))
     # 2l > 2d1 (sec. 3.1): no combined singularity
     ok = all(dimensional_synthesis(B_MM, H_MM, math.radians(t))[2]
              > dimensional_synthesis(B_MM, H_MM, math.radians(t))[1] for t in np.linspace(1, 44, 44))
-    _, d1, l, _ = dimensional_synthesis(B_MM, H_MM, math.radians(10.0))
-    rows.append(claim_row("claim:2l_greater_than_2d1", "Wu 2008 sec. 3.1", ok,
+    _, d1, l, _ = dimensional_synthesis(B_MM, H_MM, math.radians(THETA_TABLE1))
+    rows.append(claim_row("claim:2l_greater_than_2d1", cite(PAPER, "sec. 3.1"), ok,
                           f"Table 1: 2l = {2 * l:.1f} mm > 2d1 = {2 * d1:.1f} mm; eq. (14)-(15) give "
                           f"l > d1 for every theta_1S in [1, 44] deg (checked at 1 deg steps)"))
     # "k_av descends as theta_1 goes from 0 to 90 deg" (sec. 4.3)
     lit = curve["k_av_literal"].to_numpy()
     alt = curve["k_av_max_speed"].to_numpy()
     desc = bool(np.all(np.diff(lit) < 0) and np.all(np.diff(alt) < 0))
-    rows.append(claim_row("claim:k_av_descends_with_theta", "Wu 2008 sec. 4.3, Fig. 3", desc,
+    rows.append(claim_row("claim:k_av_descends_with_theta", cite(PAPER, "sec. 4.3, Fig. 3"), desc,
                           f"on {len(curve)} designs theta_1S in [{curve['theta_1S_deg'].min():g}, "
                           f"{curve['theta_1S_deg'].max():g}] deg (k_av_vs_theta.csv) both the literal "
                           f"({lit[0]:.3f} -> {lit[-1]:.3f}) and the max_speed reading "

@@ -47,7 +47,7 @@ def test_statuses_valid_and_differs_explained(quick):
     assert set(df["kind"]) <= {"computed", "setting", "reading", "claim"}
     for rec in df[df["status"].isin(["differs", "holds", "fails"])].itertuples():
         assert isinstance(rec.note, str) and rec.note.strip(), rec.quantity
-    # every compared row also names its tolerance (comparison_row) and has a finite value
+    # every compared row also names its tolerance (published.compare) and has a finite value
     compared = df[df["kind"] != "claim"]
     assert compared["note"].str.contains("tol ").all()
     assert set(df[df["kind"] == "claim"]["status"]) <= {"holds", "fails"}

@@ -377,3 +377,208 @@ def test_mic_radius_on_the_sorted_cloud_equals_the_full_scan():
             ref = K._radius_nb(1.1, 1.4, 0.3, qx, qy, n, ay, y)
             got, hint = K._radius_sorted_nb(1.1, 1.4, 0.3, sx2, sy, m, ay, y, hint)
             assert np.float64(got).tobytes() == np.float64(ref).tobytes(), (trial, y)
+
+
+# --- published numbers come from the data files only (issue "architecture") -------------------
+def _significant(value: float, digits: int) -> int:
+    """Significant digits of ``value`` printed with ``digits`` decimals, trailing zeros
+    dropped (240 -> 2, 5.0 -> 1, 36.40 -> 3, 0.005 -> 1)."""
+    text = f"{abs(value):.{digits}f}"
+    if "." in text:
+        text = text.rstrip("0").rstrip(".")
+    if "." not in text:
+        text = text.rstrip("0")
+    return len(text.replace(".", "").lstrip("0"))
+
+
+#: a line whose number equals a printed one by coincidence (a grey level "0.85") says so
+MARKER = "# not a printed number"
+
+
+def published_literals(source: str, paper: str) -> list:
+    """``(line, literal, [design:quantity, ...])`` of every number in ``source`` (Python)
+    that equals, in absolute value, a printed number of ``mechopt/data/<paper>.csv`` with
+    two or more significant digits: numeric constants of the code and numbers inside its
+    strings (f-strings included). Docstrings and comments are documentation and are not
+    read, nor the ``if __name__ == "__main__"`` block (it prints, it reproduces nothing);
+    inside strings the data file's design keys (``"0.85/1.6/0.55"``,
+    ``"table2:W1=0.7,W2=0.3"``) are names of its rows and ``eq. (15)``, ``Fig. 25``,
+    ``sec. 3.2.3``, ``Table 1`` places in the paper, not numbers. A line that carries
+    :data:`MARKER` is left out (a number equal to a printed one by coincidence)."""
+    import ast
+
+    from mechopt.core.published import records
+
+    recs = records(paper)
+    lines = source.splitlines()
+    printed = {}
+    for r in recs:
+        if _significant(r.value, r.digits) >= 2:
+            printed.setdefault(abs(r.value), []).append(f"{r.design}:{r.quantity}")
+    keys = sorted({r.design for r in recs}, key=len, reverse=True)
+    tree = ast.parse(source)
+    docstrings = set()
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+            body = node.body
+            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
+                docstrings.add(id(body[0].value))
+    # the command-line entry of a script prints a table, it reproduces nothing
+    for node in tree.body:
+        if (isinstance(node, ast.If) and isinstance(node.test, ast.Compare)
+                and isinstance(node.test.left, ast.Name) and node.test.left.id == "__name__"):
+            docstrings.update(id(n) for n in ast.walk(node))
+    number = re.compile(r"(?<![\w.])\d+(?:[.,]\d+)?(?![\w])")
+    # references into the paper: "eq. (14)-(15)", "Figs. 9-10", "sec. 3.2.3", "Table 1"
+    where = re.compile(r"\b(?:eqs?|Figs?|Tables?|secs?)\.?\s*\(?\d+(?:\.\d+)*\)?"
+                       r"(?:\s*[-,/]\s*\(?\d+(?:\.\d+)*\)?)*")
+    found = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Constant) or id(node) in docstrings or isinstance(node.value, bool):
+            continue
+        if isinstance(node.value, (int, float)):
+            tokens = [(abs(float(node.value)), repr(node.value))]
+        elif isinstance(node.value, str):
+            text = node.value
+            for k in keys:
+                text = text.replace(k, " ")
+            text = where.sub(" ", text)
+            tokens = [(float(m.group().replace(",", ".")), m.group()) for m in number.finditer(text)]
+        else:
+            continue
+        if MARKER in lines[node.lineno - 1]:
+            continue
+        for value, literal in tokens:
+            if value in printed:
+                found.append((node.lineno, literal, printed[value]))
+    return found
+
+
+def test_the_published_literal_check_finds_literals():
+    """The check below can fail: a printed number typed as a constant, in a string or in
+    an f-string is found; the same number in a docstring, a comment, a design key, the
+    command-line block or a line marked as a coincidence, or a number the paper does not
+    print, is not."""
+    planted = (
+        '"""Le 2013 prints a_MAX = 1.3142."""\n'
+        "A = 1.3142  # rho* = 1.9721\n"
+        "def f(x):\n"
+        '    """rho* = 1.9721"""\n'
+        '    return f"the printed {x} beside 1.9721", "1.9628", -60, "eq. (22)-(23)"\n'
+        'if __name__ == "__main__":\n'
+        '    print(1.3142)\n'
+        f'grey = "1.3142"  {MARKER}\n'
+    )
+    found = published_literals(planted, "le2013")
+    assert [(line, lit) for line, lit, _ in found] == [(2, "1.3142"), (5, "1.9721")]
+    assert found[0][2] == ["example:a_max"]
+    assert published_literals('K = "0.85/1.6/0.55"\n', "liu2006") == []
+    assert [lit for _, lit, _ in published_literals('K = (0.85, 1.6, 0.55)\n', "liu2006")] == ["0.85"]
+    assert [lit for _, lit, _ in published_literals('n = "W(1,35)"\n', "stan2008")] == ["1,35"]
+
+
+@pytest.mark.parametrize("script", ["le2013", "liu2006", "liu2006_figures", "stan2008", "wu2008"])
+def test_no_experiment_types_a_published_number(script):
+    """Every printed number an experiment uses or quotes (values, inputs, the numbers in
+    its notes, titles and row names) comes from its data file through
+    mechopt.core.published (lookup/records), none is typed in the script."""
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "experiments" / f"{script}.py"
+    found = published_literals(path.read_text(), script.split("_")[0])
+    assert not found, "\n".join(f"{path.name}:{line}: {lit} is {', '.join(rows)}"
+                                for line, lit, rows in found)
+
+
+def test_every_data_row_names_an_accuracy_class_and_every_class_is_used():
+    """The ``accuracy`` column of each data file names a class of ACCURACY (the one place
+    of tolerances beyond the printed digits), each with its reason; none is unused."""
+    from mechopt.core.published import ACCURACY, load, records
+
+    used = set()
+    for paper in ("le2013", "liu2006", "stan2008", "wu2008"):
+        df = load(paper)
+        assert list(df.columns) == ["design", "quantity", "value", "unit", "digits", "source", "accuracy"]
+        assert set(df["accuracy"]) <= set(ACCURACY), paper
+        assert [r.accuracy for r in records(paper)] == list(df["accuracy"])
+        used |= set(df["accuracy"])
+    assert all(a.reason for a in ACCURACY.values())
+    # "propagated" is a reading's class (Liu 2006's eta_D from the printed D and mean)
+    assert used | {"propagated"} == set(ACCURACY)
+
+
+def test_the_record_api():
+    """lookup -> Record (value, unit, digits, source, accuracy); tolerance and compare use
+    the record's class, a span where the class needs one, or the class a reading names."""
+    from mechopt.core.published import compare, lookup, not_reported, records, tolerance
+
+    rec = lookup("stan2008", "q1_over_b", "table2:W1=0,W2=1")
+    assert (rec.value, rec.unit, rec.digits, rec.accuracy) == (1.3, "-", 1, "ga_optimum")
+    assert rec.source == "Table 2, Z = W2 W" and rec.citation == "Stan 2008 Table 2, Z = W2 W"
+    assert rec.printed == "1.3" and lookup("stan2008", "workspace_area").printed == "4693.33"
+    assert rec in records("stan2008")
+    with pytest.raises(ValueError, match="4 rows"):
+        lookup("stan2008", "q1_over_b", None)
+    with pytest.raises(ValueError, match="0 rows"):
+        lookup("stan2008", "q1_over_b", "table9")
+    with pytest.raises(ValueError, match="data file"):
+        lookup("nobody1999", "x")
+    # 1 % of the design range 0.83 is below half the printed digit 0.05
+    assert tolerance(rec, span=0.83) == pytest.approx(0.05)
+    with pytest.raises(ValueError, match="span"):
+        tolerance(rec)
+    fine = lookup("stan2008", "L2", "table3:W1=0.3,W2=0.7")  # 1.1556, 4 decimals
+    assert tolerance(fine, span=0.2) == pytest.approx(0.002)
+    assert tolerance(fine, accuracy="printed") == pytest.approx(5e-5)
+    row = compare(fine, 1.157, span=0.2, note="ours")
+    assert row["status"] == "match" and row["paper"] == 1.1556 and row["unit"] == "-"
+    assert row["note"] == "ours; tol 0.002 - (max of half last digit 5e-05, 0.002 -)"
+    assert compare(fine, 1.157, accuracy="printed")["status"] == "differs"
+    area = lookup("stan2008", "workspace_area")  # raster: 1 %
+    assert compare(area, 4700.0)["note"] == "tol 46.9 mm^2 (max of half last digit 0.005, 1.0%)"
+    with pytest.raises(ValueError, match="accuracy"):
+        compare(area, 1.0, accuracy="roughly")
+    with pytest.raises(ValueError, match="kind"):
+        compare(area, 1.0, kind="guess")
+    nr = not_reported("eta_d", "Wu 2008 eq. (44)", 0.5, "-", note="map only")
+    assert nr["status"] == "not-reported" and pd.isna(nr["paper"]) and nr["unit"] == "-"
+
+
+def test_experiments_set_no_tolerance_and_build_no_row_of_their_own():
+    """Tolerances come from ACCURACY (by the data file's column or a class name): no
+    experiment passes a tolerance number, defines a REL_TOL/ABS_TOL or an Accuracy, or
+    builds a row other than through compare / not_reported / claim_row."""
+    import ast
+    from pathlib import Path
+
+    forbidden_kw = {"tol_rel", "tol_abs", "rel_tol", "abs_tol"}
+    for path in sorted((Path(__file__).resolve().parents[1] / "experiments").glob("*.py")):
+        tree = ast.parse(path.read_text())
+        for node in ast.walk(tree):
+            if isinstance(node, ast.keyword):
+                assert node.arg not in forbidden_kw, f"{path.name}:{node.value.lineno}: {node.arg}="
+            if isinstance(node, ast.Name):
+                assert not any(t in node.id for t in ("REL_TOL", "ABS_TOL", "TOL_DEG")), (path.name, node.id)
+                assert node.id not in ("Accuracy", "comparison_row"), (path.name, node.lineno, node.id)
+            if isinstance(node, ast.Dict):  # a table row written by hand
+                keys = {k.value for k in node.keys if isinstance(k, ast.Constant)}
+                assert not {"status", "rel_error"} <= keys, (path.name, node.lineno)
+
+
+def test_every_compared_row_quotes_its_record(results):
+    """The paper value, unit and source of every row with a printed value are those of a
+    record of the paper's data file (value, unit, citation), as the quick run wrote them."""
+    import numpy as np
+
+    from mechopt.core.published import records
+
+    for paper in ("le2013", "liu2006", "stan2008", "wu2008"):
+        recs = {(r.value, r.unit, r.citation) for r in records(paper)}
+        table = pd.read_csv(results / paper / "table.csv")
+        compared = table[table["paper"].notna()]
+        assert len(compared) >= 9, paper
+        for row in compared.itertuples():
+            assert (row.paper, row.unit, row.source) in recs, (paper, row.quantity)
+        others = table[table["paper"].isna()]
+        assert set(others["status"]) <= {"not-reported", "holds", "fails"}, paper
+        assert np.isfinite(compared["rel_error"]).all(), paper

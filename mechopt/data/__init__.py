@@ -2,9 +2,10 @@
 
 Each file starts with ``#`` lines naming the paper (authors, title, journal or book,
 DOI or ISBN) and how its rows are read, then the columns ``design, quantity, value,
-unit, digits, source``: ``source`` is where the paper prints the value (section,
-table, figure or equation; the plain-text extractions have no page numbers) and
-``digits`` its printed decimals. :mod:`mechopt.core.published` compares reproductions with
+unit, digits, source, accuracy``: ``source`` is where the paper prints the value
+(section, table, figure or equation; the plain-text extractions have no page numbers),
+``digits`` its printed decimals and ``accuracy`` the class of its tolerance
+(:data:`mechopt.core.published.ACCURACY`; ``printed``: half a unit of the last digit). :mod:`mechopt.core.published` compares reproductions with
 them (pandas); :func:`published_values` reads them without pandas, for the library
 code that takes a paper's inputs from them (Wu 2008's Table 1 design, its Table 2
 inertias, its Table 3 motion).
