@@ -42,12 +42,13 @@ from mechopt.run.parallel import parallel_map
 from mechopt.problems import get
 from mechopt.problems.le2013 import GAMMA, RHO_BOUNDS, THETA_LIMITS, square_side, tied_half_base
 from mechopt.core.published import cite, claim_row, compare, lookup, not_reported
+from mechopt.core.numerics import golden_section_max as _golden
 from mechopt.run.runner import optimize, parse_weights, sweep
 from mechopt.analysis.workspace import mic
 
 __all__ = ["run", "run_part", "PARTS", "FLOWCHART_STEPS", "flowchart_a_max", "golden_section_max",
            "contact_side", "corner_side", "corner_switch_rho", "lower_switch_rho", "joint_limits_hold",
-           "square_feasible"]
+           "square_feasible", "plateau"]
 
 PAPER = "le2013"
 SQRT2 = float(np.sqrt(2.0))
@@ -119,30 +120,14 @@ def flowchart_a_max(rho: float, step: float = 0.1, gamma: float = GAMMA,
 
 
 def golden_section_max(f, lo: float, hi: float, tol: float = GOLDEN_TOL, atol: float = 0.0):
-    """Golden-section search for a maximum of ``f`` on ``[lo, hi]``.
-
-    The bracket keeps the left part only when ``f(x1) > f(x2) + atol`` (ties, values
-    within ``atol``, move right; a staircase needs ``atol`` > 0 because its levels
-    ``sqrt(2) r_MIC - k step`` carry the ~1e-11 noise of r_MIC). Returns ``(x, f(x), evaluations)`` with ``x`` the better of the final
-    bracket's two interior points (a step function's midpoint may lie past its edge).
-    """
-    g = (np.sqrt(5.0) - 1.0) / 2.0
-    a, b = float(lo), float(hi)
-    x1, x2 = b - g * (b - a), a + g * (b - a)
-    f1, f2 = f(x1), f(x2)
-    n = 2
-    while b - a > tol:
-        if f1 > f2 + atol:
-            b, x2, f2 = x2, x1, f1
-            x1 = b - g * (b - a)
-            f1 = f(x1)
-        else:
-            a, x1, f1 = x1, x2, f2
-            x2 = a + g * (b - a)
-            f2 = f(x2)
-        n += 1
-    # the better of the final interior points (ties: the right one, as in the loop)
-    return (x1, f1, n) if f1 > f2 + atol else (x2, f2, n)
+    """Le's golden-section search for a maximum of ``f`` on ``[lo, hi]``
+    (:func:`mechopt.core.numerics.golden_section_max`, ties and values within ``atol``
+    moving right: a staircase needs ``atol`` > 0 because its levels carry the ~1e-11
+    noise of r_MIC). Returns ``(x, f(x), evaluations)`` with ``x`` the better of the
+    final bracket's two interior points (a step function's midpoint may lie past its
+    edge; ties: the right one, as in the search)."""
+    g = _golden(f, float(lo), float(hi), tol=tol, right_within=atol)
+    return (g.x1, g.f1, g.evaluations) if g.f1 > g.f2 + atol else (g.x2, g.f2, g.evaluations)
 
 
 def _bisect_edge(inside, a, b, tol=1e-7):

@@ -73,3 +73,35 @@ def test_stop_start_and_best_point():
 def test_needs_a_way_to_end():
     with pytest.raises(ValueError, match="tol, max_iter or stop"):
         golden_section_max(lambda x: x, 0.0, 1.0)
+
+
+def test_ties_move_right_within_a_margin():
+    """``right_within``: the left side is kept only when f1 exceeds f2 by more than the
+    margin, so on a staircase (equal levels up to noise) the search walks to the right
+    edge of the top level; the default keeps the left side on a tie and stays left.
+    Checked against a literal loop of the textbook search written here."""
+    import numpy as np
+
+    def stairs(x):  # two levels; the top one on [0.2, 0.7], noisy by 1e-12
+        return (1.0 if 0.2 <= x <= 0.7 else 0.0) + 1e-12 * math.sin(1e4 * x)
+
+    g = golden_section_max(stairs, 0.0, 1.0, tol=1e-6, right_within=1e-9)
+    assert abs(g.a - 0.7) < 1e-5 and abs(g.b - 0.7) < 1e-5 and max(g.f1, g.f2) > 0.9
+    left = golden_section_max(lambda x: 1.0 if 0.2 <= x <= 0.7 else 0.0, 0.0, 1.0, tol=1e-6)
+    assert abs(left.a - 0.2) < 1e-5 and abs(left.b - 0.2) < 1e-5
+    # the literal loop (Kiefer 1953), ties right within the margin
+    r = (np.sqrt(5.0) - 1.0) / 2.0
+    a, b = 0.0, 1.0
+    x1, x2 = b - r * (b - a), a + r * (b - a)
+    f1, f2, n = stairs(x1), stairs(x2), 2
+    while b - a > 1e-6:
+        if f1 > f2 + 1e-9:
+            b, x2, f2 = x2, x1, f1
+            x1 = b - r * (b - a)
+            f1 = stairs(x1)
+        else:
+            a, x1, f1 = x1, x2, f2
+            x2 = a + r * (b - a)
+            f2 = stairs(x2)
+        n += 1
+    assert (g.a, g.b, g.x1, g.x2, g.f1, g.f2, g.evaluations) == (a, b, x1, x2, f1, f2, n)

@@ -3,7 +3,8 @@
 :func:`golden_section_max` is the search of the MIC centre (:mod:`mechopt.analysis.workspace`,
 both the rays method and the NumPy port of the atlas kernel), of the best LCI on a
 disk's rim (:mod:`mechopt.analysis.performance`, many searches at once) and of the placement
-that maximises a design's smallest margin (:mod:`mechopt.workflows.design`). The compiled twins
+that maximises a design's smallest margin (:mod:`mechopt.workflows.design`) and Le's
+golden-section row (:mod:`mechopt.experiments.le2013`). The compiled twins
 in :mod:`mechopt.mechanisms.five_bar.kernels` run the same steps in numba.
 """
 from __future__ import annotations
@@ -21,7 +22,8 @@ INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 class GoldenSection(NamedTuple):
     """The end of :func:`golden_section_max`: the bracket ``[a, b]``, its interior points
-    ``x1 < x2`` with their values, and the best point evaluated (``x_best``, ``f_best``)."""
+    ``x1 < x2`` with their values, the best point evaluated (``x_best``, ``f_best``) and
+    the number of evaluations of ``f`` (per search: 2 plus one per step)."""
 
     a: Any
     b: Any
@@ -31,13 +33,15 @@ class GoldenSection(NamedTuple):
     f2: Any
     x_best: Any
     f_best: Any
+    evaluations: int
 
 
 def _ternary(cond, u, v):
     return u if cond else v
 
 
-def golden_section_max(f, a, b, *, tol=None, max_iter=None, stop=None, start=None) -> GoldenSection:
+def golden_section_max(f, a, b, *, tol=None, max_iter=None, stop=None, start=None,
+                       right_within=None) -> GoldenSection:
     """Maximise ``f`` over ``[a, b]`` by golden-section search (``f`` unimodal there).
 
     The interior points are ``x1 = b - r (b - a)`` and ``x2 = a + r (b - a)``,
@@ -64,6 +68,11 @@ def golden_section_max(f, a, b, *, tol=None, max_iter=None, stop=None, start=Non
         ``stop(a, b)``, asked before each step (after ``tol``): True ends the search.
     start : (x0, f0), optional
         A point already evaluated: it seeds the best point.
+    right_within : float, optional
+        Keep the left side only when ``f1 > f2 + right_within``: ties and values within
+        ``right_within`` move right. A staircase needs it (Le 2013's a_MAX levels
+        ``sqrt(2) r_MIC - k step`` carry the ~1e-11 noise of r_MIC, so equal levels
+        compare unequal); default: the left side on a tie (``f1 >= f2``).
 
     Returns
     -------
@@ -90,7 +99,7 @@ def golden_section_max(f, a, b, *, tol=None, max_iter=None, stop=None, start=Non
             break
         if stop is not None and stop(a, b):
             break
-        left = f1 >= f2
+        left = f1 >= f2 if right_within is None else f1 > f2 + right_within
         a, b = pick(left, a, x1), pick(left, x2, b)
         x1, x2 = pick(left, b - INV_PHI * (b - a), x2), pick(left, x1, a + INV_PHI * (b - a))
         xn = pick(left, x1, x2)
@@ -99,4 +108,4 @@ def golden_section_max(f, a, b, *, tol=None, max_iter=None, stop=None, start=Non
         better = fn > best[1]
         best = (pick(better, xn, best[0]), pick(better, fn, best[1]))
         step += 1
-    return GoldenSection(a, b, x1, f1, x2, f2, best[0], best[1])
+    return GoldenSection(a, b, x1, f1, x2, f2, best[0], best[1], 2 + step)
