@@ -18,7 +18,8 @@ from mechopt.run import io as _io
 from mechopt.run.plotting import INDEX_LABELS, labelled_colorbar, workspace_axes
 from mechopt.analysis.workspace import gcw, largest_square, mic, usable_region
 
-__all__ = ["draw_all", "atlas_figures", "design_figures", "EXAMPLES"]
+__all__ = ["draw_all", "atlas_figures", "design_figures", "EXAMPLES", "fig_examples", "fig_lci_usable", "fig_usable_pair",
+           "fig_extremes_on_miw", "fig_gcw_and_square"]
 
 #: sec. 3.1.1-3.1.5: the example design (its key in liu2006.csv) of each optimum region
 EXAMPLES = {

@@ -17,13 +17,16 @@ from mechopt.analysis.workspace import largest_square_at, mic
 
 from mechopt.run.problem import MechoptProblem, Objective
 
-__all__ = ["square_side", "LeSquare", "LeSquareRelaxed", "LeSquareGamma", "THETA_LIMITS", "GAMMA"]
+__all__ = ["square_side", "tied_half_base", "LeSquare", "LeSquareRelaxed", "LeSquareGamma", "LeSquareGammaRelaxed",
+           "THETA_LIMITS", "GAMMA", "RHO_BOUNDS", "L0_BOUNDS"]
 
 #: Le 2013 sec. IV: theta_a{1,2} in [-pi/3, 4 pi/3]
 THETA_LIMITS = (-np.pi / 3, 4 * np.pi / 3)
 #: Le 2013 sec. IV: gamma = 0.5
 GAMMA = 0.5
 RHO_BOUNDS = (1.2, 4.0)
+#: range of the half base ``l0`` where it is a variable (eq. 24 dropped)
+L0_BOUNDS = (0.0, 2.0)
 #: a design without a feasible square (no MIC, or LCI/joint limits failing at the
 #: MIC centre) violates this constraint; its a_max = 0 no feasible design is below
 SQUARE_CONSTRAINT = ("square_exists",)
@@ -135,6 +138,8 @@ class LeSquare(MechoptProblem):
     var_names = ("rho",)
     objectives = (Objective("a_max", -1, "l1", A_MAX_BOUNDS),)
     constr_names = SQUARE_CONSTRAINT
+    #: ``l0`` follows eq. (24); False: it is the second variable, in :data:`L0_BOUNDS`
+    tied = True
     #: DE reaches the brute-force optimum 1.332245 by generation 18 from seeds 1-5
     #: (GA 16 x 20: 1.33221; benchmarks/bench_fronts.py)
     default_algorithm = "de"
@@ -142,21 +147,21 @@ class LeSquare(MechoptProblem):
     default_gen = 40
 
     def __init__(self, **kwargs):
-        super().__init__([RHO_BOUNDS[0]], [RHO_BOUNDS[1]], **kwargs)
+        bounds = [RHO_BOUNDS] + ([] if self.tied else [L0_BOUNDS])
+        super().__init__([b[0] for b in bounds], [b[1] for b in bounds], **kwargs)
 
     def evaluate_designs(self, X):
-        ex = _evaluate(X)
+        ex = _evaluate(X, l0_col=1, tied=self.tied)
         return {"F": -ex["a_max"][:, None], "G": ex["violation"][:, None], "extra": ex}
 
 
-class LeSquareRelaxed(MechoptProblem):
+class LeSquareRelaxed(LeSquare):
     """As :class:`LeSquare` with the half base ``l0`` free in [0, 2] (eq. 24 dropped)."""
 
     name = "le2013-relaxed"
     summary = "Le 2013 relaxed: as le2013 with the half base l0 free in [0, 2] (eq. 24 dropped)"
     var_names = ("rho", "l0")
-    objectives = (Objective("a_max", -1, "l1", A_MAX_BOUNDS),)
-    constr_names = SQUARE_CONSTRAINT
+    tied = False
     #: the optimum lies on a narrow ridge along the cliff l0 ~ eq. (24) (beyond it the
     #: square collapses): GA 40 x 80 stops below the tied optimum (1.33205 < 1.33221),
     #: DE best/1/bin, whose difference vectors follow the ridge, reaches the
@@ -164,13 +169,6 @@ class LeSquareRelaxed(MechoptProblem):
     default_algorithm = "de"
     default_pop = 30
     default_gen = 80
-
-    def __init__(self, **kwargs):
-        super().__init__([RHO_BOUNDS[0], 0.0], [RHO_BOUNDS[1], 2.0], **kwargs)
-
-    def evaluate_designs(self, X):
-        ex = _evaluate(X, l0_col=1, tied=False)
-        return {"F": -ex["a_max"][:, None], "G": ex["violation"][:, None], "extra": ex}
 
 
 class LeSquareGamma(MechoptProblem):
@@ -197,8 +195,8 @@ class LeSquareGamma(MechoptProblem):
             super().__init__([RHO_BOUNDS[0], GAMMA_BOUNDS[0]], [RHO_BOUNDS[1], GAMMA_BOUNDS[1]], **kwargs)
         else:
             self.var_names = ("rho", "gamma", "l0")
-            super().__init__([RHO_BOUNDS[0], GAMMA_BOUNDS[0], 0.0], [RHO_BOUNDS[1], GAMMA_BOUNDS[1], 2.0],
-                             **kwargs)
+            super().__init__([RHO_BOUNDS[0], GAMMA_BOUNDS[0], L0_BOUNDS[0]],
+                             [RHO_BOUNDS[1], GAMMA_BOUNDS[1], L0_BOUNDS[1]], **kwargs)
 
     def evaluate_designs(self, X):
         ex = _evaluate(X, gamma_col=1, l0_col=2, tied=self.tied)

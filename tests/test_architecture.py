@@ -14,6 +14,7 @@ imported from anywhere and imports nothing at module level.
 from __future__ import annotations
 
 import ast
+import importlib
 from pathlib import Path
 
 import pytest
@@ -170,3 +171,36 @@ def test_the_checker_sees_imports():
     assert "mechopt.run.runner" in GRAPH["mechopt.cli.optimize"]
     assert "mechopt.mechanisms.five_bar.batch" in GRAPH["mechopt.problems.liu2006"]
     assert "mechopt.run.atlas" in GRAPH["mechopt.experiments.liu2006_figures"]
+
+
+@pytest.mark.parametrize("module", sorted(m for m in FILES if ".cli" not in m and not m.endswith("__main__")))
+def test_all_lists_the_public_definitions(module):
+    """``__all__`` is the module's public surface (the API page documents it): every
+    name in it exists, and every top-level function or class without a leading
+    underscore is in it (a public definition left out is either private or missing)."""
+    tree = ast.parse(FILES[module].read_text())
+    names = None
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "__all__" for t in node.targets):
+            try:
+                names = ast.literal_eval(node.value)
+            except ValueError:  # built from other names (the root's lazy table)
+                names = importlib.import_module(module).__all__
+    if names is None:  # a package docstring only, or a package that re-exports nothing
+        assert not [n for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))], module
+        return
+    defined = {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    bound = set(defined)
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Assign, ast.AnnAssign)):
+            for t in (node.targets if isinstance(node, ast.Assign) else [node.target]):
+                bound.update(x.id for x in ast.walk(t) if isinstance(x, ast.Name))
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            bound.update((a.asname or a.name).split(".")[0] for a in node.names)
+    if module == "mechopt":  # the public names are loaded on first use (PEP 562)
+        import mechopt
+
+        bound |= set(mechopt._PUBLIC)
+    assert sorted(set(names) - bound) == [], f"{module}: __all__ names nothing called so"
+    assert sorted(n for n in defined if not n.startswith("_") and n not in names) == [], (
+        f"{module}: public definitions missing from __all__")

@@ -99,6 +99,7 @@ import sys  # noqa: E402
 
 from mechopt.mechanisms.five_bar import lci as fast_lci
 from mechopt.analysis import workspace as W  # noqa: E402
+from mechopt.mechanisms.five_bar import mic as M  # noqa: E402
 
 MODES = ("+-", "-+", "++", "--")
 
@@ -117,8 +118,8 @@ def _random_designs(seed, n):
 def test_mic_port_sizes_are_the_kernels():
     from mechopt.mechanisms.five_bar import kernels as K
 
-    assert W._MIC_SIZES == K.MIC_SIZES
-    assert W._N_SUB_BRANCH == K._N_SUB_BRANCH and W._GOLD == K._GOLD
+    assert M.MIC_SIZES == K.MIC_SIZES
+    assert M._N_SUB_BRANCH == K._N_SUB_BRANCH and M._GOLD == K._GOLD
 
 
 @pytest.mark.skipif(not fast_lci.HAVE_NUMBA, reason="numba not installed")
@@ -130,17 +131,27 @@ def test_mic_port_equals_the_compiled_kernel_bit_for_bit(mode):
 
     d = _random_designs(7 + MODES.index(mode), 400)
     R, Y = K.mic_batch(d[:, 0], d[:, 1], d[:, 2], mode=mode, compiled=True)
-    port = np.array([W._mic_one_port(*map(float, row), mode) for row in d])
+    port = np.array([M._mic_one_port(*map(float, row), mode) for row in d])
     np.testing.assert_array_equal(port[:, 0], R)
     np.testing.assert_array_equal(port[:, 1], Y)
 
 
 def test_mic_switches_to_the_compiled_kernel_with_the_same_values(monkeypatch):
+    """The first MICs of a process come from the NumPy port; once the port has taken
+    MIC_NUMBA_AFTER_SECONDS, from the compiled kernel (when numba is there), with the
+    same values. The paths taken are counted, so a switch that never happens fails."""
     fb = FiveBar(0.85, 1.6, 0.55)
-    monkeypatch.setattr(W, "_port_seconds", 0.0)
+    calls = []
+    for name in ("_mic_one_port", "_compiled_one"):
+        real = getattr(M, name)
+        monkeypatch.setattr(M, name, lambda *a, _real=real, _name=name: calls.append(_name) or _real(*a))
+    monkeypatch.setattr(M, "_port_seconds", 0.0)
     first = mic(fb)
-    monkeypatch.setattr(W, "_port_seconds", W.MIC_NUMBA_AFTER_SECONDS)
+    assert calls and set(calls) == {"_mic_one_port"}
+    calls.clear()
+    monkeypatch.setattr(M, "_port_seconds", M.MIC_NUMBA_AFTER_SECONDS)
     assert mic(fb) == first
+    assert calls and set(calls) == ({"_compiled_one"} if M.HAVE_NUMBA else {"_mic_one_port"})
 
 
 @pytest.mark.skipif(not fast_lci.HAVE_NUMBA, reason="numba not installed")
@@ -170,7 +181,7 @@ def test_reach_filter_never_drops_a_finite_type2_value():
             for ax in (-r[2], r[2]):
                 rr = radius * (1.0 + rng.normal(0.0, 1e-9, phi.size))
                 x, y = np.r_[x, ax + rr * np.cos(phi)], np.r_[y, rr * np.sin(phi)]
-        near = W._five_bar_reach_filter(fb)(x, y)
+        near = fb.explicit_workspace().reach_filter()(x, y)
         assert not np.isfinite(fb.type2_function(x[~near], y[~near])).any()
 
 

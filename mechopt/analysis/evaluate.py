@@ -195,7 +195,7 @@ def disk_evaluation(fb, quadrature: str = "area", gamma: float = 0.5, step=None)
         design, unit = fb, 1.0
     if step is not None:
         _check_raster(fb, step)
-    m = _ws._mic(design, "explicit" if design.explicit_mic else "rays")
+    m = _ws._mic(design)  # the mechanism's explicit MIC if it has one, else the rays method
     if m is None:
         raise ValueError(_ws.no_mic_message(fb))
     out = global_indices(design, quadrature, mic=m)

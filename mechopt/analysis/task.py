@@ -110,7 +110,7 @@ from mechopt.core import indices as _ix
 from mechopt.core import validation as _v
 
 __all__ = ["Task", "Requirements", "OBJECTIVES", "MECHANISMS", "PLACEMENTS", "DesignEvaluator",
-           "NoFeasibleDesign", "Sampling", "certify", "parse_task", "knee_index"]
+           "NoFeasibleDesign", "Sampling", "certify", "parse_task", "knee_index", "get_spec"]
 
 #: length units a task may be given in, and their value in metres
 UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
@@ -686,17 +686,48 @@ class _SliderSpec(_Spec):
         return positions
 
 
-class _BiglideSpec(_SliderSpec):
+class _GuideSpec(_SliderSpec):
+    """Two sliders on the vertical guides ``x = g_i`` (``mech.guides``), each with one
+    link of the length named ``link`` (the Biglide, the gantry): the links must be
+    longer than the half guide distance named ``guide``; the reachable set has no
+    holes and lies within ``|x| <= lmax``."""
+
+    guide = link = ""
+
+    def validity(self, v, lmax):
+        return (v[self.guide] - v[self.link]) / lmax + 1e-9
+
+    def joints(self, mech, x, y):
+        q1, q2 = mech.slider_positions(x, y)  # the built gantries have l2 = 0: q_i = y - c_i
+        g = mech.guides
+        return [(np.full_like(x, g[0]), q1), (np.full_like(x, g[1]), q2), (x, y)]
+
+    def link_angles(self, mech, x, y):
+        """Each link's angle from its guide, ``arcsin(|x - g_i| / L)`` in [0, pi/2]."""
+        g, L = mech.guides, getattr(mech, self.link)
+        with np.errstate(invalid="ignore"):
+            return (np.arcsin(np.clip(np.abs(x - g[0]) / L, 0, 1)),
+                    np.arcsin(np.clip(np.abs(x - g[1]) / L, 0, 1)))
+
+    def holes(self, mech):
+        return []
+
+    def x_reach(self, lmax):
+        return lmax
+
+    def placement_scale(self, v, lmax):
+        return v[self.link]
+
+
+class _BiglideSpec(_GuideSpec):
     name = "biglide"
     lengths = ("l1", "l2")
+    guide, link = "l1", "l2"
 
     def __init__(self):
         from mechopt.mechanisms.biglide import MODES
 
         self.modes, self.default_mode = MODES, "--"
-
-    def validity(self, v, lmax):
-        return (v["l1"] - v["l2"]) / lmax + 1e-9
 
     def raw(self, v, mode):
         from mechopt.mechanisms.biglide import Biglide
@@ -716,37 +747,16 @@ class _BiglideSpec(_SliderSpec):
         """``2 l1 + 2 l2``: the guide distance and the two links (strokes reported apart)."""
         return 2.0 * (mech.l1 + mech.l2)
 
-    def joints(self, mech, x, y):
-        q1, q2 = mech.slider_positions(x, y)
-        return [(np.full_like(x, mech.l1), q1), (np.full_like(x, -mech.l1), q2), (x, y)]
 
-    def link_angles(self, mech, x, y):
-        g = mech.guides
-        with np.errstate(invalid="ignore"):
-            return (np.arcsin(np.clip(np.abs(x - g[0]) / mech.l2, 0, 1)),
-                    np.arcsin(np.clip(np.abs(x - g[1]) / mech.l2, 0, 1)))
-
-    def holes(self, mech):
-        return []
-
-    def x_reach(self, lmax):
-        return lmax
-
-    def placement_scale(self, v, lmax):
-        return v["l2"]
-
-
-class _GantrySpec(_SliderSpec):
+class _GantrySpec(_GuideSpec):
     name = "gantry"
     lengths = ("d1", "l")
+    guide, link = "d1", "l"
 
     def __init__(self):
         from mechopt.mechanisms.gantry import MODES
 
         self.modes, self.default_mode = MODES, "--"
-
-    def validity(self, v, lmax):
-        return (v["d1"] - v["l"]) / lmax + 1e-9
 
     def positions(self, v, mode, x, y):
         s1, s2 = (1.0 if c == "+" else -1.0 for c in mode)
@@ -767,23 +777,6 @@ class _GantrySpec(_SliderSpec):
     def size(self, mech, derived):
         """``2 d1 + 3 l``: the column distance and the three equal links (Wu Fig. 1)."""
         return 2.0 * mech.d1 + 3.0 * mech.l
-
-    def joints(self, mech, x, y):
-        q1, q2 = mech.slider_positions(x, y)  # the built gantries have l2 = 0: q_i = y - c_i
-        return [(np.full_like(x, -mech.d1), q1), (np.full_like(x, mech.d1), q2), (x, y)]
-
-    def link_angles(self, mech, x, y):
-        return (np.arcsin(np.clip(np.abs(x + mech.d1) / mech.l, 0, 1)),
-                np.arcsin(np.clip(np.abs(x - mech.d1) / mech.l, 0, 1)))
-
-    def holes(self, mech):
-        return []
-
-    def x_reach(self, lmax):
-        return lmax
-
-    def placement_scale(self, v, lmax):
-        return v["l"]
 
 
 class _BipodSpec(_SliderSpec):
@@ -829,6 +822,8 @@ MECHANISMS = tuple(_SPECS)
 
 
 def get_spec(name) -> _Spec:
+    """The design specification of mechanism ``name`` (one of :data:`MECHANISMS`): its
+    design variables, bounds, modes, size and joint positions over a task."""
     return _SPECS[_v.choice("mechanism", name, MECHANISMS)]()
 
 

@@ -13,9 +13,15 @@
 * :func:`largest_square` - the largest square centred on the y axis inside a region.
 * :func:`joint_ranges` - actuator ranges over a region.
 
-Cost of one design. Nothing here imports scipy or numba: the five-bar's MIC is
-the atlas kernel's algorithm (:func:`mechopt.mechanisms.five_bar.kernels.mic_batch`) ported to NumPy for
-one design, with the same values bit for bit (``tests/test_workspace.py``), and the
+Mechanism-specific geometry comes through the protocol's hook
+:meth:`~mechopt.core.protocol.PlanarMechanism.explicit_workspace`: a mechanism that
+has one (the symmetric five-bar, :class:`mechopt.mechanisms.five_bar.mic.FiveBarWorkspace`)
+gives its MIC explicitly, the reach of its legs (the raster skips the cells no leg
+reaches) and the conditions on its inputs that the error messages name; without one,
+everything here is the generic method above.
+
+Cost of one design. Nothing here imports scipy or numba (the five-bar's explicit
+MIC runs a NumPy port of the atlas kernel for one design, a few ms), and the
 connected component of the usable region is found on runs of cells. The raster
 is evaluated in blocks of rows (:data:`RASTER_BLOCK` cells), so its memory stays
 bounded whatever its size.
@@ -23,14 +29,13 @@ bounded whatever its size.
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from mechopt.core import validation as _v
-from mechopt.core.numerics import INV_PHI, golden_section_max
+from mechopt.core.numerics import golden_section_max
 from mechopt.core.quadrature import Grid, grid_over
 
 __all__ = [
@@ -42,6 +47,9 @@ __all__ = [
     "gcw",
     "largest_square",
     "joint_ranges",
+    "largest_square_at",
+    "no_mic_message",
+    "unusable_message",
 ]
 
 #: cells per block of a raster evaluation (the kinematics' temporaries stay small)
@@ -126,14 +134,16 @@ def _mic_radius_at(mech, cy):
 def mic(mech, method: str = "auto", n_y: int = 48, tol: float = 1e-6) -> MIC:
     """Maximal inscribed circle of ``mech`` (centre on the y axis, ``y > 0``).
 
-    ``method="explicit"`` (the default for a :class:`~mechopt.FiveBar`, ``"auto"``)
-    is the algorithm of :func:`mechopt.mechanisms.five_bar.kernels.mic_batch`: the five-bar's type-II
-    locus is generated explicitly (B1, P, B2 collinear) and filtered by working
-    mode, then a dense search over centres with golden-section refinement (about
-    2.5e-6 relative against a converged reference, ``tests/test_atlas.py``). One
-    design is computed by a NumPy port of the compiled kernel (same values bit for
-    bit, a few ms, no numba start-up); after :data:`MIC_NUMBA_AFTER_SECONDS` of
-    such work in a process (a long optimisation), the compiled kernel takes over.
+    ``method="explicit"`` (the default, ``"auto"``, for a mechanism whose
+    :meth:`~mechopt.core.protocol.PlanarMechanism.explicit_workspace` is not None) is
+    the mechanism's own algorithm. For a :class:`~mechopt.FiveBar` it is that of
+    :mod:`mechopt.mechanisms.five_bar.mic`: the type-II locus is generated explicitly
+    (B1, P, B2 collinear) and filtered by working mode, then a dense search over
+    centres with golden-section refinement (about 2.5e-6 relative against a converged
+    reference, ``tests/test_atlas.py``); one design is computed by a NumPy port of the
+    atlas's compiled kernel (same values bit for bit, a few ms, no numba start-up),
+    and after :data:`mechopt.mechanisms.five_bar.mic.MIC_NUMBA_AFTER_SECONDS` of such
+    work in a process (a long optimisation) by the compiled kernel.
 
     ``method="rays"`` works for any mechanism of the protocol: a grid of ``n_y``
     centres over ``(0, ymax]`` locates the best centre (type-II clearance by
@@ -144,16 +154,14 @@ def mic(mech, method: str = "auto", n_y: int = 48, tol: float = 1e-6) -> MIC:
 
     Raises ValueError when no centre on the positive y axis is a regular
     reachable point (``radius`` would be 0); the message names the inputs and,
-    for the five-bar, which condition on them fails.
+    for a mechanism with an explicit workspace, which condition on them fails.
     """
     _v.choice("method", method, ("auto", "explicit", "rays"))
     n_y = _v.integer("n_y", n_y, 1)
     tol = _v.finite_number("tol", tol)
     if not tol > 0.0:
         raise ValueError(f"tol must be a positive relative tolerance, got {_v.show(tol)}")
-    if method == "auto":
-        method = "explicit" if mech.explicit_mic else "rays"
-    if method == "explicit" and not mech.explicit_mic:
+    if method == "explicit" and mech.explicit_workspace() is None:
         raise ValueError(f"method 'explicit' needs a FiveBar (a mechanism with explicit_mic), "
                          f"got {type(mech).__name__}")
     out = _mic(mech, method, n_y, tol)
@@ -162,10 +170,11 @@ def mic(mech, method: str = "auto", n_y: int = 48, tol: float = 1e-6) -> MIC:
     return out
 
 
-def _mic(mech, method="explicit", n_y=48, tol=1e-6):
+def _mic(mech, method="auto", n_y=48, tol=1e-6):
     """:func:`mic` without its argument checks; None instead of the error."""
-    if method == "explicit":
-        r, y = five_bar_mic(mech.r1, mech.r2, mech.r3, mech.mode)
+    explicit = mech.explicit_workspace() if method != "rays" else None
+    if explicit is not None:
+        r, y = explicit.mic()
         if not r > 1e-9 * mech.length_scale:
             return None
         return MIC(radius=r, center_y=y)
@@ -186,253 +195,14 @@ def _mic(mech, method="explicit", n_y=48, tol=1e-6):
 
 
 def no_mic_message(mech) -> str:
-    """Why ``mech`` has no MIC, in terms of its inputs (one line): for a five-bar,
-    the first of the conditions below that fails, else the bare finding.
-
-    * ``r3 < r1 + r2``: otherwise no point of the y axis is reachable by both legs;
-    * not ``r3 = 0`` in the modes ``"++"``/``"--"`` (both elbows on one point:
-      singular everywhere);
-    * ``min(r1, r2) >= 1e-9 (r1 + r2 + r3)/3``: the MIC radius never exceeds
-      ``min(r1, r2)`` and a radius below 1e-9 of the length scale is not resolved
-      in double precision (the test of :func:`mic`).
-    """
+    """Why ``mech`` has no MIC, in terms of its inputs (one line): for a mechanism with
+    an explicit workspace its ``no_mic_reason()`` (for the five-bar, the first condition
+    on ``r1, r2, r3`` and the mode that fails), else the bare finding."""
     head = f"{mech!r} has no singularity-free disk centred on the y axis (MIC radius 0)"
-    if not mech.explicit_mic:
+    explicit = mech.explicit_workspace()
+    if explicit is None:
         return head
-    r1, r2, r3 = mech.r1, mech.r2, mech.r3
-    scale = (r1 + r2 + r3) / 3.0
-    if not r3 < r1 + r2:
-        why = f"no point of the y axis is reachable by both legs: r3 must be less than r1 + r2 = {r1 + r2:g}"
-    elif mech.mode in ("++", "--") and r3 <= 1e-12 * scale:
-        why = (f"with r3 = {r3:g} the working mode {mech.mode!r} puts both elbows on (nearly) one point, "
-               "singular everywhere: use r3 > 1e-12 (r1 + r2 + r3)/3 or the mode '+-' or '-+'")
-    elif min(r1, r2) < 1e-9 * scale:
-        why = (f"the MIC radius is at most min(r1, r2) = {min(r1, r2):g}, below 1e-9 (r1 + r2 + r3)/3 "
-               f"= {1e-9 * scale:g}, the smallest radius double precision resolves here: "
-               "min(r1, r2) must be at least that")
-    else:
-        why = "every point of the y axis near the workspace is singular or unreachable in this working mode"
-    return f"{head}: {why}"
-
-
-# --- the five-bar's explicit MIC for one design ---------------------------------------------
-# A NumPy port of ``mechopt.mechanisms.five_bar.kernels._mic_one_nb`` with its operations in the same order
-# and the C library's trigonometric functions (``math``; NumPy's vectorised arccos
-# differs from it in the last bit), so that it gives the compiled kernel's values bit
-# for bit (tests/test_workspace.py checks it on 1600 designs, every mode). Its sizes are
-# ``kernels.MIC_SIZES`` (the same test checks that they are equal).
-_MIC_SIZES = dict(n_crank=128, n_y=128, n_sub=16, n_seed_y=9, n_golden=42, n_cand=2)
-#: the ratio of the port's golden-section search (:data:`mechopt.mechanisms.five_bar.kernels._GOLD`)
-_GOLD = INV_PHI
-_N_SUB_BRANCH = 8
-#: seconds spent in the NumPy port after which :func:`five_bar_mic` loads the compiled
-#: kernel (its first load costs about 0.5 s per process; see :mod:`mechopt.mechanisms.five_bar.lci`)
-MIC_NUMBA_AFTER_SECONDS = 0.5
-_port_seconds = 0.0
-_compiled_mic = None  # mechopt.mechanisms.five_bar.kernels.mic_batch once the compiled kernel is used
-
-
-def _libm(f, a):
-    """The scalar function ``f`` of :mod:`math` at every element of ``a``."""
-    a = np.asarray(a, dtype=float)
-    return np.fromiter(map(f, a.ravel().tolist()), float, a.size).reshape(a.shape)
-
-
-def _theta_range(r1, r2, r3, leg, rho):
-    t = r1 - 2.0 * r2
-    lo2 = t * t
-    t = r1 + 2.0 * r2
-    hi2 = t * t
-    base = 4.0 * r3 * r3 + r1 * r1
-    k = 4.0 * r3 * r1
-    if k <= 0.0:
-        if not (lo2 <= base <= hi2):
-            return 1.0, 0.0
-        clo, chi = -1.0, 1.0
-    else:
-        clo = (base - hi2) / k
-        chi = (base - lo2) / k
-        if leg == 1:
-            clo, chi = -chi, -clo
-    sx = -r3 if leg == 0 else r3
-    clo = max(clo, (-rho - sx) / r1, -1.0)
-    chi = min(chi, (rho - sx) / r1, 1.0)
-    if clo > chi:
-        return 1.0, 0.0
-    return math.acos(chi), math.acos(clo)
-
-
-def _theta_of_u(ta, tb, half, u):
-    th = ta + (tb - ta) * 0.5 * (1.0 - _libm(math.cos, math.pi * u))
-    return np.where(half == 0, th, -th)
-
-
-def _coupler_points(r1, r2, r3, s1, s2, leg, sigma, th):
-    """Midpoints ``P`` of ``B1 B2`` with the crank ``leg`` at ``th``: ``(px, py, ok)``."""
-    ax = np.where(leg == 0, -r3, r3)
-    ox = -ax
-    bx = ax + r1 * _libm(math.cos, th)
-    by = r1 * _libm(math.sin, th)
-    vx = ox - bx
-    vy = -by
-    L2 = vx * vx + vy * vy
-    cc = 4.0 * r2 * r2
-    with np.errstate(divide="ignore", invalid="ignore"):  # L2 = 0: not ok
-        L = np.sqrt(L2)
-        a = (L2 + cc - r1 * r1) / (2.0 * L)
-        hh2 = cc - a * a
-        hh = sigma * np.sqrt(np.maximum(hh2, 0.0))
-        cx = bx + (a * vx - hh * vy) / L
-        cy = by + (a * vy + hh * vx) / L
-        px = 0.5 * (bx + cx)
-        py = 0.5 * (by + cy)
-        first = leg == 0
-        b1x, b1y = np.where(first, bx, cx), np.where(first, by, cy)
-        b2x, b2y = np.where(first, cx, bx), np.where(first, cy, by)
-        c1 = (px + r3) * b1y - py * (b1x + r3)
-        c2 = (px - r3) * b2y - py * (b2x - r3)
-        ok = (L2 > 0.0) & ~(hh2 < -1e-12 * cc) & ~(s1 * c1 < 0.0) & ~(s2 * c2 < 0.0)
-    return px, py, ok
-
-
-def _axis_points(r1, r2, r3, s1, s2):
-    qy = [math.nan] * 4
-    if r3 > 0.0 and r1 > r3:
-        h = math.sqrt(r1 * r1 - r3 * r3)
-        for i in range(4):
-            hc = h if i < 2 else -h
-            py = hc + r2 if i % 2 == 0 else hc - r2
-            c1 = r3 * hc - py * r3
-            c2 = -r3 * hc + py * r3
-            if not (s1 * c1 < 0.0 or s2 * c2 < 0.0):
-                qy[i] = py
-    return [v for v in qy if v == v]
-
-
-def _cloud_radius(r1, r2, r3, qx, qy, ay, y):
-    """``min(serial, distance to the cloud and the axis points)`` at the centres ``y``."""
-    D = np.sqrt(r3 * r3 + y * y)
-    s = np.minimum(r1 + r2 - D, D - abs(r1 - r2))
-    best = s * s
-    if qx.size:
-        dy = qy[None, :] - y[:, None]
-        best = np.minimum(best, np.min(qx * qx + dy * dy, axis=1))
-    for v in ay:
-        d = v - y
-        best = np.minimum(best, d * d)
-    return np.where(s <= 0.0, 0.0, np.sqrt(best))
-
-
-def _mic_one(r1, r2, r3, s1, s2):
-    """``kernels._mic_one_nb`` of one design in units of its length scale."""
-    n_y, n_sub = _MIC_SIZES["n_y"], _MIC_SIZES["n_sub"]
-    n_seed_y, n_golden = _MIC_SIZES["n_seed_y"], _MIC_SIZES["n_golden"]
-    ugrid = np.linspace(0.0, 1.0, _MIC_SIZES["n_crank"])
-    nu = ugrid.size
-    ylo2 = (r1 - r2) * (r1 - r2) - r3 * r3
-    ylo = math.sqrt(ylo2) if ylo2 > 0.0 else 0.0
-    yhi2 = (r1 + r2) * (r1 + r2) - r3 * r3
-    yhi = math.sqrt(yhi2) if yhi2 > 0.0 else 0.0
-    rho = 1.01 * (min(r1, r2) + r2)
-    tr = [_theta_range(r1, r2, r3, leg, rho) for leg in (0, 1)]
-    b = np.arange(_N_SUB_BRANCH)
-    leg_b = b // 4
-    sigma_b = np.where((b // 2) % 2 == 0, 1.0, -1.0)
-    half_b = b % 2
-    ta_b = np.array([tr[leg][0] for leg in leg_b])
-    tb_b = np.array([tr[leg][1] for leg in leg_b])
-    # the locus sampled on every sub-branch whose crank-angle interval is not empty
-    qx = np.full((_N_SUB_BRANCH, nu), np.inf)
-    qy = np.zeros((_N_SUB_BRANCH, nu))
-    live = np.flatnonzero(ta_b <= tb_b)
-    if live.size:
-        th = _theta_of_u(ta_b[live, None], tb_b[live, None], half_b[live, None], ugrid[None, :])
-        px, py, ok = _coupler_points(r1, r2, r3, s1, s2, leg_b[live, None], sigma_b[live, None], th)
-        qx[live] = np.where(ok, px, np.inf)
-        qy[live] = np.where(ok, py, 0.0)
-    ay = _axis_points(r1, r2, r3, s1, s2)
-    ys = ylo + (yhi - ylo) * np.arange(n_y) / (n_y - 1)
-    rs = _cloud_radius(r1, r2, r3, qx.ravel(), qy.ravel(), ay, ys).tolist()
-    best_r, best_y = 0.0, 0.0
-    used = -10
-    du = 1.0 / (nu - 1)
-    off = np.arange(-n_sub, n_sub + 1)
-    for _ in range(_MIC_SIZES["n_cand"]):
-        # best local maximum of the coarse radii, not next to the previous candidate
-        jb = -1
-        for j in range(n_y):
-            if abs(j - used) <= 1 or rs[j] <= 0.0:
-                continue
-            if (j > 0 and rs[j - 1] > rs[j]) or (j < n_y - 1 and rs[j + 1] > rs[j]):
-                continue
-            if jb < 0 or rs[j] > rs[jb]:
-                jb = j
-        if jb < 0:
-            break
-        used = jb
-        lo, hi = float(ys[max(jb - 1, 0)]), float(ys[min(jb + 1, n_y - 1)])
-        # dense cloud around the samples nearest to n_seed_y centres of [lo, hi]
-        yq = lo + (hi - lo) * np.arange(n_seed_y) / (n_seed_y - 1)
-        d2 = qx[None] * qx[None] + (qy[None] - yq[:, None, None]) ** 2  # (seed, branch, u)
-        seen_q, seen_b = np.nonzero(np.isfinite(np.min(d2, axis=2)))
-        k = np.argmin(d2, axis=2)[seen_q, seen_b]
-        u = ugrid[k][:, None] + du * off[None, :] / n_sub
-        bb = seen_b[:, None]
-        th = _theta_of_u(ta_b[bb], tb_b[bb], half_b[bb], u)
-        px, py, ok = _coupler_points(r1, r2, r3, s1, s2, leg_b[bb], sigma_b[bb], th)
-        ok &= (u >= 0.0) & (u <= 1.0)
-        dqx, dqy = px[ok], py[ok]
-
-        def rad(y):
-            return float(_cloud_radius(r1, r2, r3, dqx, dqy, ay, np.array([y]))[0])
-
-        # golden-section maximisation of min(serial, T_dense) over [lo, hi], the best
-        # point seen (from the coarse one) kept
-        yb = float(ys[jb])
-        g = golden_section_max(rad, lo, hi, max_iter=n_golden, start=(yb, rad(yb)))
-        yb, fb = g.x_best, g.f_best
-        if fb > best_r:
-            best_r, best_y = fb, yb
-    return best_r, best_y
-
-
-def _compiled():
-    """:func:`mechopt.mechanisms.five_bar.kernels.mic_batch` if its compiled path exists, else False."""
-    global _compiled_mic
-    if _compiled_mic is None:
-        from mechopt.mechanisms.five_bar import kernels
-
-        _compiled_mic = kernels.mic_batch if kernels.HAVE_NUMBA else False
-    return _compiled_mic
-
-
-def five_bar_mic(r1, r2, r3, mode="+-"):
-    """``(radius, center_y)`` of the five-bar's explicit MIC: the values of
-    ``kernels.mic_batch(r1, r2, r3, mode, compiled=True)``, by the NumPy port for the
-    first :data:`MIC_NUMBA_AFTER_SECONDS` of a process, by the compiled kernel after
-    (if numba is available)."""
-    global _port_seconds
-    from mechopt.mechanisms.five_bar.lci import HAVE_NUMBA
-
-    if HAVE_NUMBA and _port_seconds >= MIC_NUMBA_AFTER_SECONDS and _compiled():
-        r, y = _compiled()(r1, r2, r3, mode=mode, compiled=True)
-        return float(r[0]), float(y[0])
-    t0 = time.perf_counter()
-    out = _mic_one_port(r1, r2, r3, mode)
-    _port_seconds += time.perf_counter() - t0
-    return out
-
-
-def _mic_one_port(r1, r2, r3, mode):
-    """The NumPy port's ``(radius, center_y)``, as ``kernels.mic_batch`` scales it."""
-    s1 = 1.0 if mode[0] == "+" else -1.0
-    s2 = 1.0 if mode[1] == "+" else -1.0
-    L = (r1 + r2 + r3) / 3.0
-    r3n = r3 / L
-    r, y = _mic_one(r1 / L, r2 / L, r3n, s1, s2)
-    if s1 == s2 and r3n == 0.0:  # r3 = 0 in mode ++ or --: every pose is type-II singular
-        r = 0.0
-    return r * L, y * L
+    return f"{head}: {explicit.no_mic_reason()}"
 
 
 @dataclass(frozen=True)
@@ -503,7 +273,8 @@ def _usable_region(mech, step, center):
     free = np.zeros(grid.shape, dtype=bool)
     ny, nx = grid.shape
     rows = max(1, RASTER_BLOCK // nx)
-    near = _five_bar_reach_filter(mech) if mech.explicit_mic else None
+    explicit = mech.explicit_workspace()
+    near = None if explicit is None else explicit.reach_filter()
     for r0 in range(0, ny, rows):
         r1 = min(r0 + rows, ny)
         X = np.broadcast_to(grid.x, (r1 - r0, nx))
@@ -518,34 +289,6 @@ def _usable_region(mech, step, center):
     if not free[i, j]:
         return None
     return Region(grid, _component(free, i, j))
-
-
-def _five_bar_reach_filter(fb):
-    """``near(x, y)``: False only where :meth:`FiveBar.type2_function` is certainly NaN
-    (a leg cannot assemble), i.e. where ``|P - A_i|`` lies outside
-    ``[|r1 - r2| - m, r1 + r2 + m]`` for a leg. The elbows accept a pose while
-    ``h^2 = -(q - lo^2)(q - hi^2) / (4 q^2) >= -1e-12`` (``q = |P - A_i|^2``); beyond the
-    margin ``m = 1e-3 L + 1e-9 (r1 + r2)^3 / (r1 r2)`` it is below ``-1e-9`` in exact
-    arithmetic (``|h^2|`` grows monotonically away from the annulus and is at least
-    ``2 m r1 r2 / (r1 + r2)^3`` there), far beyond rounding."""
-    r1, r2, r3 = fb.r1, fb.r2, fb.r3
-    hi = r1 + r2
-    m = 1e-3 * fb.length_scale + 1e-9 * hi ** 3 / (r1 * r2)
-    lo2 = max(abs(r1 - r2) - m, 0.0) ** 2
-    hi2 = (hi + m) ** 2
-
-    def near(x, y):
-        y2 = y * y
-        ok = None
-        for ax in (-r3, r3):
-            q = x - ax
-            q *= q
-            q += y2
-            leg = (q >= lo2) & (q <= hi2)
-            ok = leg if ok is None else ok & leg
-        return ok
-
-    return near
 
 
 def _component(free, i, j):
@@ -602,14 +345,10 @@ def unusable_message(mech, step, center, given_step=False, r_mic=None) -> str:
     if not (np.isfinite(s0) and s0 != 0):
         return (f"{mech!r}: the centre {_v.show(tuple(center))} is singular or unreachable, so it lies "
                 "in no singularity-free region")
-    five_bar = mech.explicit_mic
-    scale = "(r1 + r2 + r3)/1200" if five_bar else "its length scale/400"
+    explicit = mech.explicit_workspace()
+    scale = "its length scale/400" if explicit is None else explicit.step_text
     what = f"the raster step {step:.6g}" if given_step else f"the raster step {scale} = {step:.6g}"
-    bound = ""
-    if five_bar:
-        need = "" if given_step else " (r1 + r2 + r3)/800 ="
-        bound = (f"; the MIC radius is at most min(r1, r2) = {min(mech.r1, mech.r2):.6g}, so min(r1, r2) "
-                 f"must be at least about{need} {1.5 * step:.6g}")
+    bound = "" if explicit is None else explicit.radius_bound(step, given_step)
     radius = "" if r_mic is None else f" (radius {r_mic:.6g})"
     return (f"{mech!r}: its usable workspace is too thin for {what}: the raster cell next to the "
             f"MIC centre{radius} lies outside it; the MIC radius must be at least about 1.5 raster "

@@ -24,6 +24,7 @@ import numpy as np
 
 from mechopt.core import indices as _ix
 from mechopt.core import validation as _v
+from mechopt.core.quadrature import RASTER_CELLS
 
 __all__ = ["PlanarMechanism", "Parameter", "REQUIRED", "PARAMETER_KINDS", "as_points"]
 
@@ -128,10 +129,8 @@ class PlanarMechanism(ABC):
     #: True when the Liu 2006 indices over the MIC (a disk centred on the y axis)
     #: apply: the mechanism is symmetric about the y axis
     disk_indices: bool = False
-    #: True for the symmetric five-bar's lengths ``r1, r2, r3`` and ``mode``:
-    #: :mod:`mechopt.analysis.workspace` then finds the MIC in closed form
-    #: (:func:`~mechopt.analysis.workspace.five_bar_mic`), filters the usable region by the legs'
-    #: reach and says why a MIC is missing in terms of those lengths
+    #: True when :meth:`explicit_workspace` gives the MIC explicitly (the symmetric
+    #: five-bar; informational: :mod:`mechopt.analysis.workspace` asks the hook)
     explicit_mic: bool = False
     #: working modes (inverse-kinematics branches) the mechanism supports
     modes: tuple[str, ...] = ()
@@ -222,6 +221,29 @@ class PlanarMechanism(ABC):
         mechanism whose joints turn freely (the five-bar's cranks)."""
         return None
 
+    def explicit_workspace(self):
+        """Mechanism-specific workspace geometry for :mod:`mechopt.analysis.workspace`, or
+        None. Default None: no explicit MIC, so :func:`~mechopt.analysis.workspace.mic`
+        uses its generic ray method (root finding of :meth:`type2_function`), the usable
+        region evaluates :meth:`type2_function` on the whole raster and the error
+        messages name no condition on the inputs.
+
+        A mechanism whose singular loci are known explicitly (the symmetric five-bar:
+        :class:`mechopt.mechanisms.five_bar.mic.FiveBarWorkspace`) returns an object with
+
+        * ``mic()``: ``(radius, center_y)`` [L] of the largest disk centred on the y
+          axis (``center_y > 0``) free of singular points of the working mode; a
+          radius of at most ``1e-9 * length_scale`` means there is none;
+        * ``reach_filter()``: a function ``near(x, y)`` of arrays of points, False only
+          where :meth:`type2_function` is certainly NaN (the raster skips those cells);
+        * ``no_mic_reason()``: why there is no MIC, one clause in terms of the inputs;
+        * ``step_text``: the default raster step ``length_scale/400`` in the inputs'
+          terms, and ``radius_bound(step, given_step)``: the clause (starting ``"; "``)
+          on the MIC radius that a raster of that step needs, for the message of a
+          usable workspace too thin for its raster.
+        """
+        return None
+
     # --- derived once for every mechanism ------------------------------------
     def _within_strokes(self, q1, q2, rtol: float = 1e-12):
         """Actuator values inside ``self.joint_limits`` (for mechanisms with stroke
@@ -283,7 +305,7 @@ class PlanarMechanism(ABC):
         """Every local index of :data:`mechopt.core.indices.LOCAL_INDEX_NAMES`."""
         return _ix.local_indices(self.jacobian(x, y))
 
-    def raster_mean(self, local, step=None, cells: int = 400) -> float:
+    def raster_mean(self, local, step=None, cells: int = RASTER_CELLS) -> float:
         """Area mean of ``local(x, y)`` (e.g. ``self.tqi``) over the reachable set, by the
         mid-point rule on square cells of side ``step`` [L] (default: the smaller side
         of :meth:`bounding_box` / ``cells``); first-order error in ``step``. NaN when

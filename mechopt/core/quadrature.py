@@ -34,6 +34,12 @@ DEFAULT_N_R = 48
 DEFAULT_N_THETA = 96
 #: most nodes of one rule or raster (a bad step or resolution would exhaust memory)
 MAX_NODES = 10**7
+#: the default raster of a mean over a mechanism's reachable set: this many cells across
+#: the smaller side of its bounding box (:meth:`~mechopt.core.protocol.PlanarMechanism.raster_mean`,
+#: the raster GTQI of the Bipod and of the two-slider mechanisms, the asymmetric five-bar's
+#: ``raster-N`` summary). The mid-point rule on a mask errs to first order in the cell
+#: size, i.e. by ``O(1/RASTER_CELLS)`` of the mean (the cells the boundary cuts)
+RASTER_CELLS = 400
 
 
 @lru_cache(maxsize=32)

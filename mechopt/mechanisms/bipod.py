@@ -81,8 +81,6 @@ ASSEMBLY_MODES = ("up", "down")
 #: how :meth:`Bipod.gtqi` integrates: closed form, or mid-point raster
 GTQI_METHODS = ("exact", "raster")
 
-#: default raster resolution: cells across the smaller side of the bounding box
-RASTER_CELLS = 400
 #: stroke limits are tested with this tolerance relative to ``length_scale``, so
 #: that a pose computed from ``q = q_min`` or ``q_max`` (fk) is reachable
 LIMIT_RTOL = 1e-12
@@ -349,15 +347,15 @@ class Bipod(PlanarMechanism):
         rounding error only). ``method="raster"`` is the mid-point mean over the
         cells of :func:`mechopt.core.quadrature.grid_over` whose centres are reachable,
         with cells of side ``step`` [L] (default: the smaller side of the bounding
-        box / 400); its error is first order in ``step`` (boundary cells): for
-        Stan's design 9e-4 relative at ``step = 2`` mm, 4e-5 at the default
-        (0.325 mm), 3e-6 at 0.1 mm. NaN for an empty workspace.
+        box / :data:`~mechopt.core.quadrature.RASTER_CELLS`); its error is first order
+        in ``step`` (boundary cells): for Stan's design 9e-4 relative at ``step = 2``
+        mm, 4e-5 at the default (0.325 mm), 3e-6 at 0.1 mm. NaN for an empty workspace.
         """
         _v.choice("method", method, GTQI_METHODS)
         if method == "exact":
             w = self.workspace_area()
             return float(self.tqi_integral() / w) if w > 0 else float("nan")
-        return self.raster_mean(self.tqi, step, RASTER_CELLS)
+        return self.raster_mean(self.tqi, step)
 
 
 #: the keys of :meth:`Bipod.summary`

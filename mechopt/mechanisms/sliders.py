@@ -81,8 +81,6 @@ ASSEMBLY_MODES = ("up", "down")
 GTQI_METHODS = ("gauss", "quad", "raster")
 #: readings of Wu eq. (6)-(7) offered by :meth:`TwoSliderMechanism.k_av`
 K_AV_READINGS = ("literal", "displacement", "max_speed")
-#: default raster resolution: cells across the smaller side of the bounding box
-RASTER_CELLS = 400
 #: stroke limits are tested with this tolerance relative to the largest of the link
 #: length and the limits' magnitudes (module docstring)
 LIMIT_RTOL = 1e-12
@@ -458,14 +456,15 @@ class TwoSliderMechanism(PlanarMechanism):
         error ~1e-10); ``method="gauss"``: the same with the fixed Gauss rule of
         :meth:`tqi_integral` (~3e-8, 100x faster). ``method="raster"``: mid-point mean
         over the reachable cells of :func:`mechopt.core.quadrature.grid_over` with side
-        ``step`` [L] (default: the smaller side of the bounding box / 400); first-order
-        error in ``step``. NaN for an empty workspace.
+        ``step`` [L] (default: the smaller side of the bounding box /
+        :data:`~mechopt.core.quadrature.RASTER_CELLS`); first-order error in ``step``.
+        NaN for an empty workspace.
         """
         _v.choice("method", method, GTQI_METHODS)
         if method in ("quad", "gauss"):
             w = self.workspace_area()
             return float(self.tqi_integral(method=method) / w) if w > 0 else float("nan")
-        return self.raster_mean(self.tqi, step, RASTER_CELLS)
+        return self.raster_mean(self.tqi, step)
 
     # --- velocity output ratio (Wu 2008 sec. 3.3) ------------------------------------
     def velocity_output_ratio(self, x, leg: int = 1):

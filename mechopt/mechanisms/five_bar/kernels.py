@@ -3,11 +3,19 @@
 They carry the performance atlas (:mod:`mechopt.run.atlas`, Liu 2006 Fig. 2-8): tens
 of thousands of designs, each needing its MIC and about 10^4 local evaluations.
 
-Every kernel exists twice, with the same formulas in the same order:
+Every kernel has two paths, with the same formulas in the same order:
 
 * a pure-NumPy path (always available), vectorised over points and designs;
 * a compiled path (numba, the optional ``fast`` extra), one loop per design and
-  per point, used when numba imports (``MECHOPT_NO_NUMBA=1`` forces NumPy).
+  per point, used when numba is available (:mod:`mechopt.core.jit`;
+  ``MECHOPT_NO_NUMBA=1`` forces NumPy).
+
+A formula is written once, as a plain Python function marked
+:func:`~mechopt.core.jit.jitable` (``_mrows``, ``_lci_m``, ``_sv_m``, ``_iso_r``,
+``_tr_step``, ...): the compiled loops call it on scalars, the NumPy path on arrays
+(under ``np.errstate``). What stays twice is the control flow around the formulas:
+the compiled loops stop each search where it ends, the NumPy path carries masks of
+the searches still running.
 
 ``tests/test_atlas.py`` checks that both paths agree (local indices to 1e-12,
 MIC and disk means to rounding) and that the fast MIC and disk means agree with
@@ -21,37 +29,9 @@ on the design divided by its length scale ``(r1 + r2 + r3)/3`` and rescale.
 
 Fast MIC (:func:`mic_batch`)
 ----------------------------
-The largest singularity-free disk centred at ``(0, yc)`` has the radius
-``min(serial(yc), T(yc))``:
-
-* ``serial(yc) = min(r1 + r2 - D, D - |r1 - r2|)``, ``D = hypot(r3, yc)``: the
-  closed-form distance to the four circles of Le eq. (19) (both legs see the
-  same ``D`` from the y axis). It is positive only for
-  ``|r1 - r2| < D < r1 + r2`` and never exceeds ``min(r1, r2)``.
-* ``T(yc)``: the distance to the type-II locus of the working mode, generated
-  explicitly. ``P``, ``B1``, ``B2`` collinear means either
-
-  - ``P`` is the midpoint of ``B1 B2``, ``|B1 B2| = 2 r2`` (the coupler curve of the
-    four-bar ``A1 B1 B2 A2``). It is sampled by the crank angle of leg 1 *and* by
-    that of leg 2 (each parametrisation is regular where the other has a dead
-    point), both circle-intersection branches, over the angles where the
-    coupler closes and the crank tip lies within ``min(r1, r2) + r2`` of the y
-    axis (no farther point can be within ``min(r1, r2)`` of a centre), with
-    cosine spacing so that the square-root ends are sampled evenly; or
-  - ``B1 = B2 = C = (0, +-sqrt(r1^2 - r3^2))`` (the cranks meet) and ``P`` is on the
-    circle of radius ``r2`` about ``C``: seen from a point of the y axis its
-    nearest point is ``(0, +-h +- r2)``, so four points replace the circle.
-
-  A point is kept only if its elbows are the working mode's
-  (``s_i cross(P - A_i, B_i - A_i) >= 0``). Points of the locus are exact, so a
-  sampled distance never underestimates ``T``; where a kept arc ends (a dead
-  point or a change of elbow) the locus meets a serial circle, and ``serial``
-  already bounds the radius there.
-
-The radius is maximised over ``yc`` in the serial-feasible interval: 128 coarse
-centres, then for the two best local maxima the locus is re-sampled 16x finer
-around the samples nearest to nine centres of the bracketing interval, and a
-golden-section search on that dense cloud gives the centre. Against
+The algorithm and its formulas are those of :mod:`mechopt.mechanisms.five_bar.mic`
+(closed-form serial clearance, explicit type-II locus, Le eq. 19): its compiled
+kernel here, and a NumPy path vectorised over blocks of designs. Against
 :func:`mechopt.analysis.workspace.mic` (root finding, ~1e-7) the radius agrees to a few
 1e-6 (relative) for mode ``"+-"``; where they differ by more, the reference
 missed a better centre or a small type-II lobe (see ``tests/test_atlas.py``).
@@ -88,10 +68,11 @@ to 1e-6 on both paths (``tests/test_mci.py``); the two paths agree to rounding.
 from __future__ import annotations
 
 import math
-import os
 
 import numpy as np
 
+from mechopt.core.jit import HAVE_NUMBA, jitable, njit, select, use_numba
+from mechopt.mechanisms.five_bar import mic as _mic
 from mechopt.mechanisms.five_bar.model import MODES
 
 __all__ = [
@@ -105,28 +86,18 @@ __all__ = [
     "DISK_STAT_NAMES",
 ]
 
-try:  # numba is optional (extra "fast")
-    if os.environ.get("MECHOPT_NO_NUMBA", "") not in ("", "0"):
-        raise ImportError("disabled by MECHOPT_NO_NUMBA")
-    import numba as _numba
-except ImportError:  # pragma: no cover - depends on the environment
-    _numba = None
-
-HAVE_NUMBA = _numba is not None
-
 #: reachability tolerance on ``h^2`` (same as FiveBar.elbows)
 _REACH_TOL = 1e-12
-#: sizes of the fast MIC: crank-angle samples per coupler-curve sub-branch,
-#: coarse centres, dense refinement factor, centres seeding the refinement,
-#: golden-section iterations, local maxima refined
-MIC_SIZES = dict(n_crank=128, n_y=128, n_sub=16, n_seed_y=9, n_golden=42, n_cand=2)
+#: sizes of the fast MIC (:data:`mechopt.mechanisms.five_bar.mic.MIC_SIZES`)
+MIC_SIZES = _mic.MIC_SIZES
 #: iterations of the compass search and of the trust-region polish of the MCI
 _MCI_ITERS = 40
 #: starting nodes of the MCI search (mutually farther apart than R/3)
 _MCI_STARTS = 3
 _DIRS = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0],
                   [1.0, 1.0], [1.0, -1.0], [-1.0, 1.0], [-1.0, -1.0]])
-_GOLD = (math.sqrt(5.0) - 1.0) / 2.0
+#: the ratio of the golden-section searches (:data:`mechopt.core.numerics.INV_PHI`)
+_GOLD = _mic._GOLD
 #: isotropy search of the MCI (as mechopt.analysis.performance.max_lci): ``g = |r|^2`` below
 #: which a point counts as isotropic, most Newton iterations, the polar grid of
 #: its starts (a quarter of max_lci's 64 x 128 grid in each direction)
@@ -143,27 +114,6 @@ _AXIS_ITERS = 100
 DISK_STAT_NAMES = ("gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min", "gsi_max", "gsi_min")
 
 
-def use_numba(flag=None) -> bool:
-    """Whether the compiled path is used (``flag=None``: when numba is installed)."""
-    if flag is None:
-        return HAVE_NUMBA
-    if flag and not HAVE_NUMBA:
-        raise ValueError("numba is not installed: pip install 'mechopt[fast]'")
-    return bool(flag)
-
-
-def _njit(fn):
-    if _numba is None:
-        return fn
-    return _numba.njit(cache=True, nogil=True, error_model="numpy")(fn)
-
-
-def _njit_inline(fn):
-    if _numba is None:
-        return fn
-    return _numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")(fn)
-
-
 # =============================================================================
 # Local kinematics
 # =============================================================================
@@ -173,133 +123,115 @@ def _njit_inline(fn):
 #   a_i = P - B_i,  k_i = (B_i - A_i) x a_i = r1 (u_i x a_i)
 # and J = [a_1 / k_1; a_2 / k_2]. The kernels work on M = k_1 k_2 J = [k_2 a_1; k_1 a_2]
 # (no division per entry): LCI(J) = LCI(M), s(J) = s(M) / |k_1 k_2|.
-def _mrows_np(r1, r2, r3, s1, s2, x, y):
-    """``(m11, m12, m21, m22, k1 k2, reachable)`` at the points (NumPy, broadcasting)."""
+@jitable
+def _leg(r1sq, half_d, ax, s, x, y):
+    """``(a_x, a_y, k, reachable)`` of the leg with base joint ``(ax, 0)`` and elbow sign
+    ``s`` (``half_d = (r1^2 - r2^2)/2``)."""
+    dx = x - ax
+    dsq = dx * dx + y * y
+    inv = 1.0 / dsq
+    c = half_d * inv + 0.5
+    h2 = r1sq * inv - c * c
+    h = np.sqrt(np.maximum(h2, 0.0)) * s
+    bx = c * dx - h * y
+    by = c * y + h * dx
+    a_x = dx - bx
+    a_y = y - by
+    return a_x, a_y, bx * a_y - by * a_x, (h2 >= -_REACH_TOL) & (dsq > 0.0)
+
+
+@jitable
+def _mrows(r1sq, half_d, r3, s1, s2, x, y):
+    """``(m11, m12, m21, m22, k1 k2, reachable)`` at ``(x, y)``; scalars or arrays."""
+    a1x, a1y, k1, ok1 = _leg(r1sq, half_d, -r3, s1, x, y)
+    a2x, a2y, k2, ok2 = _leg(r1sq, half_d, r3, s2, x, y)
+    return a1x * k2, a1y * k2, a2x * k1, a2y * k1, k1 * k2, ok1 & ok2
+
+
+@jitable
+def _two_smax_sq(a, b, c, d):
+    """``|M|_F^2 + sqrt(P Q) = 2 s_max(M)^2`` of ``M = [a b; c d]`` (Liu 2006 eq. 3), with
+    ``P = (a - d)^2 + (b + c)^2``, ``Q = (a + d)^2 + (b - c)^2``."""
+    S = a * a + b * b + c * c + d * d
+    return S + np.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
+
+
+@jitable
+def _lci_m(a, b, c, d, ok):
+    """LCI ``s_min / s_max = 2 |det M| / (2 s_max^2)`` of ``M``; 0 where not ``ok`` or ``M = 0``."""
+    den = _two_smax_sq(a, b, c, d)
+    v = 2.0 * abs(a * d - b * c) / den
+    return select(ok & (den > 0.0), v, 0.0)
+
+
+@jitable
+def _sv_m(a, b, c, d, kk):
+    """``(s_max, s_min)`` of J from ``M = kk J``."""
+    sm = np.sqrt(0.5 * _two_smax_sq(a, b, c, d))
+    ak = abs(kk)
+    return sm / ak, abs(a * d - b * c) / (sm * ak)
+
+
+@jitable
+def _extremes(s_max, s_min):
+    """``(v_max, v_min, tau_max, tau_min, d_max, d_min)`` of J from its singular values
+    (Liu 2006 eq. 10, 13, 18)."""
+    return 1.0 / s_min, 1.0 / s_max, s_max, s_min, 1.0 / (s_min * s_min), 1.0 / (s_max * s_max)
+
+
+@jitable
+def _lci_point(r1sq, half_d, r3, s1, s2, x, y):
+    a, b, c, d, kk, ok = _mrows(r1sq, half_d, r3, s1, s2, x, y)
+    return _lci_m(a, b, c, d, ok)
+
+
+def _on_arrays(formula, r1, r2, r3, *args):
+    """``formula(r1^2, (r1^2 - r2^2)/2, r3, *args)`` on arrays, NumPy's warnings off
+    (unreachable points and ``P`` on a base joint give inf or NaN, then masked)."""
     r1sq = r1 * r1
     half_d = 0.5 * (r1sq - r2 * r2)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        dx = x + r3
-        dsq = dx * dx + y * y
-        inv = 1.0 / dsq
-        c = half_d * inv + 0.5
-        h2 = r1sq * inv - c * c
-        h = np.sqrt(np.maximum(h2, 0.0)) * s1
-        bx = c * dx - h * y
-        by = c * y + h * dx
-        a1x = dx - bx
-        a1y = y - by
-        k1 = bx * a1y - by * a1x
-        ok = (h2 >= -_REACH_TOL) & (dsq > 0.0)
-        dx = x - r3
-        dsq = dx * dx + y * y
-        inv = 1.0 / dsq
-        c = half_d * inv + 0.5
-        h2 = r1sq * inv - c * c
-        h = np.sqrt(np.maximum(h2, 0.0)) * s2
-        bx = c * dx - h * y
-        by = c * y + h * dx
-        a2x = dx - bx
-        a2y = y - by
-        k2 = bx * a2y - by * a2x
-        ok = ok & (h2 >= -_REACH_TOL) & (dsq > 0.0)
-        return a1x * k2, a1y * k2, a2x * k1, a2y * k1, k1 * k2, ok
+        return formula(r1sq, half_d, r3, *args)
+
+
+def _mrows_np(r1, r2, r3, s1, s2, x, y):
+    """``(m11, m12, m21, m22, k1 k2, reachable)`` at the points (NumPy, broadcasting)."""
+    return _on_arrays(_mrows, r1, r2, r3, s1, s2, x, y)
 
 
 def _lci_m_np(a, b, c, d, ok):
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        S = a * a + b * b + c * c + d * d
-        disc = np.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
-        den = S + disc
-        v = 2.0 * np.abs(a * d - b * c) / den
-    return np.where(ok & (den > 0.0), v, 0.0)
+        return _lci_m(a, b, c, d, ok)
 
 
 def _extremes_m_np(a, b, c, d, kk, ok):
     """``(v_max, v_min, tau_max, tau_min, d_max, d_min)`` of J from M = kk J; NaN where
     unreachable."""
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        S = a * a + b * b + c * c + d * d
-        disc = np.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
-        sm = np.sqrt(0.5 * (S + disc))
-        ak = np.abs(kk)
-        s_max = sm / ak
-        s_min = np.abs(a * d - b * c) / (sm * ak)
-        out = (1.0 / s_min, 1.0 / s_max, s_max, s_min, 1.0 / (s_min * s_min), 1.0 / (s_max * s_max))
+        out = _extremes(*_sv_m(a, b, c, d, kk))
     return tuple(np.where(ok, v, np.nan) for v in out)
 
 
-@_njit_inline
-def _mrows_nb(r1sq, half_d, r3, s1, s2, x, y):
-    dx = x + r3
-    dsq = dx * dx + y * y
-    inv = 1.0 / dsq
-    c = half_d * inv + 0.5
-    h2 = r1sq * inv - c * c
-    h = math.sqrt(max(h2, 0.0)) * s1
-    bx = c * dx - h * y
-    by = c * y + h * dx
-    a1x = dx - bx
-    a1y = y - by
-    k1 = bx * a1y - by * a1x
-    ok = (h2 >= -_REACH_TOL) and (dsq > 0.0)
-    dx = x - r3
-    dsq = dx * dx + y * y
-    inv = 1.0 / dsq
-    c = half_d * inv + 0.5
-    h2 = r1sq * inv - c * c
-    h = math.sqrt(max(h2, 0.0)) * s2
-    bx = c * dx - h * y
-    by = c * y + h * dx
-    a2x = dx - bx
-    a2y = y - by
-    k2 = bx * a2y - by * a2x
-    ok = ok and (h2 >= -_REACH_TOL) and (dsq > 0.0)
-    return a1x * k2, a1y * k2, a2x * k1, a2y * k1, k1 * k2, ok
-
-
-@_njit_inline
-def _lci_m_nb(a, b, c, d, ok):
-    S = a * a + b * b + c * c + d * d
-    disc = math.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
-    den = S + disc
-    v = 2.0 * abs(a * d - b * c) / den
-    return v if (ok and den > 0.0) else 0.0
-
-
-@_njit_inline
-def _lci_point_nb(r1sq, half_d, r3, s1, s2, x, y):
-    a, b, c, d, kk, ok = _mrows_nb(r1sq, half_d, r3, s1, s2, x, y)
-    return _lci_m_nb(a, b, c, d, ok)
-
-
-@_njit
+@njit
 def _lci_points_nb(r1, r2, r3, s1, s2, x, y, out):
     r1sq = r1 * r1
     half_d = 0.5 * (r1sq - r2 * r2)
     for i in range(x.size):
-        out[i] = _lci_point_nb(r1sq, half_d, r3, s1, s2, x[i], y[i])
+        out[i] = _lci_point(r1sq, half_d, r3, s1, s2, x[i], y[i])
 
 
-@_njit
+@njit
 def _local_points_nb(r1, r2, r3, s1, s2, x, y, out):
     r1sq = r1 * r1
     half_d = 0.5 * (r1sq - r2 * r2)
     nan = np.nan
     for i in range(x.size):
-        a, b, c, d, kk, ok = _mrows_nb(r1sq, half_d, r3, s1, s2, x[i], y[i])
-        out[0, i] = _lci_m_nb(a, b, c, d, ok)
-        S = a * a + b * b + c * c + d * d
-        disc = math.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
-        sm = math.sqrt(0.5 * (S + disc))
-        ak = abs(kk)
-        s_max = sm / ak
-        s_min = abs(a * d - b * c) / (sm * ak)
-        out[1, i] = 1.0 / s_min if ok else nan
-        out[2, i] = 1.0 / s_max if ok else nan
-        out[3, i] = s_max if ok else nan
-        out[4, i] = s_min if ok else nan
-        out[5, i] = 1.0 / (s_min * s_min) if ok else nan
-        out[6, i] = 1.0 / (s_max * s_max) if ok else nan
+        a, b, c, d, kk, ok = _mrows(r1sq, half_d, r3, s1, s2, x[i], y[i])
+        out[0, i] = _lci_m(a, b, c, d, ok)
+        s_max, s_min = _sv_m(a, b, c, d, kk)
+        ext = _extremes(s_max, s_min)
+        for q in range(6):
+            out[q + 1, i] = ext[q] if ok else nan
 
 
 def _signs(mode):
@@ -361,369 +293,18 @@ def local_points(r1, r2, r3, x, y, mode="+-", compiled=None):
 
 
 # =============================================================================
-# Type-II locus of the working mode (see the module docstring)
+# Type-II locus of the working mode: the MIC (formulas in mechopt.mechanisms.five_bar.mic)
 # =============================================================================
-# Coupler-curve sub-branches b = 0..7: leg = b // 4 (whose crank angle is the
-# parameter), sigma = +1 if (b // 2) % 2 == 0 else -1 (circle-intersection branch),
-# half = b % 2 (theta in [0, pi] or [-pi, 0]). On each, theta runs over the
-# interval where the coupler closes, cosine-spaced in u in [0, 1] so that the
-# square-root behaviour at the dead points is sampled at even arc length.
-_N_SUB_BRANCH = 8
+_N_SUB_BRANCH = _mic._N_SUB_BRANCH
+#: the compiled kernel of :func:`mic_batch` (:func:`mechopt.mechanisms.five_bar.mic._mic_batch_loop`)
+_mic_batch_nb = _mic._compiled_batch()
+#: compiled for direct calls (tests): sorting the locus cloud and the distance to it
+_sort_cloud_nb = njit(_mic._sort_cloud)
+_radius_nb = njit(_mic._radius)
+_radius_sorted_nb = njit(_mic._radius_sorted)
 
 
-@_njit
-def _theta_range_nb(r1, r2, r3, leg, rho):
-    """``(theta_a, theta_b)`` in [0, pi] (and its mirror in [-pi, 0]) where the
-    coupler of length 2 r2 closes (leg 0: crank 1 at theta; leg 1: crank 2) and
-    the crank tip lies within ``|x| <= rho`` of the y axis; ``theta_a > theta_b``
-    if empty."""
-    lo2 = (r1 - 2.0 * r2) ** 2
-    hi2 = (r1 + 2.0 * r2) ** 2
-    base = 4.0 * r3 * r3 + r1 * r1
-    k = 4.0 * r3 * r1
-    if k <= 0.0:
-        if not (lo2 <= base <= hi2):
-            return 1.0, 0.0
-        clo = -1.0
-        chi = 1.0
-    else:
-        # leg 0: L^2 = base - k cos(theta); leg 1: L^2 = base + k cos(theta)
-        clo = (base - hi2) / k
-        chi = (base - lo2) / k
-        if leg == 1:
-            clo, chi = -chi, -clo
-    # crank tip x = -+r3 + r1 cos(theta) within [-rho, rho]
-    sx = -r3 if leg == 0 else r3
-    clo = max(clo, (-rho - sx) / r1, -1.0)
-    chi = min(chi, (rho - sx) / r1, 1.0)
-    if clo > chi:
-        return 1.0, 0.0
-    return math.acos(chi), math.acos(clo)
-
-
-@_njit
-def _theta_of_u_nb(ta, tb, half, u):
-    th = ta + (tb - ta) * 0.5 * (1.0 - math.cos(math.pi * u))
-    return th if half == 0 else -th
-
-
-@_njit
-def _coupler_point_nb(r1, r2, r3, s1, s2, leg, sigma, th):
-    """Midpoint ``P`` of ``B1 B2`` (``|B1 B2| = 2 r2``) with crank ``leg`` at ``th``:
-    ``(px, py, valid)``; valid when it closes and its elbows are the working mode's."""
-    if leg == 0:
-        ax = -r3
-    else:
-        ax = r3
-    ox = -ax
-    bx = ax + r1 * math.cos(th)
-    by = r1 * math.sin(th)
-    vx = ox - bx
-    vy = -by
-    L2 = vx * vx + vy * vy
-    if not L2 > 0.0:
-        return 0.0, 0.0, False
-    L = math.sqrt(L2)
-    cc = 4.0 * r2 * r2
-    a = (L2 + cc - r1 * r1) / (2.0 * L)
-    hh2 = cc - a * a
-    if hh2 < -1e-12 * cc:
-        return 0.0, 0.0, False
-    hh = sigma * math.sqrt(max(hh2, 0.0))
-    cx = bx + (a * vx - hh * vy) / L
-    cy = by + (a * vy + hh * vx) / L
-    px = 0.5 * (bx + cx)
-    py = 0.5 * (by + cy)
-    if leg == 0:
-        b1x, b1y, b2x, b2y = bx, by, cx, cy
-    else:
-        b1x, b1y, b2x, b2y = cx, cy, bx, by
-    c1 = (px + r3) * b1y - py * (b1x + r3)
-    c2 = (px - r3) * b2y - py * (b2x - r3)
-    if s1 * c1 < 0.0 or s2 * c2 < 0.0:
-        return px, py, False
-    return px, py, True
-
-
-@_njit
-def _axis_points_nb(r1, r2, r3, s1, s2, qy):
-    """The B1 = B2 = C branch seen from the y axis: for a centre ``(0, y)`` the
-    nearest point of the circle ``|P - C| = r2`` is ``(0, hc +- r2)``; the four
-    such points that have the working mode's elbows are written to ``qy``
-    (NaN otherwise). Returns how many are valid."""
-    m = 0
-    for i in range(4):
-        qy[i] = np.nan
-    if not (r3 > 0.0 and r1 > r3):
-        return 0
-    h = math.sqrt(r1 * r1 - r3 * r3)
-    for i in range(4):
-        hc = h if i < 2 else -h
-        py = hc + r2 if i % 2 == 0 else hc - r2
-        # elbows B1 = B2 = (0, hc), P = (0, py)
-        c1 = r3 * hc - py * r3
-        c2 = -r3 * hc + py * r3
-        if s1 * c1 < 0.0 or s2 * c2 < 0.0:
-            continue
-        qy[i] = py
-        m += 1
-    return m
-
-
-@_njit
-def _serial_nb(r1, r2, r3, y):
-    D = math.sqrt(r3 * r3 + y * y)
-    return min(r1 + r2 - D, D - abs(r1 - r2))
-
-
-@_njit
-def _radius_nb(r1, r2, r3, qx, qy, n, ay, y):
-    """``min(serial, distance to the n cloud points and the 4 axis points)``."""
-    s = _serial_nb(r1, r2, r3, y)
-    if s <= 0.0:
-        return 0.0
-    best = s * s
-    for k in range(n):
-        dy = qy[k] - y
-        d2 = qx[k] * qx[k] + dy * dy
-        if d2 < best:
-            best = d2
-    for i in range(4):
-        dy = ay[i] - y  # NaN compares False
-        if dy * dy < best:
-            best = dy * dy
-    return math.sqrt(best)
-
-
-@_njit
-def _sort_cloud_nb(qx, qy, n, sx2, sy):
-    """The first ``n`` points of ``(qx, qy)`` that can be nearest (finite), ordered by
-    y: their ``x * x`` in ``sx2`` and their y in ``sy``; returns how many. A point with
-    an infinite or NaN coordinate never passes ``d2 < best`` in :func:`_radius_nb`."""
-    m = 0
-    for k in range(n):
-        if qx[k] < np.inf and qx[k] > -np.inf and qy[k] < np.inf and qy[k] > -np.inf:
-            sy[m] = qy[k]
-            sx2[m] = qx[k]
-            m += 1
-    if m == 0:
-        return 0
-    order = np.argsort(sy[:m])
-    ys_ = sy[:m].copy()
-    xs_ = sx2[:m].copy()
-    for i in range(m):
-        j = order[i]
-        sy[i] = ys_[j]
-        sx2[i] = xs_[j] * xs_[j]
-    return m
-
-
-@_njit
-def _radius_sorted_nb(r1, r2, r3, sx2, sy, m, ay, y, hint):
-    """:func:`_radius_nb` of a cloud sorted by :func:`_sort_cloud_nb`, the same value
-    bit for bit, and the index of a nearest cloud point (-1 if none is nearer than
-    the serial clearance). Each point's ``d2 = x * x + dy * dy`` is computed as
-    there; the point ``hint`` (the nearest one of a centre nearby) is tried first,
-    then the points outwards from ``y`` until ``dy * dy`` alone reaches the smallest
-    ``d2`` so far (``d2 >= dy * dy`` in floating point, and ``dy * dy`` only grows
-    outwards), so that no point that could lower the minimum is skipped; a minimum
-    does not depend on the order of its terms."""
-    s = _serial_nb(r1, r2, r3, y)
-    if s <= 0.0:
-        return 0.0, hint
-    best = s * s
-    kb = -1
-    if 0 <= hint < m:
-        dy = sy[hint] - y
-        d2 = sx2[hint] + dy * dy
-        if d2 < best:
-            best = d2
-            kb = hint
-    j = np.searchsorted(sy[:m], y)
-    for k in range(j, m):
-        dy = sy[k] - y
-        dd = dy * dy
-        if not dd < best:
-            break
-        d2 = sx2[k] + dd
-        if d2 < best:
-            best = d2
-            kb = k
-    for k in range(j - 1, -1, -1):
-        dy = sy[k] - y
-        dd = dy * dy
-        if not dd < best:
-            break
-        d2 = sx2[k] + dd
-        if d2 < best:
-            best = d2
-            kb = k
-    for i in range(4):
-        dy = ay[i] - y  # NaN compares False
-        if dy * dy < best:
-            best = dy * dy
-    return math.sqrt(best), kb
-
-
-@_njit
-def _mic_one_nb(r1, r2, r3, s1, s2, ugrid, n_y, n_sub, n_seed_y, n_golden, n_cand,
-                qx, qy, ys, rs, dqx, dqy, ay, tr, sx2, sy, dsx2, dsy):
-    """MIC ``(radius, center_y)`` of one design (work arrays passed in)."""
-    nu = ugrid.size
-    # centres worth trying: the serial clearance is positive for
-    # |r1 - r2| < hypot(r3, y) < r1 + r2, and never exceeds min(r1, r2), so only
-    # locus points within min(r1, r2) of that axis segment matter, and their
-    # crank tips lie within rho = min(r1, r2) + r2 of the y axis.
-    ylo2 = (r1 - r2) * (r1 - r2) - r3 * r3
-    ylo = math.sqrt(ylo2) if ylo2 > 0.0 else 0.0
-    yhi2 = (r1 + r2) * (r1 + r2) - r3 * r3
-    yhi = math.sqrt(yhi2) if yhi2 > 0.0 else 0.0
-    rho = 1.01 * (min(r1, r2) + r2)
-    for leg in range(2):
-        ta, tb = _theta_range_nb(r1, r2, r3, leg, rho)
-        tr[leg, 0] = ta
-        tr[leg, 1] = tb
-    for b in range(_N_SUB_BRANCH):
-        leg = b // 4
-        sigma = 1.0 if (b // 2) % 2 == 0 else -1.0
-        half = b % 2
-        ta = tr[leg, 0]
-        tb = tr[leg, 1]
-        for k in range(nu):
-            idx = b * nu + k
-            qx[idx] = np.inf
-            qy[idx] = 0.0
-            if ta > tb:
-                continue
-            th = _theta_of_u_nb(ta, tb, half, ugrid[k])
-            px, py, ok = _coupler_point_nb(r1, r2, r3, s1, s2, leg, sigma, th)
-            if ok:
-                qx[idx] = px
-                qy[idx] = py
-    n = _N_SUB_BRANCH * nu
-    _axis_points_nb(r1, r2, r3, s1, s2, ay)
-    ns = _sort_cloud_nb(qx, qy, n, sx2, sy)
-    hint = -1
-    for j in range(n_y):
-        ys[j] = ylo + (yhi - ylo) * j / (n_y - 1)
-        rs[j], hint = _radius_sorted_nb(r1, r2, r3, sx2, sy, ns, ay, ys[j], hint)
-    best_r = 0.0
-    best_y = 0.0
-    used0 = -10
-    du = 1.0 / (nu - 1)
-    for cand in range(n_cand):
-        # best local maximum of the coarse radii, not next to the previous candidate
-        jb = -1
-        for j in range(n_y):
-            if abs(j - used0) <= 1 or rs[j] <= 0.0:
-                continue
-            if j > 0 and rs[j - 1] > rs[j]:
-                continue
-            if j < n_y - 1 and rs[j + 1] > rs[j]:
-                continue
-            if jb < 0 or rs[j] > rs[jb]:
-                jb = j
-        if jb < 0:
-            break
-        used0 = jb
-        lo = ys[max(jb - 1, 0)]
-        hi = ys[min(jb + 1, n_y - 1)]
-        # dense cloud around the samples nearest to n_seed_y centres of [lo, hi]
-        m = 0
-        for q in range(n_seed_y):
-            yq = lo + (hi - lo) * q / (n_seed_y - 1)
-            for b in range(_N_SUB_BRANCH):
-                kb = -1
-                bd = np.inf
-                for k in range(b * nu, (b + 1) * nu):
-                    dy = qy[k] - yq
-                    d2 = qx[k] * qx[k] + dy * dy
-                    if d2 < bd:
-                        bd = d2
-                        kb = k
-                if kb < 0:
-                    continue
-                leg = b // 4
-                sigma = 1.0 if (b // 2) % 2 == 0 else -1.0
-                half = b % 2
-                u0 = ugrid[kb - b * nu]
-                for i in range(-n_sub, n_sub + 1):
-                    u = u0 + du * i / n_sub
-                    if u < 0.0 or u > 1.0:
-                        continue
-                    th = _theta_of_u_nb(tr[leg, 0], tr[leg, 1], half, u)
-                    px, py, ok = _coupler_point_nb(r1, r2, r3, s1, s2, leg, sigma, th)
-                    if ok:
-                        dqx[m] = px
-                        dqy[m] = py
-                        m += 1
-        # golden-section maximisation of min(serial, T_dense) over [lo, hi]
-        md = _sort_cloud_nb(dqx, dqy, m, dsx2, dsy)
-        yb = ys[jb]
-        fb, h0 = _radius_sorted_nb(r1, r2, r3, dsx2, dsy, md, ay, yb, -1)
-        a = lo
-        c = hi
-        x1 = c - _GOLD * (c - a)
-        x2 = a + _GOLD * (c - a)
-        f1, h1 = _radius_sorted_nb(r1, r2, r3, dsx2, dsy, md, ay, x1, h0)
-        f2, h2 = _radius_sorted_nb(r1, r2, r3, dsx2, dsy, md, ay, x2, h0)
-        for _ in range(n_golden):
-            if f1 >= f2:
-                if f1 > fb:
-                    fb = f1
-                    yb = x1
-                c = x2
-                x2 = x1
-                f2 = f1
-                x1 = c - _GOLD * (c - a)
-                h2 = h1
-                f1, h1 = _radius_sorted_nb(r1, r2, r3, dsx2, dsy, md, ay, x1, h1)
-            else:
-                if f2 > fb:
-                    fb = f2
-                    yb = x2
-                a = x1
-                x1 = x2
-                f1 = f2
-                x2 = a + _GOLD * (c - a)
-                h1 = h2
-                f2, h2 = _radius_sorted_nb(r1, r2, r3, dsx2, dsy, md, ay, x2, h2)
-        if f1 > fb:
-            fb = f1
-            yb = x1
-        if f2 > fb:
-            fb = f2
-            yb = x2
-        if fb > best_r:
-            best_r = fb
-            best_y = yb
-    return best_r, best_y
-
-
-@_njit
-def _mic_batch_nb(r1, r2, r3, s1, s2, ugrid, n_y, n_sub, n_seed_y, n_golden, n_cand,
-                  out_r, out_y):
-    n = _N_SUB_BRANCH * ugrid.size
-    qx = np.empty(n)
-    qy = np.empty(n)
-    ys = np.empty(n_y)
-    rs = np.empty(n_y)
-    md = n_seed_y * _N_SUB_BRANCH * (2 * n_sub + 1)
-    dqx = np.empty(md)
-    dqy = np.empty(md)
-    ay = np.empty(4)
-    tr = np.empty((2, 2))
-    sx2 = np.empty(n)
-    sy = np.empty(n)
-    dsx2 = np.empty(md)
-    dsy = np.empty(md)
-    for i in range(r1.size):
-        out_r[i], out_y[i] = _mic_one_nb(r1[i], r2[i], r3[i], s1, s2, ugrid, n_y, n_sub,
-                                         n_seed_y, n_golden, n_cand,
-                                         qx, qy, ys, rs, dqx, dqy, ay, tr, sx2, sy, dsx2, dsy)
-
-
-# --- the same algorithm in NumPy, vectorised over a block of designs ----------
+# --- the NumPy path, vectorised over a block of designs ----------------------
 def _theta_range_np(r1, r2, r3, leg, rho):
     lo2 = (r1 - 2.0 * r2) ** 2
     hi2 = (r1 + 2.0 * r2) ** 2
@@ -745,66 +326,21 @@ def _theta_range_np(r1, r2, r3, leg, rho):
     return ta, tb
 
 
-def _theta_of_u_np(ta, tb, half, u):
-    th = ta + (tb - ta) * 0.5 * (1.0 - np.cos(np.pi * u))
-    return np.where(half == 0, th, -th)
-
-
-def _coupler_point_np(r1, r2, r3, s1, s2, leg, sigma, th):
-    """Vectorised :func:`_coupler_point_nb` (``leg``, ``sigma`` arrays broadcast)."""
-    ax = np.where(leg == 0, -r3, r3)
-    ox = -ax
-    bx = ax + r1 * np.cos(th)
-    by = r1 * np.sin(th)
-    vx = ox - bx
-    vy = -by
-    L2 = vx * vx + vy * vy
-    L = np.sqrt(L2)
-    cc = 4.0 * r2 * r2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        a = (L2 + cc - r1 * r1) / (2.0 * L)
-        hh2 = cc - a * a
-        hh = sigma * np.sqrt(np.maximum(hh2, 0.0))
-        cx = bx + (a * vx - hh * vy) / L
-        cy = by + (a * vy + hh * vx) / L
-    px = 0.5 * (bx + cx)
-    py = 0.5 * (by + cy)
-    first = leg == 0
-    b1x = np.where(first, bx, cx)
-    b1y = np.where(first, by, cy)
-    b2x = np.where(first, cx, bx)
-    b2y = np.where(first, cy, by)
-    c1 = (px + r3) * b1y - py * (b1x + r3)
-    c2 = (px - r3) * b2y - py * (b2x - r3)
-    ok = (L2 > 0.0) & (hh2 >= -1e-12 * cc) & ~(s1 * c1 < 0.0) & ~(s2 * c2 < 0.0)
-    return px, py, ok
+def _locus_np(rr, s1, s2, leg, sigma, ta, tb, half, u):
+    """:func:`mechopt.mechanisms.five_bar.mic._coupler_point` at ``u`` of sub-branches
+    (arrays, broadcasting), with NumPy's trigonometry."""
+    th = _mic._theta_of_u(ta, tb, half, np.cos(np.pi * u))
+    with np.errstate(divide="ignore", invalid="ignore"):  # L2 = 0: not valid
+        return _mic._coupler_point(*rr, s1, s2, leg, sigma, np.cos(th), np.sin(th))
 
 
 def _axis_points_np(r1, r2, r3, s1, s2):
-    exists = (r3 > 0.0) & (r1 > r3)
-    h = np.sqrt(np.maximum(r1 * r1 - r3 * r3, 0.0))
-    cols = []
-    for i in range(4):
-        hc = h if i < 2 else -h
-        py = hc + r2 if i % 2 == 0 else hc - r2
-        c1 = r3 * hc - py * r3
-        c2 = -r3 * hc + py * r3
-        ok = exists & ~(s1 * c1 < 0.0) & ~(s2 * c2 < 0.0)
-        cols.append(np.where(ok, py, np.nan))
-    return np.stack(cols, -1)
-
-
-def _radius_np(r1, r2, r3, qx, qy, ay, y):
-    """``y`` shape ``(B, ...)``; cloud ``qx, qy`` shape ``(B, [1...,] n)``; ``ay`` ``(B, 4)``."""
-    D = np.sqrt(r3 * r3 + y * y)
-    s = np.minimum(r1 + r2 - D, D - np.abs(r1 - r2))
-    dy = qy - y[..., None]
-    best = np.minimum(s * s, np.min(qx * qx + dy * dy, axis=-1, initial=np.inf))
-    ay = ay.reshape(ay.shape[:1] + (1,) * (y.ndim - 1) + (4,))
-    da = ay - y[..., None]
-    da2 = np.where(np.isnan(da), np.inf, da * da)
-    best = np.minimum(best, da2.min(axis=-1))
-    return np.where(s <= 0.0, 0.0, np.sqrt(best))
+    """:func:`mechopt.mechanisms.five_bar.mic._axis_points` of every design: ``(B, 4)``, NaN
+    where none."""
+    ay = np.empty((r1.size, 4))
+    for i in range(r1.size):
+        _mic._axis_points(r1[i], r2[i], r3[i], s1, s2, ay[i])
+    return ay
 
 
 def _mic_block_np(r1, r2, r3, s1, s2, ugrid, cfg):
@@ -823,14 +359,15 @@ def _mic_block_np(r1, r2, r3, s1, s2, ugrid, cfg):
     ta = np.stack([tr[leg][0] for leg in leg_b], -1)  # (B, 8)
     tb = np.stack([tr[leg][1] for leg in leg_b], -1)
     rr = [v[:, None, None] for v in (r1, r2, r3)]
-    th = _theta_of_u_np(ta[..., None], tb[..., None], half_b[None, :, None], ugrid[None, None, :])
-    qx, qy, ok = _coupler_point_np(*rr, s1, s2, leg_b[None, :, None], sigma_b[None, :, None], th)
+    qx, qy, ok = _locus_np(rr, s1, s2, leg_b[None, :, None], sigma_b[None, :, None], ta[..., None],
+                           tb[..., None], half_b[None, :, None], ugrid[None, None, :])
     ok &= (ta <= tb)[..., None]
     qx = np.where(ok, qx, np.inf).reshape(B, -1)
     qy = np.where(ok, qy, 0.0).reshape(B, -1)
     ay = _axis_points_np(r1, r2, r3, s1, s2)
     ys = c1(ylo) + c1(yhi - ylo) * (np.arange(n_y) / (n_y - 1))[None, :]
-    rs = _radius_np(c1(r1), c1(r2), c1(r3), qx[:, None, :], qy[:, None, :], ay, ys)
+    qxa, qya = _mic._with_axis_points(qx, qy, ay)
+    rs = _mic._cloud_radius(c1(r1), c1(r2), c1(r3), qxa[:, None, :], qya[:, None, :], ys)
     jj = np.arange(n_y)
     left = np.concatenate([np.full((B, 1), -np.inf), rs[:, :-1]], 1)
     right = np.concatenate([rs[:, 1:], np.full((B, 1), -np.inf)], 1)
@@ -855,13 +392,14 @@ def _mic_block_np(r1, r2, r3, s1, s2, ugrid, cfg):
         seen = np.isfinite(np.min(d2, axis=-1))
         off = np.arange(-n_sub, n_sub + 1) / n_sub
         u = ugrid[kb][..., None] + du * off  # (B, Q, 8, 2 n_sub + 1)
-        thd = _theta_of_u_np(ta[:, None, :, None], tb[:, None, :, None], half_b[None, None, :, None], u)
-        px, py, okd = _coupler_point_np(*(v[..., None] for v in rr), s1, s2,
-                                        leg_b[None, None, :, None], sigma_b[None, None, :, None], thd)
+        px, py, okd = _locus_np(tuple(v[..., None] for v in rr), s1, s2, leg_b[None, None, :, None],
+                                sigma_b[None, None, :, None], ta[:, None, :, None], tb[:, None, :, None],
+                                half_b[None, None, :, None], u)
         okd &= (u >= 0.0) & (u <= 1.0) & seen[..., None]
         dqx = np.where(okd, px, np.inf).reshape(B, -1)
         dqy = np.where(okd, py, 0.0).reshape(B, -1)
-        rad = lambda y: _radius_np(r1, r2, r3, dqx, dqy, ay, y)  # noqa: E731
+        dqx, dqy = _mic._with_axis_points(dqx, dqy, ay)
+        rad = lambda y: _mic._cloud_radius(r1, r2, r3, dqx, dqy, y)  # noqa: E731
         yb = ys[rows, jb]
         fb = rad(yb)
         a, c = lo.copy(), hi.copy()
@@ -923,22 +461,123 @@ def mic_batch(r1, r2, r3, mode="+-", compiled=None, **sizes):
 # =============================================================================
 # Disk means and the MCI
 # =============================================================================
-@_njit
-def _iso_residual_nb(r1sq, half_d, r3, s1, s2, x, y, which):
+@jitable
+def _iso_r(r1sq, half_d, r3, s1, s2, x, y):
+    """Isotropy residual ``r = (G11 - G22, 2 G12) / tr G`` of ``G = M^T M`` (that of
+    ``J^T J``: r is scale-free), as :func:`mechopt.analysis.performance._iso_residual`:
+    ``r = 0`` exactly where LCI = 1, ``g = |r|^2`` smooth and decreasing in LCI.
+    NaN where unreachable or M = 0."""
+    a, b, c, d, kk, ok = _mrows(r1sq, half_d, r3, s1, s2, x, y)
+    g11 = a * a + c * c
+    g22 = b * b + d * d
+    t = g11 + g22
+    t = select(ok & (t > 0.0), t, np.nan)
+    return (g11 - g22) / t, 2.0 * (a * b + c * d) / t
+
+
+@jitable
+def _iso_residual(r1sq, half_d, r3, s1, s2, x, y, which):
     """Residual of isotropy of M = k1 k2 J: ``(a - d, b + c)`` (a scaled rotation,
     which = 0) or ``(a + d, b - c)`` (a scaled reflection, which = 1), divided by the
-    Frobenius norm (scale-free)."""
-    a, b, c, d, kk, ok = _mrows_nb(r1sq, half_d, r3, s1, s2, x, y)
-    if not ok:
-        return np.nan, np.nan
-    S = a * a + b * b + c * c + d * d
-    n = math.sqrt(S)
+    Frobenius norm (scale-free); NaN where unreachable."""
+    a, b, c, d, kk, ok = _mrows(r1sq, half_d, r3, s1, s2, x, y)
+    n = select(ok, np.sqrt(a * a + b * b + c * c + d * d), np.nan)
     if which == 0:
         return (a - d) / n, (b + c) / n
     return (a + d) / n, (b - c) / n
 
 
-@_njit
+@jitable
+def _fd_step(f0, g0, fx, gx, fy, gy, h):
+    """Newton step on ``(f, g) = 0`` from forward differences (steps ``h`` in x and y):
+    ``(det, dx, dy)``."""
+    j11 = (fx - f0) / h
+    j12 = (fy - f0) / h
+    j21 = (gx - g0) / h
+    j22 = (gy - g0) / h
+    det = j11 * j22 - j12 * j21
+    return det, -(j22 * f0 - j12 * g0) / det, -(-j21 * f0 + j11 * g0) / det
+
+
+@jitable
+def _cd_step(f0, q0, f1, q1, f2, q2, f3, q3, f4, q4, h):
+    """Newton step on ``(f, q) = 0`` from central differences (``1, 2``: ``x +- h``;
+    ``3, 4``: ``y +- h``): ``(dx, dy)``."""
+    j11 = (f1 - f2) / (2.0 * h)
+    j12 = (f3 - f4) / (2.0 * h)
+    j21 = (q1 - q2) / (2.0 * h)
+    j22 = (q3 - q4) / (2.0 * h)
+    det = j11 * j22 - j12 * j21
+    return -(j22 * f0 - j12 * q0) / det, -(j11 * q0 - j21 * f0) / det
+
+
+@jitable
+def _g_model(a1, a2, u1, u2, v1, v2, w1, w2, z1, z2, c1, c2, h, h2):
+    """Gradient and Hessian of ``g = |r|^2`` from the residual ``r = (a1, a2)`` at a point
+    and at its 6-point stencil (``u``: x + h, ``v``: x - h, ``w``: y + h, ``z``: y - h,
+    ``c``: both + h; ``h2 = h^2``): ``(gx, gy, hxx, hxy, hyy)``."""
+    r1x = (u1 - v1) / (2.0 * h)
+    r1y = (w1 - z1) / (2.0 * h)
+    r2x = (u2 - v2) / (2.0 * h)
+    r2y = (w2 - z2) / (2.0 * h)
+    r1xx = (u1 - 2.0 * a1 + v1) / h2
+    r2xx = (u2 - 2.0 * a2 + v2) / h2
+    r1yy = (w1 - 2.0 * a1 + z1) / h2
+    r2yy = (w2 - 2.0 * a2 + z2) / h2
+    r1xy = (c1 - u1 - w1 + a1) / h2
+    r2xy = (c2 - u2 - w2 + a2) / h2
+    gx = 2.0 * (r1x * a1 + r2x * a2)
+    gy = 2.0 * (r1y * a1 + r2y * a2)
+    hxx = 2.0 * (r1x * r1x + r2x * r2x + a1 * r1xx + a2 * r2xx)
+    hyy = 2.0 * (r1y * r1y + r2y * r2y + a1 * r1yy + a2 * r2yy)
+    hxy = 2.0 * (r1x * r1y + r2x * r2y + a1 * r1xy + a2 * r2xy)
+    return gx, gy, hxx, hxy, hyy
+
+
+@jitable
+def _tr_step(gx, gy, hxx, hxy, hyy, delta):
+    """Minimiser of the model ``grad.d + d.H.d/2`` over ``|d| <= delta`` (the exact
+    2x2 trust-region subproblem of :func:`mechopt.analysis.performance._trust_region_step`):
+    ``(dx, dy, predicted decrease)``; scalars or arrays."""
+    disc = np.hypot(0.5 * (hxx - hyy), hxy)
+    l1 = 0.5 * (hxx + hyy) - disc  # smaller eigenvalue
+    l2 = 0.5 * (hxx + hyy) + disc
+    big = hxx >= hyy  # eigenvector e of l2 from the better-conditioned row
+    ax = select(big, l2 - hyy, hxy)
+    ay = select(big, hxy, l2 - hxx)
+    n = np.hypot(ax, ay)
+    ex = select(n > 0.0, ax / n, 1.0)
+    ey = select(n > 0.0, ay / n, 0.0)
+    ge = gx * ex + gy * ey  # gradient in the eigenbasis (e, f = e turned by +90 deg)
+    gf = gy * ex - gx * ey
+    newton = (l1 > 0.0) & (np.hypot(ge / l2, gf / l1) <= delta)
+    mu_lo = select(-l1 > 0.0, -l1, 0.0)
+    mu = mu_lo + 1e-12 * (abs(l1) + abs(l2)) + 1e-300
+    for _ in range(12):  # More-Sorensen: Newton on 1/|d(mu)| - 1/delta
+        de = -ge / (l2 + mu)
+        df = -gf / (l1 + mu)
+        nrm = np.hypot(de, df)
+        q = de * de / (l2 + mu) + df * df / (l1 + mu)
+        new = mu + (nrm * nrm / q) * (nrm - delta) / delta
+        lo = mu_lo + 0.5 * (mu - mu_lo)  # stays right of the pole
+        mu = select(new > lo, new, lo)
+    mu = select(newton, 0.0, mu)
+    de = -ge / (l2 + mu)
+    df = -gf / (l1 + mu)
+    nrm = np.hypot(de, df)
+    short = select(newton, False, nrm < delta)  # hard case: reach the boundary along f
+    d2 = delta * delta - nrm * nrm
+    tau = np.sqrt(select(d2 > 0.0, d2, 0.0))
+    df = select(short, select(gf > 0.0, df - tau, df + tau), df)
+    nrm = select(short, np.hypot(de, df), nrm)
+    sc = select(nrm > delta, delta / nrm, 1.0)
+    de = select(nrm > delta, de * sc, de)
+    df = select(nrm > delta, df * sc, df)
+    pred = -(ge * de + gf * df + 0.5 * (l2 * de * de + l1 * df * df))
+    return de * ex - df * ey, de * ey + df * ex, pred
+
+
+@njit
 def _compass_nb(r1sq, half_d, r3, s1, s2, cy, R, bx, by, best, step, n_iter, dirs):
     """Compass search (8 directions, step halved on failure, kept in the disk)."""
     for _ in range(n_iter):
@@ -949,7 +588,7 @@ def _compass_nb(r1sq, half_d, r3, s1, s2, cy, R, bx, by, best, step, n_iter, dir
             py = by + step * dirs[j, 1]
             if math.hypot(px, py) > R:
                 continue
-            v = _lci_point_nb(r1sq, half_d, r3, s1, s2, px, cy + py)
+            v = _lci_point(r1sq, half_d, r3, s1, s2, px, cy + py)
             if jb < 0 or v > vb:
                 jb = j
                 vb = v
@@ -962,29 +601,23 @@ def _compass_nb(r1sq, half_d, r3, s1, s2, cy, R, bx, by, best, step, n_iter, dir
     return bx, by, best
 
 
-@_njit
+@njit
 def _newton_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, which, n_iter):
     """Damped Newton on an isotropy residual from ``(px, py)``: a step is halved
     until it stays in the disk and lowers the residual (else the search stops).
     Returns the best LCI visited (-1 if no step was taken)."""
     h = 1e-7 * R
     best = -1.0
-    f0, g0 = _iso_residual_nb(r1sq, half_d, r3, s1, s2, px, cy + py, which)
+    f0, g0 = _iso_residual(r1sq, half_d, r3, s1, s2, px, cy + py, which)
     n0 = f0 * f0 + g0 * g0
     for _ in range(n_iter):
         if not math.isfinite(n0):
             break
-        fx, gx = _iso_residual_nb(r1sq, half_d, r3, s1, s2, px + h, cy + py, which)
-        fy, gy = _iso_residual_nb(r1sq, half_d, r3, s1, s2, px, cy + py + h, which)
-        j11 = (fx - f0) / h
-        j12 = (fy - f0) / h
-        j21 = (gx - g0) / h
-        j22 = (gy - g0) / h
-        det = j11 * j22 - j12 * j21
+        fx, gx = _iso_residual(r1sq, half_d, r3, s1, s2, px + h, cy + py, which)
+        fy, gy = _iso_residual(r1sq, half_d, r3, s1, s2, px, cy + py + h, which)
+        det, dx, dy = _fd_step(f0, g0, fx, gx, fy, gy, h)
         if not (det != 0.0 and math.isfinite(det)):
             break
-        dx = -(j22 * f0 - j12 * g0) / det
-        dy = -(-j21 * f0 + j11 * g0) / det
         t = 1.0
         ok = False
         qx = px
@@ -996,7 +629,7 @@ def _newton_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, which, n_iter):
             qx = px + t * dx
             qy = py + t * dy
             if math.hypot(qx, qy) <= R:
-                f1, g1 = _iso_residual_nb(r1sq, half_d, r3, s1, s2, qx, cy + qy, which)
+                f1, g1 = _iso_residual(r1sq, half_d, r3, s1, s2, qx, cy + qy, which)
                 n1 = f1 * f1 + g1 * g1
                 if n1 < n0:
                     ok = True
@@ -1009,61 +642,13 @@ def _newton_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, which, n_iter):
         f0 = f1
         g0 = g1
         n0 = n1
-        v = _lci_point_nb(r1sq, half_d, r3, s1, s2, px, cy + py)
+        v = _lci_point(r1sq, half_d, r3, s1, s2, px, cy + py)
         if v > best:
             best = v
     return best
 
 
-@_njit
-def _tr_step_nb(gx, gy, hxx, hxy, hyy, delta):
-    """Minimiser of the model ``grad.d + d.H.d/2`` over ``|d| <= delta`` (the exact
-    2x2 trust-region subproblem of :func:`mechopt.analysis.performance._trust_region_step`):
-    ``(dx, dy, predicted decrease)``."""
-    disc = math.hypot(0.5 * (hxx - hyy), hxy)
-    l1 = 0.5 * (hxx + hyy) - disc  # smaller eigenvalue
-    l2 = 0.5 * (hxx + hyy) + disc
-    if hxx >= hyy:  # eigenvector e of l2 from the better-conditioned row
-        ax = l2 - hyy
-        ay = hxy
-    else:
-        ax = hxy
-        ay = l2 - hxx
-    n = math.hypot(ax, ay)
-    ex = ax / n if n > 0.0 else 1.0
-    ey = ay / n if n > 0.0 else 0.0
-    ge = gx * ex + gy * ey  # gradient in the eigenbasis (e, f = e turned by +90 deg)
-    gf = gy * ex - gx * ey
-    newton = l1 > 0.0 and math.hypot(ge / l2, gf / l1) <= delta
-    mu_lo = -l1 if -l1 > 0.0 else 0.0
-    mu = mu_lo + 1e-12 * (abs(l1) + abs(l2)) + 1e-300
-    for _ in range(12):  # More-Sorensen: Newton on 1/|d(mu)| - 1/delta
-        de = -ge / (l2 + mu)
-        df = -gf / (l1 + mu)
-        nrm = math.hypot(de, df)
-        q = de * de / (l2 + mu) + df * df / (l1 + mu)
-        new = mu + (nrm * nrm / q) * (nrm - delta) / delta
-        lo = mu_lo + 0.5 * (mu - mu_lo)  # stays right of the pole
-        mu = new if new > lo else lo
-    if newton:
-        mu = 0.0
-    de = -ge / (l2 + mu)
-    df = -gf / (l1 + mu)
-    nrm = math.hypot(de, df)
-    if (not newton) and nrm < delta:  # hard case: reach the boundary along f
-        d2 = delta * delta - nrm * nrm
-        tau = math.sqrt(d2) if d2 > 0.0 else 0.0
-        df = df - tau if gf > 0.0 else df + tau
-        nrm = math.hypot(de, df)
-    if nrm > delta:
-        sc = delta / nrm
-        de = de * sc
-        df = df * sc
-    pred = -(ge * de + gf * df + 0.5 * (l2 * de * de + l1 * df * df))
-    return de * ex - df * ey, de * ey + df * ex, pred
-
-
-@_njit
+@njit
 def _tr_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, delta, n_iter):
     """Trust-region Newton minimising ``g = |r|^2`` (maximising LCI) from ``(px,
     py)``, as :func:`mechopt.analysis.performance._trust_region`: gradient and Hessian from
@@ -1072,31 +657,17 @@ def _tr_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, delta, n_iter):
     h = max(1e-5 * R, 1e-12 * (abs(cy) + R))
     h2 = h * h
     for _ in range(n_iter):
-        a1, a2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px, cy + py)
+        a1, a2 = _iso_r(r1sq, half_d, r3, s1, s2, px, cy + py)
         g0 = a1 * a1 + a2 * a2
         if not (math.isfinite(g0) and g0 > _G_ISO):
             break
-        u1, u2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px + h, cy + py)
-        v1, v2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px - h, cy + py)
-        w1, w2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px, cy + (py + h))
-        z1, z2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px, cy + (py - h))
-        c1, c2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, px + h, cy + (py + h))
-        r1x = (u1 - v1) / (2.0 * h)
-        r1y = (w1 - z1) / (2.0 * h)
-        r2x = (u2 - v2) / (2.0 * h)
-        r2y = (w2 - z2) / (2.0 * h)
-        r1xx = (u1 - 2.0 * a1 + v1) / h2
-        r2xx = (u2 - 2.0 * a2 + v2) / h2
-        r1yy = (w1 - 2.0 * a1 + z1) / h2
-        r2yy = (w2 - 2.0 * a2 + z2) / h2
-        r1xy = (c1 - u1 - w1 + a1) / h2
-        r2xy = (c2 - u2 - w2 + a2) / h2
-        gx = 2.0 * (r1x * a1 + r2x * a2)
-        gy = 2.0 * (r1y * a1 + r2y * a2)
-        hxx = 2.0 * (r1x * r1x + r2x * r2x + a1 * r1xx + a2 * r2xx)
-        hyy = 2.0 * (r1y * r1y + r2y * r2y + a1 * r1yy + a2 * r2yy)
-        hxy = 2.0 * (r1x * r1y + r2x * r2y + a1 * r1xy + a2 * r2xy)
-        dx, dy, pred = _tr_step_nb(gx, gy, hxx, hxy, hyy, delta)
+        u1, u2 = _iso_r(r1sq, half_d, r3, s1, s2, px + h, cy + py)
+        v1, v2 = _iso_r(r1sq, half_d, r3, s1, s2, px - h, cy + py)
+        w1, w2 = _iso_r(r1sq, half_d, r3, s1, s2, px, cy + (py + h))
+        z1, z2 = _iso_r(r1sq, half_d, r3, s1, s2, px, cy + (py - h))
+        c1, c2 = _iso_r(r1sq, half_d, r3, s1, s2, px + h, cy + (py + h))
+        gx, gy, hxx, hxy, hyy = _g_model(a1, a2, u1, u2, v1, v2, w1, w2, z1, z2, c1, c2, h, h2)
+        dx, dy, pred = _tr_step(gx, gy, hxx, hxy, hyy, delta)
         step = math.hypot(dx, dy)
         tx = px + dx
         ty = py + dy
@@ -1105,7 +676,7 @@ def _tr_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, delta, n_iter):
             sc = R / rad
             tx = tx * sc
             ty = ty * sc
-        q1, q2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, tx, cy + ty)
+        q1, q2 = _iso_r(r1sq, half_d, r3, s1, s2, tx, cy + ty)
         gt = q1 * q1 + q2 * q2
         rho = (g0 - gt) / pred
         if gt < g0:
@@ -1119,17 +690,17 @@ def _tr_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, delta, n_iter):
         # converged: nothing left to gain above rounding, or the region has collapsed
         if not (math.isfinite(delta) and delta > 1e-12 * R) or pred <= 1e-15 * g0:
             break
-    return _lci_point_nb(r1sq, half_d, r3, s1, s2, px, cy + py)
+    return _lci_point(r1sq, half_d, r3, s1, s2, px, cy + py)
 
 
-@_njit
+@njit
 def _rim_nb(r1sq, half_d, r3, s1, s2, cy, R, n_rim):
     """Best LCI on the rim: best of ``n_rim`` samples, then golden section in the angle."""
     kb = 0
     vk = -1.0
     for k in range(n_rim):
         ph = 2.0 * math.pi * k / n_rim
-        v = _lci_point_nb(r1sq, half_d, r3, s1, s2, R * math.cos(ph), cy + R * math.sin(ph))
+        v = _lci_point(r1sq, half_d, r3, s1, s2, R * math.cos(ph), cy + R * math.sin(ph))
         if v > vk:
             vk = v
             kb = k
@@ -1138,40 +709,25 @@ def _rim_nb(r1sq, half_d, r3, s1, s2, cy, R, n_rim):
     c = dph * (kb + 1)
     x1 = c - _GOLD * (c - a)
     x2 = a + _GOLD * (c - a)
-    f1 = _lci_point_nb(r1sq, half_d, r3, s1, s2, R * math.cos(x1), cy + R * math.sin(x1))
-    f2 = _lci_point_nb(r1sq, half_d, r3, s1, s2, R * math.cos(x2), cy + R * math.sin(x2))
+    f1 = _lci_point(r1sq, half_d, r3, s1, s2, R * math.cos(x1), cy + R * math.sin(x1))
+    f2 = _lci_point(r1sq, half_d, r3, s1, s2, R * math.cos(x2), cy + R * math.sin(x2))
     for _ in range(40):
         if f1 >= f2:
             c = x2
             x2 = x1
             f2 = f1
             x1 = c - _GOLD * (c - a)
-            f1 = _lci_point_nb(r1sq, half_d, r3, s1, s2, R * math.cos(x1), cy + R * math.sin(x1))
+            f1 = _lci_point(r1sq, half_d, r3, s1, s2, R * math.cos(x1), cy + R * math.sin(x1))
         else:
             a = x1
             x1 = x2
             f1 = f2
             x2 = a + _GOLD * (c - a)
-            f2 = _lci_point_nb(r1sq, half_d, r3, s1, s2, R * math.cos(x2), cy + R * math.sin(x2))
+            f2 = _lci_point(r1sq, half_d, r3, s1, s2, R * math.cos(x2), cy + R * math.sin(x2))
     return max(vk, f1, f2)
 
 
-@_njit_inline
-def _iso_r_nb(r1sq, half_d, r3, s1, s2, x, y):
-    """Isotropy residual ``r = (G11 - G22, 2 G12) / tr G`` of ``G = M^T M`` (that of
-    ``J^T J``: r is scale-free), as :func:`mechopt.analysis.performance._iso_residual`:
-    ``r = 0`` exactly where LCI = 1, ``g = |r|^2`` smooth and decreasing in LCI.
-    NaN where unreachable or M = 0."""
-    a, b, c, d, kk, ok = _mrows_nb(r1sq, half_d, r3, s1, s2, x, y)
-    g11 = a * a + c * c
-    g22 = b * b + d * d
-    t = g11 + g22
-    if not (ok and t > 0.0):
-        return np.nan, np.nan
-    return (g11 - g22) / t, 2.0 * (a * b + c * d) / t
-
-
-@_njit
+@njit
 def _axis_root_nb(r1sq, half_d, r3, s1, s2, cy, a, fa, b, fb, n_iter):
     """Illinois (modified regula falsi) on ``r_1(0, cy + t)`` bracketed by
     ``a < b``, ``fa fb < 0``, until ``g < _G_ISO``: the LCI there, or -1 (no such
@@ -1183,11 +739,11 @@ def _axis_root_nb(r1sq, half_d, r3, s1, s2, cy, a, fa, b, fb, n_iter):
             t = 0.5 * (a + b)
         if t == a or t == b:
             return -1.0
-        f, q = _iso_r_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + t)
+        f, q = _iso_r(r1sq, half_d, r3, s1, s2, 0.0, cy + t)
         if not math.isfinite(f):
             return -1.0
         if f * f + q * q < _G_ISO:
-            return _lci_point_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + t)
+            return _lci_point(r1sq, half_d, r3, s1, s2, 0.0, cy + t)
         if f * fb > 0.0:
             b = t
             fb = f
@@ -1203,7 +759,7 @@ def _axis_root_nb(r1sq, half_d, r3, s1, s2, cy, a, fa, b, fb, n_iter):
     return -1.0
 
 
-@_njit
+@njit
 def _axis_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, n_ax, n_iter):
     """Isotropic point on the y axis within the disk, for the mirror-symmetric modes
     (``s1 = -s2``: there ``G12 = 0`` exactly on the axis, so it is a root of ``r_1``
@@ -1211,24 +767,24 @@ def _axis_iso_nb(r1sq, half_d, r3, s1, s2, cy, R, n_ax, n_iter):
     (from ``cy - R`` up) sample with ``g < _G_ISO`` or sign change of ``r_1``
     whose :func:`_axis_root_nb` succeeds gives the LCI there. -1 if none."""
     ta = -R
-    fa, qa = _iso_r_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + ta)
+    fa, qa = _iso_r(r1sq, half_d, r3, s1, s2, 0.0, cy + ta)
     if fa * fa + qa * qa < _G_ISO:
-        return _lci_point_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + ta)
+        return _lci_point(r1sq, half_d, r3, s1, s2, 0.0, cy + ta)
     for k in range(1, n_ax + 1):
         tb = -R + (2.0 * R) * k / n_ax
-        fb, qb = _iso_r_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + tb)
+        fb, qb = _iso_r(r1sq, half_d, r3, s1, s2, 0.0, cy + tb)
         if fa * fb < 0.0:
             v = _axis_root_nb(r1sq, half_d, r3, s1, s2, cy, ta, fa, tb, fb, n_iter)
             if v >= 0.0:
                 return v
         if fb * fb + qb * qb < _G_ISO:
-            return _lci_point_nb(r1sq, half_d, r3, s1, s2, 0.0, cy + tb)
+            return _lci_point(r1sq, half_d, r3, s1, s2, 0.0, cy + tb)
         ta = tb
         fa = fb
     return -1.0
 
 
-@_njit
+@njit
 def _iso_newton_nb(r1sq, half_d, r3, s1, s2, cy, R, sx, sy, n_iter, n_min, wk):
     """Isotropic points as :func:`mechopt.analysis.performance._newton_isotropy`: plain
     Newton on ``r = 0`` (central differences, no descent test: it crosses the long
@@ -1257,23 +813,17 @@ def _iso_newton_nb(r1sq, half_d, r3, s1, s2, cy, R, sx, sy, n_iter, n_min, wk):
         for k in range(n):
             x = px[k]
             y = py[k]
-            f0, q0 = _iso_r_nb(r1sq, half_d, r3, s1, s2, x, cy + y)
-            f1, q1 = _iso_r_nb(r1sq, half_d, r3, s1, s2, x + h, cy + y)
-            f2, q2 = _iso_r_nb(r1sq, half_d, r3, s1, s2, x - h, cy + y)
-            f3, q3 = _iso_r_nb(r1sq, half_d, r3, s1, s2, x, cy + (y + h))
-            f4, q4 = _iso_r_nb(r1sq, half_d, r3, s1, s2, x, cy + (y - h))
+            f0, q0 = _iso_r(r1sq, half_d, r3, s1, s2, x, cy + y)
+            f1, q1 = _iso_r(r1sq, half_d, r3, s1, s2, x + h, cy + y)
+            f2, q2 = _iso_r(r1sq, half_d, r3, s1, s2, x - h, cy + y)
+            f3, q3 = _iso_r(r1sq, half_d, r3, s1, s2, x, cy + (y + h))
+            f4, q4 = _iso_r(r1sq, half_d, r3, s1, s2, x, cy + (y - h))
             g = f0 * f0 + q0 * q0
             gk[k] = g
             if g < gmin:
                 gmin = g
                 kb = k
-            j11 = (f1 - f2) / (2.0 * h)
-            j12 = (f3 - f4) / (2.0 * h)
-            j21 = (q1 - q2) / (2.0 * h)
-            j22 = (q3 - q4) / (2.0 * h)
-            det = j11 * j22 - j12 * j21
-            ddx[k] = -(j22 * f0 - j12 * q0) / det
-            ddy[k] = -(j11 * q0 - j21 * f0) / det
+            ddx[k], ddy[k] = _cd_step(f0, q0, f1, q1, f2, q2, f3, q3, f4, q4, h)
         if kb >= 0 and gmin < bg:
             bx = px[kb]
             by = py[kb]
@@ -1309,10 +859,10 @@ def _iso_newton_nb(r1sq, half_d, r3, s1, s2, cy, R, sx, sy, n_iter, n_min, wk):
         n = j
     if not bg < np.inf:
         return np.inf, -1.0
-    return bg, _lci_point_nb(r1sq, half_d, r3, s1, s2, bx, cy + by)
+    return bg, _lci_point(r1sq, half_d, r3, s1, s2, bx, cy + by)
 
 
-@_njit
+@njit
 def _mci_nb(r1sq, half_d, r3, s1, s2, cy, R, ux, uy, lv, step0, n_iter, dirs, n_rim, n_start,
             starts, sx, sy, n_min, wk):
     """Maximum LCI over the disk of radius R about (0, cy), given the LCI ``lv`` at
@@ -1369,7 +919,7 @@ def _mci_nb(r1sq, half_d, r3, s1, s2, cy, R, ux, uy, lv, step0, n_iter, dirs, n_
     return min(max(best, _rim_nb(r1sq, half_d, r3, s1, s2, cy, R, n_rim)), 1.0)
 
 
-@_njit
+@njit
 def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs, n_rim, lv,
                        starts, sx, sy, n_min, wk, out):
     """Mean LCI over the MIC disk, its maximum (best node, then
@@ -1384,7 +934,7 @@ def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs
         return
     acc = 0.0
     for k in range(ux.size):
-        v = _lci_point_nb(r1sq, half_d, r3, s1, s2, R * ux[k], cy + R * uy[k])
+        v = _lci_point(r1sq, half_d, r3, s1, s2, R * ux[k], cy + R * uy[k])
         lv[k] = v
         acc += w[k] * v
     out[0] = acc
@@ -1399,13 +949,8 @@ def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs
     a_dmin = 0.0
     n_bad = 0
     for k in range(ux.size):
-        a, b, c, d, kk, ok = _mrows_nb(r1sq, half_d, r3, s1, s2, h * ux[k], cy + h * uy[k])
-        S = a * a + b * b + c * c + d * d
-        disc = math.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
-        sm = math.sqrt(0.5 * (S + disc))
-        ak = abs(kk)
-        s_max = sm / ak
-        s_min = abs(a * d - b * c) / (sm * ak)
+        a, b, c, d, kk, ok = _mrows(r1sq, half_d, r3, s1, s2, h * ux[k], cy + h * uy[k])
+        s_max, s_min = _sv_m(a, b, c, d, kk)
         wk = w[k]
         a_vmax += wk / s_min
         a_vmin += wk / s_max
@@ -1425,7 +970,7 @@ def _disk_stats_one_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs
             out[q] = nan
 
 
-@_njit
+@njit
 def _disk_stats_batch_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, dirs, n_rim,
                          n_start, sx, sy, n_min, out):
     lv = np.empty(ux.size)
@@ -1437,16 +982,11 @@ def _disk_stats_batch_nb(r1, r2, r3, s1, s2, cy, R, ux, uy, w, step0, n_iter, di
 
 
 def _lci_at_np(rr, s1, s2, x, y):
-    a, b, c, d, _, ok = _mrows_np(*rr, s1, s2, x, y)
-    return _lci_m_np(a, b, c, d, ok)
+    return _on_arrays(_lci_point, *rr, s1, s2, x, y)
 
 
 def _iso_residual_np(rr, s1, s2, x, y, which):
-    a, b, c, d, _, ok = _mrows_np(*rr, s1, s2, x, y)
-    n = np.where(ok, np.sqrt(a * a + b * b + c * c + d * d), np.nan)
-    if which == 0:
-        return (a - d) / n, (b + c) / n
-    return (a + d) / n, (b - c) / n
+    return _on_arrays(_iso_residual, *rr, s1, s2, x, y, which)
 
 
 def _golden_rim_np(rr, s1, s2, cy, R, a, c, n):
@@ -1484,44 +1024,6 @@ def _compass_np(rr, s1, s2, cy, R, bx, by, best, step, n_iter):
     return bx, by, best
 
 
-def _tr_step_np(gx, gy, hxx, hxy, hyy, delta):
-    """:func:`_tr_step_nb` for arrays."""
-    disc = np.hypot(0.5 * (hxx - hyy), hxy)
-    l1 = 0.5 * (hxx + hyy) - disc
-    l2 = 0.5 * (hxx + hyy) + disc
-    big = hxx >= hyy
-    ax, ay = np.where(big, l2 - hyy, hxy), np.where(big, hxy, l2 - hxx)
-    n = np.hypot(ax, ay)
-    ex = np.where(n > 0.0, ax / n, 1.0)
-    ey = np.where(n > 0.0, ay / n, 0.0)
-    ge = gx * ex + gy * ey
-    gf = gy * ex - gx * ey
-    newton = (l1 > 0.0) & (np.hypot(ge / l2, gf / l1) <= delta)
-    mu_lo = np.where(-l1 > 0.0, -l1, 0.0)
-    mu = mu_lo + 1e-12 * (np.abs(l1) + np.abs(l2)) + 1e-300
-    for _ in range(12):
-        de = -ge / (l2 + mu)
-        df = -gf / (l1 + mu)
-        nrm = np.hypot(de, df)
-        q = de * de / (l2 + mu) + df * df / (l1 + mu)
-        new = mu + (nrm * nrm / q) * (nrm - delta) / delta
-        lo = mu_lo + 0.5 * (mu - mu_lo)
-        mu = np.where(new > lo, new, lo)
-    mu = np.where(newton, 0.0, mu)
-    de = -ge / (l2 + mu)
-    df = -gf / (l1 + mu)
-    nrm = np.hypot(de, df)
-    short = ~newton & (nrm < delta)
-    d2 = delta * delta - nrm * nrm
-    tau = np.sqrt(np.where(d2 > 0.0, d2, 0.0))
-    df = np.where(short, np.where(gf > 0.0, df - tau, df + tau), df)
-    nrm = np.where(short, np.hypot(de, df), nrm)
-    sc = np.where(nrm > delta, delta / nrm, 1.0)
-    de, df = np.where(nrm > delta, de * sc, de), np.where(nrm > delta, df * sc, df)
-    pred = -(ge * de + gf * df + 0.5 * (l2 * de * de + l1 * df * df))
-    return de * ex - df * ey, de * ey + df * ex, pred
-
-
 def _tr_polish_np(rr, s1, s2, cy, R, px, py, delta, n_iter):
     """:func:`_tr_polish_nb` for arrays of designs (rr: (B, 1) columns, the rest (B,))."""
     c1 = lambda v: v[:, None]  # noqa: E731
@@ -1541,22 +1043,8 @@ def _tr_polish_np(rr, s1, s2, cy, R, px, py, delta, n_iter):
             w1, w2 = res(px, py + h)
             z1, z2 = res(px, py - h)
             k1, k2 = res(px + h, py + h)
-            r1x = (u1 - v1) / (2.0 * h)
-            r1y = (w1 - z1) / (2.0 * h)
-            r2x = (u2 - v2) / (2.0 * h)
-            r2y = (w2 - z2) / (2.0 * h)
-            r1xx = (u1 - 2.0 * a1 + v1) / h2
-            r2xx = (u2 - 2.0 * a2 + v2) / h2
-            r1yy = (w1 - 2.0 * a1 + z1) / h2
-            r2yy = (w2 - 2.0 * a2 + z2) / h2
-            r1xy = (k1 - u1 - w1 + a1) / h2
-            r2xy = (k2 - u2 - w2 + a2) / h2
-            gx = 2.0 * (r1x * a1 + r2x * a2)
-            gy = 2.0 * (r1y * a1 + r2y * a2)
-            hxx = 2.0 * (r1x * r1x + r2x * r2x + a1 * r1xx + a2 * r2xx)
-            hyy = 2.0 * (r1y * r1y + r2y * r2y + a1 * r1yy + a2 * r2yy)
-            hxy = 2.0 * (r1x * r1y + r2x * r2y + a1 * r1xy + a2 * r2xy)
-            dx, dy, pred = _tr_step_np(gx, gy, hxx, hxy, hyy, delta)
+            gx, gy, hxx, hxy, hyy = _g_model(a1, a2, u1, u2, v1, v2, w1, w2, z1, z2, k1, k2, h, h2)
+            dx, dy, pred = _tr_step(gx, gy, hxx, hxy, hyy, delta)
             step = np.hypot(dx, dy)
             tx, ty = px + dx, py + dy
             rad = np.hypot(tx, ty)
@@ -1590,12 +1078,8 @@ def _newton_iso_np(rr, s1, s2, cy, R, px, py, which, n_iter):
                 break
             fx, gx = res(px + h, py)
             fy, gy = res(px, py + h)
-            j11, j12 = (fx - f0) / h, (fy - f0) / h
-            j21, j22 = (gx - g0) / h, (gy - g0) / h
-            det = j11 * j22 - j12 * j21
+            det, dx, dy = _fd_step(f0, g0, fx, gx, fy, gy, h)
             live &= (det != 0.0) & np.isfinite(det)
-            dx = -(j22 * f0 - j12 * g0) / det
-            dy = -(-j21 * f0 + j11 * g0) / det
             t = np.ones(R.size)
             ok = np.zeros(R.size, bool)
             qx, qy, f1, g1, n1 = px.copy(), py.copy(), f0.copy(), g0.copy(), n0.copy()
@@ -1621,14 +1105,8 @@ def _newton_iso_np(rr, s1, s2, cy, R, px, py, which, n_iter):
 
 
 def _iso_r_np(rr, s1, s2, x, y):
-    """:func:`_iso_r_nb` (broadcasting)."""
-    a, b, c, d, _, ok = _mrows_np(*rr, s1, s2, x, y)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        g11 = a * a + c * c
-        g22 = b * b + d * d
-        t = g11 + g22
-        t = np.where(ok & (t > 0.0), t, np.nan)
-        return (g11 - g22) / t, 2.0 * (a * b + c * d) / t
+    """:func:`_iso_r` (broadcasting)."""
+    return _on_arrays(_iso_r, *rr, s1, s2, x, y)
 
 
 def _axis_root_np(rr, s1, s2, cy, a, fa, b, fb, n_iter):
@@ -1726,13 +1204,7 @@ def _iso_newton_np(rr, s1, s2, cy, R, sx, sy, n_iter, n_min):
             bx[idx[up]] = px[up, kb[up]]
             by[idx[up]] = py[up, kb[up]]
             bg[idx[up]] = gmin[up]
-            j11 = (f1 - f2) / (2.0 * hh)
-            j12 = (f3 - f4) / (2.0 * hh)
-            j21 = (q1 - q2) / (2.0 * hh)
-            j22 = (q3 - q4) / (2.0 * hh)
-            det = j11 * j22 - j12 * j21
-            dx = -(j22 * f0 - j12 * q0) / det
-            dy = -(j11 * q0 - j21 * f0) / det
+            dx, dy = _cd_step(f0, q0, f1, q1, f2, q2, f3, q3, f4, q4, hh)
             st = np.hypot(dx, dy)
             keep = alive & np.isfinite(st) & (st > 1e-15 * Rc) & np.isfinite(g)
             m = keep.sum(axis=1)

@@ -30,7 +30,8 @@ underflows in any unit. Unreachable points (``n < 0``), a base joint at P
 (``q = 0``) and type-I poses (``n = 0``) give 0, as on the generic path.
 
 The pure NumPy kernel is always available. The numba kernel (the ``fast`` extra,
-unless ``MECHOPT_NO_NUMBA`` is set) gives the same values bit for bit (tested in
+unless ``MECHOPT_NO_NUMBA`` is set: :mod:`mechopt.core.jit`, compiled on first use)
+gives the same values bit for bit (tested in
 ``tests/test_workspace.py``) and is 10-25x faster on large arrays, but loading it costs about
 0.5 s per process (numba's start-up and its cache), more than one design's whole
 evaluation spends in this function. :func:`five_bar_lci` therefore starts with the
@@ -40,11 +41,12 @@ twice the better choice's time), or at once if the numba kernel is already loade
 """
 from __future__ import annotations
 
-import importlib.util
-import os
 import time
 
 import numpy as np
+
+from mechopt.core import jit as _jit
+from mechopt.core.jit import HAVE_NUMBA
 
 __all__ = ["five_bar_lci", "five_bar_lci_numpy", "five_bar_lci_numba", "HAVE_NUMBA"]
 
@@ -59,6 +61,28 @@ def _consts(r1, r2, r3):
     hi2 = (r1n + r2n) ** 2
     kk = r2n * r2n - r1n * r1n
     return 1.0 / L, r3n, lo2, hi2, kk
+
+
+def _signed_sum(u, a, t, b, s, out, tmp):
+    """``out = u a + s t b`` for ``s = +-1`` (in place; ``tmp`` is overwritten): the
+    NumPy form of the compiled loop's ``u * a + s * t * b``, the same values."""
+    np.multiply(u, a, out=out)
+    np.multiply(t, b, out=tmp)
+    if s > 0:
+        out += tmp
+    else:
+        out -= tmp
+
+
+def _hypot_of(op1, op2, a, b, c, d, out, tmp):
+    """``out = sqrt(op1(a, b)^2 + op2(c, d)^2)`` in place (``tmp`` is overwritten): ``sqrt(P)``
+    and ``sqrt(Q)`` of the module docstring."""
+    op1(a, b, out=out)
+    out *= out
+    op2(c, d, out=tmp)
+    tmp *= tmp
+    out += tmp
+    np.sqrt(out, out=out)
 
 
 def five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2, chunk: int = CHUNK):
@@ -97,18 +121,8 @@ def five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2, chunk: int = CHUNK):
                 np.multiply(q, t, out=g)  # g_i = q sqrt(n_i)
                 np.add(q, kk, out=u)  # E = q + r2^2 - r1^2
                 # a~ = E v - s sqrt(n) w  with v = (dx, y), w = (-y, dx)
-                np.multiply(u, dx, out=rx)
-                np.multiply(t, ys, out=tmp)
-                if s > 0:
-                    rx += tmp
-                else:
-                    rx -= tmp
-                np.multiply(u, ys, out=ry)
-                np.multiply(t, dx, out=tmp)
-                if s > 0:
-                    ry -= tmp
-                else:
-                    ry += tmp
+                _signed_sum(u, dx, t, ys, s, rx, tmp)
+                _signed_sum(u, ys, t, dx, -s, ry, tmp)
             # M = [g1 a~2; g2 a~1]: diag(g2, g1) A~ with its rows swapped, which
             # leaves the LCI unchanged
             m21 *= g2
@@ -121,18 +135,8 @@ def five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2, chunk: int = CHUNK):
             det -= tmp
             np.abs(det, out=det)
             # sqrt(P) + sqrt(Q)
-            np.subtract(m11, m22, out=p)
-            p *= p
-            np.add(m12, m21, out=tmp)
-            tmp *= tmp
-            p += tmp
-            np.sqrt(p, out=p)
-            np.add(m11, m22, out=pq)
-            pq *= pq
-            np.subtract(m12, m21, out=tmp)
-            tmp *= tmp
-            pq += tmp
-            np.sqrt(pq, out=pq)
+            _hypot_of(np.subtract, np.add, m11, m22, m12, m21, p, tmp)
+            _hypot_of(np.add, np.subtract, m11, m22, m12, m21, pq, tmp)
             p += pq
             p *= p
             res = out[i0:i1]
@@ -181,29 +185,15 @@ def _five_bar_lci_loop(xf, yf, inv_l, r3n, lo2, hi2, kk, s1, s2, out):
         out[i] = v if v >= 0.0 else 0.0  # NaN -> 0
 
 
-def _numba_wanted() -> bool:
-    if os.environ.get("MECHOPT_NO_NUMBA", "") not in ("", "0"):
-        return False
-    return importlib.util.find_spec("numba") is not None
-
-
-#: numba is importable and not disabled by ``MECHOPT_NO_NUMBA``
-HAVE_NUMBA = _numba_wanted()
+#: the compiled loop, once made (numba is imported then, not with this module)
 _loop_jit = None
 
 
 def _get_loop_jit():
     global _loop_jit
     if _loop_jit is None:
-        import numba as nb
-
-        sig = "void(f8[::1], f8[::1], f8, f8, f8, f8, f8, f8, f8, f8[::1])"
-        try:
-            _loop_jit = nb.njit(sig, cache=True, nogil=True, error_model="numpy")(
-                _five_bar_lci_loop
-            )
-        except Exception:  # e.g. no writable cache location: compile without caching
-            _loop_jit = nb.njit(sig, nogil=True, error_model="numpy")(_five_bar_lci_loop)
+        _loop_jit = _jit.njit(_five_bar_lci_loop,
+                              signature="void(f8[::1], f8[::1], f8, f8, f8, f8, f8, f8, f8, f8[::1])")
     return _loop_jit
 
 

@@ -24,11 +24,151 @@ from mechopt.mechanisms.five_bar import lci as _fast_lci
 from mechopt.core import validation as _v
 from mechopt.core.protocol import Parameter, PlanarMechanism, as_points
 
-__all__ = ["FiveBar", "MODES", "ASSEMBLY_MODES"]
+__all__ = ["FiveBar", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows", "legs_closure", "legs_reachable",
+           "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk", "legs_assembly_of"]
 
 MODES = ("+-", "-+", "++", "--")
 ASSEMBLY_MODES = ("up", "down")
 _SIGN = {"+": 1.0, "-": -1.0}
+#: reachability tolerance on ``h^2`` of the elbow intersection: rounding on the
+#: boundary of a leg's annulus is clipped to the boundary itself
+_H2_TOL = 1e-12
+
+
+# --- the geometry of a 5R with legs of any lengths -------------------------------
+# Written once for FiveBar (equal legs) and AsymmetricFiveBar (each leg its own): every
+# function takes the half base ``r3`` and ``legs = ((a1, c1, s1), (a2, c2, s2))``, leg i
+# with the crank ``a_i`` on ``A_i`` (``A1 = (-r3, 0)``, ``A2 = (r3, 0)``), the distal link
+# ``c_i`` and the elbow sign ``s_i`` of the working mode (Le 2013 eq. 5-19 with ``r1, r2``
+# read per leg). With equal legs every operation is that of Le's symmetric closed forms (in
+# ``legs_fk`` the foot ``u`` is then exactly 1/2), so the generality costs FiveBar no bit.
+
+def elbow_signs(mode: str):
+    """``(s1, s2)`` of a working mode: ``+1`` for ``"+"``, ``-1`` for ``"-"``, leg 1 first."""
+    return _SIGN[mode[0]], _SIGN[mode[1]]
+
+
+def legs_elbows(x, y, r3, legs):
+    """Elbows ``(b1x, b1y, b2x, b2y, reachable)`` by circle intersection; NaN where unreachable.
+
+    ``B_i = A_i + a_i R(s_i alpha_i) (P - A_i)/|P - A_i|`` with ``alpha_i`` from the law
+    of cosines at ``A_i`` (Le eq. 13-14), without trigonometry.
+    """
+    x, y = as_points(x, y)
+    out = []
+    ok = np.ones(x.shape, dtype=bool)
+    for ax, (a, c, s) in zip((-r3, r3), legs):
+        dx = x - ax
+        dsq = dx * dx + y * y
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # P at A_i: masked
+            # law of cosines at A_i (Le eq. 13-14), scaled by a/d
+            k = (a * a + dsq - c * c) / (2.0 * dsq)  # = a cos(alpha) / d
+            h2 = (a * a) / dsq - k * k  # = (a sin(alpha) / d)^2
+        # reachable <=> |a - c| <= d <= a + c (Le eq. 19); tiny negative h2 from
+        # rounding on the boundary is clipped to the boundary itself.
+        leg_ok = (h2 >= -_H2_TOL) & (dsq > 0)
+        h = np.sqrt(np.clip(h2, 0.0, None)) * s
+        with np.errstate(invalid="ignore", over="ignore"):  # inf * 0 at a base joint: masked below
+            bx = ax + k * dx - h * y
+            by = k * y + h * dx
+        out += [bx, by]
+        ok &= leg_ok
+    b1x, b1y, b2x, b2y = (np.where(ok, v, np.nan) for v in out)
+    return b1x, b1y, b2x, b2y, ok
+
+
+def legs_closure(x, y, r3, legs):
+    """``(A, b, reachable)`` of ``A p_dot = B theta_dot``: ``a_i = P - B_i``,
+    ``B_ii = (B_i - A_i) x a_i``."""
+    x, y = as_points(x, y)
+    b1x, b1y, b2x, b2y, ok = legs_elbows(x, y, r3, legs)
+    a1x, a1y = x - b1x, y - b1y
+    a2x, a2y = x - b2x, y - b2y
+    A = np.stack([np.stack([a1x, a1y], -1), np.stack([a2x, a2y], -1)], -2)
+    # (B_i - A_i) x a_i = a_i (u_i x a_i): the closure |P - B_i|^2 = c_i^2
+    # differentiated gives a_i . p_dot = a_i (u_i x a_i) theta_dot_i.
+    k1 = (b1x + r3) * a1y - b1y * a1x
+    k2 = (b2x - r3) * a2y - b2y * a2x
+    return A, np.stack([k1, k2], -1), ok
+
+
+def _reach(x, y, r3, legs):
+    """Per leg ``(d_i, |a_i - c_i|, a_i + c_i)``: the distance ``|P - A_i|`` and the radii
+    of the leg's annulus (Le eq. 19)."""
+    x, y = as_points(x, y)
+    (a1, c1, _), (a2, c2, _) = legs
+    return ((np.hypot(x + r3, y), abs(a1 - c1), a1 + c1),
+            (np.hypot(x - r3, y), abs(a2 - c2), a2 + c2))
+
+
+def legs_reachable(x, y, r3, legs):
+    """Both legs assemble: ``|a_i - c_i| <= |P - A_i| <= a_i + c_i``, ``P`` not on a base joint."""
+    (d1, lo1, hi1), (d2, lo2, hi2) = _reach(x, y, r3, legs)
+    return (d1 >= lo1) & (d1 <= hi1) & (d2 >= lo2) & (d2 <= hi2) & (d1 > 0) & (d2 > 0)
+
+
+def legs_serial_clearance(x, y, r3, legs):
+    """Distance to the nearest of the four circles bounding the legs' annuli, signed."""
+    (d1, lo1, hi1), (d2, lo2, hi2) = _reach(x, y, r3, legs)
+    return np.minimum.reduce([hi1 - d1, d1 - lo1, hi2 - d2, d2 - lo2])
+
+
+def legs_bounding_box(r3, legs):
+    """The box of the intersection of the two outer disks ``|P - A_i| <= a_i + c_i``."""
+    (a1, c1, _), (a2, c2, _) = legs
+    reach1, reach2 = a1 + c1, a2 + c2
+    reach = min(reach1, reach2)
+    return (max(-r3 - reach1, r3 - reach2), min(-r3 + reach1, r3 + reach2), -reach, reach)
+
+
+def legs_ik(x, y, r3, legs):
+    """Crank angles ``theta1 = beta1 + s1 alpha1``, ``theta2 = pi - beta2 + s2 alpha2``
+    (Le eq. 13-18), unwrapped (see :meth:`FiveBar.ik`); NaN where unreachable."""
+    x, y = as_points(x, y)
+    (a1, c1, s1), (a2, c2, s2) = legs
+    ok = legs_reachable(x, y, r3, legs)
+    d1 = np.hypot(x + r3, y)
+    d2 = np.hypot(x - r3, y)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # clipped below
+        k1 = (a1 * a1 + d1 * d1 - c1 * c1) / (2 * a1 * d1)
+        k2 = (a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2)
+    alpha1 = np.arccos(np.clip(k1, -1.0, 1.0))
+    alpha2 = np.arccos(np.clip(k2, -1.0, 1.0))
+    beta1 = np.arctan2(y, x + r3)
+    beta2 = np.arctan2(y, r3 - x)
+    th1 = beta1 + s1 * alpha1
+    th2 = np.pi - beta2 + s2 * alpha2
+    return np.where(ok, th1, np.nan), np.where(ok, th2, np.nan), ok
+
+
+def legs_fk(theta1, theta2, r3, legs, assembly: str = "up"):
+    """``(x, y, valid)``: the intersection of the distal circles about ``B_1`` and ``B_2``
+    (Le eq. 5-12); ``"up"``: ``P`` on the left of ``B1 -> B2``. NaN where they do not meet."""
+    _v.choice("assembly", assembly, ASSEMBLY_MODES)
+    t1, t2 = as_points(theta1, theta2)
+    (a1, c1, _), (a2, c2, _) = legs
+    b1x, b1y = -r3 + a1 * np.cos(t1), a1 * np.sin(t1)
+    b2x, b2y = r3 + a2 * np.cos(t2), a2 * np.sin(t2)
+    mx, my = b2x - b1x, b2y - b1y
+    m2 = mx * mx + my * my
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # the foot of P on B1 -> B2, in units of |m|: exactly 1/2 for equal distal links
+        u = (c1 * c1 - c2 * c2 + m2) / (2.0 * m2)
+        h2 = c1 * c1 / m2 - u * u
+    valid = (h2 >= 0) & (m2 > 0)
+    h = np.sqrt(np.clip(h2, 0, None)) * (1.0 if assembly == "up" else -1.0)
+    with np.errstate(invalid="ignore"):  # inf * 0 where B1 = B2: not valid, masked below
+        x = b1x + u * mx - h * my
+        y = b1y + u * my + h * mx
+    return np.where(valid, x, np.nan), np.where(valid, y, np.nan), valid
+
+
+def legs_assembly_of(x, y, r3, legs):
+    """The FK assembly (``"up"``/``"down"``) of each pose of the working mode."""
+    b1x, b1y, b2x, b2y, _ = legs_elbows(x, y, r3, legs)
+    x, y = as_points(x, y)
+    cross = (b2x - b1x) * (y - b1y) - (b2y - b1y) * (x - b1x)
+    return np.where(cross >= 0, "up", "down")
 
 
 class FiveBar(PlanarMechanism):
@@ -101,68 +241,32 @@ class FiveBar(PlanarMechanism):
         return (-self.r3, 0.0), (self.r3, 0.0)
 
     # --- elbows -------------------------------------------------------------
+    def _legs(self):
+        """Both legs ``(crank, distal link, elbow sign)``: ``r1``, ``r2`` each."""
+        return (self.r1, self.r2, self._s1), (self.r1, self.r2, self._s2)
+
     def elbows(self, x, y):
-        """Elbow points of the working mode by circle intersection.
+        """Elbow points of the working mode by circle intersection (:func:`legs_elbows`).
 
         Returns ``(b1x, b1y, b2x, b2y, reachable)``; NaN where unreachable.
         """
-        x, y = as_points(x, y)
-        r1, r2, r3 = self.r1, self.r2, self.r3
-        out = []
-        ok = np.ones(x.shape, dtype=bool)
-        for ax, s in ((-r3, self._s1), (r3, self._s2)):
-            dx = x - ax
-            dsq = dx * dx + y * y
-            d = np.sqrt(dsq)
-            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # P at A_i: masked
-                # law of cosines at A_i (Le eq. 13-14), scaled by r1/d
-                c = (r1 * r1 + dsq - r2 * r2) / (2.0 * dsq)  # = r1 cos(alpha) / d
-                h2 = (r1 * r1) / dsq - c * c  # = (r1 sin(alpha) / d)^2
-            # reachable <=> |r1 - r2| <= d <= r1 + r2 (Le eq. 19); tiny negative
-            # h2 from rounding on the boundary is clipped to the boundary itself.
-            tol = 1e-12
-            leg_ok = (h2 >= -tol) & (d > 0)
-            h = np.sqrt(np.clip(h2, 0.0, None)) * s
-            with np.errstate(invalid="ignore", over="ignore"):  # inf * 0 at a base joint: masked below
-                bx = ax + c * dx - h * y
-                by = c * y + h * dx
-            out += [bx, by]
-            ok &= leg_ok
-        b1x, b1y, b2x, b2y = (np.where(ok, v, np.nan) for v in out)
-        return b1x, b1y, b2x, b2y, ok
+        return legs_elbows(x, y, self.r3, self._legs())
 
     # --- protocol ------------------------------------------------------------
     def closure(self, x, y):
         """``A p_dot = B theta_dot`` with ``a_i = P - B_i``, ``B_ii = (B_i - A_i) x a_i``."""
-        x, y = as_points(x, y)
-        b1x, b1y, b2x, b2y, ok = self.elbows(x, y)
-        a1x, a1y = x - b1x, y - b1y
-        a2x, a2y = x - b2x, y - b2y
-        A = np.stack([np.stack([a1x, a1y], -1), np.stack([a2x, a2y], -1)], -2)
-        # (B_i - A_i) x a_i = r1 (u_i x a_i): the closure |P - B_i|^2 = r2^2
-        # differentiated gives a_i . p_dot = r1 (u_i x a_i) theta_dot_i.
-        k1 = (b1x + self.r3) * a1y - b1y * a1x
-        k2 = (b2x - self.r3) * a2y - b2y * a2x
-        return A, np.stack([k1, k2], -1), ok
+        return legs_closure(x, y, self.r3, self._legs())
 
     def reachable(self, x, y):
-        x, y = as_points(x, y)
-        lo, hi = abs(self.r1 - self.r2), self.r1 + self.r2
-        d1 = np.hypot(x + self.r3, y)
-        d2 = np.hypot(x - self.r3, y)
-        return (d1 >= lo) & (d1 <= hi) & (d2 >= lo) & (d2 <= hi) & (d1 > 0) & (d2 > 0)
+        return legs_reachable(x, y, self.r3, self._legs())
 
     def serial_clearance(self, x, y):
         """Distance to the nearest of the four circles of Le eq. (19), signed."""
-        x, y = as_points(x, y)
-        lo, hi = abs(self.r1 - self.r2), self.r1 + self.r2
-        d1 = np.hypot(x + self.r3, y)
-        d2 = np.hypot(x - self.r3, y)
-        return np.minimum.reduce([hi - d1, d1 - lo, hi - d2, d2 - lo])
+        return legs_serial_clearance(x, y, self.r3, self._legs())
 
     def bounding_box(self):
-        reach = self.r1 + self.r2
-        return (-reach + self.r3, reach - self.r3, -reach, reach)
+        """``(r3 - (r1 + r2), r1 + r2 - r3, -(r1 + r2), r1 + r2)``."""
+        return legs_bounding_box(self.r3, self._legs())
 
     def ik(self, x, y):
         """Actuated angles of the working mode (Le eq. 13-18), in rad.
@@ -173,21 +277,7 @@ class FiveBar(PlanarMechanism):
         and ``pi - beta2 + s2 alpha2`` in (-pi, 3 pi); for mode "+-" theta1 is in
         (-pi, 2 pi) and theta2 in (-pi, 2 pi).
         """
-        x, y = as_points(x, y)
-        r1, r2, r3 = self.r1, self.r2, self.r3
-        ok = self.reachable(x, y)
-        d1 = np.hypot(x + r3, y)
-        d2 = np.hypot(x - r3, y)
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # clipped below
-            c1 = (r1 * r1 + d1 * d1 - r2 * r2) / (2 * r1 * d1)
-            c2 = (r1 * r1 + d2 * d2 - r2 * r2) / (2 * r1 * d2)
-        alpha1 = np.arccos(np.clip(c1, -1.0, 1.0))
-        alpha2 = np.arccos(np.clip(c2, -1.0, 1.0))
-        beta1 = np.arctan2(y, x + r3)
-        beta2 = np.arctan2(y, r3 - x)
-        th1 = beta1 + self._s1 * alpha1
-        th2 = np.pi - beta2 + self._s2 * alpha2
-        return np.where(ok, th1, np.nan), np.where(ok, th2, np.nan), ok
+        return legs_ik(x, y, self.r3, self._legs())
 
     def fk(self, theta1, theta2, assembly: str = "up"):
         """Forward kinematics (Le eq. 5-12) by intersecting the two distal circles.
@@ -196,28 +286,11 @@ class FiveBar(PlanarMechanism):
         ``B1 -> B2`` (above the line B1B2 when B1 is left of B2); ``"down"`` is
         solution 2. Returns ``(x, y, valid)``; NaN where the circles do not meet.
         """
-        _v.choice("assembly", assembly, ASSEMBLY_MODES)
-        t1, t2 = as_points(theta1, theta2)
-        r1, r2, r3 = self.r1, self.r2, self.r3
-        b1x, b1y = -r3 + r1 * np.cos(t1), r1 * np.sin(t1)
-        b2x, b2y = r3 + r1 * np.cos(t2), r1 * np.sin(t2)
-        mx, my = b2x - b1x, b2y - b1y
-        m2 = mx * mx + my * my
-        with np.errstate(divide="ignore", invalid="ignore"):
-            h2 = r2 * r2 / m2 - 0.25
-        valid = (h2 >= 0) & (m2 > 0)
-        h = np.sqrt(np.clip(h2, 0, None)) * (1.0 if assembly == "up" else -1.0)
-        with np.errstate(invalid="ignore"):  # inf * 0 where B1 = B2: not valid, masked below
-            x = b1x + 0.5 * mx - h * my
-            y = b1y + 0.5 * my + h * mx
-        return np.where(valid, x, np.nan), np.where(valid, y, np.nan), valid
+        return legs_fk(theta1, theta2, self.r3, self._legs(), assembly)
 
     def assembly_of(self, x, y):
         """Which FK assembly mode (``"up"``/``"down"``) a pose of this working mode is in."""
-        b1x, b1y, b2x, b2y, _ = self.elbows(x, y)
-        x, y = as_points(x, y)
-        cross = (b2x - b1x) * (y - b1y) - (b2y - b1y) * (x - b1x)
-        return np.where(cross >= 0, "up", "down")
+        return legs_assembly_of(x, y, self.r3, self._legs())
 
     def type2_function(self, x, y):
         """``(a1 x a2) / (|a1| |a2|)`` with ``a_i = P - B_i``: the sine of the angle
@@ -229,6 +302,15 @@ class FiveBar(PlanarMechanism):
         x, y = as_points(x, y)
         b1x, b1y, b2x, b2y, _ = self.elbows(x, y)
         return ((x - b1x) * (y - b2y) - (y - b1y) * (x - b2x)) / (self.r2 * self.r2)
+
+    def explicit_workspace(self):
+        """The explicit MIC (closed-form serial clearance, explicit type-II locus; Le 2013
+        eq. 19, Liu 2006 sec. 3), the legs' reach and the conditions on ``r1, r2, r3``
+        for :mod:`mechopt.analysis.workspace`: a
+        :class:`~mechopt.mechanisms.five_bar.mic.FiveBarWorkspace`."""
+        from mechopt.mechanisms.five_bar.mic import FiveBarWorkspace
+
+        return FiveBarWorkspace(self)
 
     def lci(self, x, y):
         """Local conditioning index ``1/kappa_J`` in [0, 1]; 0 where unreachable or singular.

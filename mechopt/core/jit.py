@@ -1,0 +1,126 @@
+"""The one numba switch: whether mechopt's compiled kernels are used, and how they are compiled.
+
+numba is optional (the ``fast`` extra). The environment variable ``MECHOPT_NO_NUMBA``
+(any value but ``""`` and ``"0"``) forces the NumPy paths; it is read here only, once,
+when this module is imported. Importing this module does not import numba (about
+0.3 s): :func:`load_numba` does, the first time a kernel needs it.
+
+A kernel's formula is written once, as a plain Python function of scalars:
+
+* :func:`jitable` marks a formula that compiled kernels call. It stays a plain Python
+  function (a NumPy path calls it with arrays, a one-design path with floats) and
+  numba compiles it into each kernel that calls it. Formulas that both paths share
+  are written with operators and NumPy functions that mean the same on floats and on
+  arrays (``np.sqrt``, ``np.maximum``, ``abs``, ``&``) and :func:`select` for a
+  choice; a NumPy caller wraps them in ``np.errstate``.
+* :func:`njit` compiles a kernel called from Python (a loop over points or designs),
+  or leaves it as plain Python without numba.
+
+numba's on-disk cache knows only the source file of the function it compiles: a
+kernel and every formula it calls are kept in one module, so that editing that
+module invalidates the kernel's cache.
+"""
+from __future__ import annotations
+
+import importlib.util
+import os
+
+import numpy as np
+
+__all__ = ["HAVE_NUMBA", "numba_wanted", "load_numba", "use_numba", "njit", "jitable", "select"]
+
+#: the environment variable that disables numba
+ENV_VAR = "MECHOPT_NO_NUMBA"
+#: options of every compiled function: no GIL held, and NumPy's floating-point error
+#: model (``x / 0`` gives inf or NaN as in the NumPy paths instead of raising)
+OPTIONS = dict(nogil=True, error_model="numpy")
+
+
+def numba_wanted() -> bool:
+    """numba is installed (found, not imported) and ``MECHOPT_NO_NUMBA`` does not disable it."""
+    if os.environ.get(ENV_VAR, "") not in ("", "0"):
+        return False
+    return importlib.util.find_spec("numba") is not None
+
+
+#: the compiled kernels are used (:func:`numba_wanted` at import)
+HAVE_NUMBA = numba_wanted()
+
+_numba = None  # the numba module once loaded
+_pending = []  # (function, options) marked jitable before numba was loaded
+
+
+def load_numba():
+    """The numba module, imported on the first call (None when :data:`HAVE_NUMBA` is
+    False). Registers the formulas marked :func:`jitable` so far."""
+    global _numba
+    if _numba is None and HAVE_NUMBA:
+        import numba
+        from numba.extending import overload, register_jitable
+
+        # compiled as a function that LLVM inlines (numba's IR inliner warns about the branch)
+        @overload(select, jit_options=dict(error_model=OPTIONS["error_model"]))
+        def _select(cond, a, b):  # in compiled code a branch on a scalar condition
+            def impl(cond, a, b):
+                return a if cond else b
+            return impl
+
+        _numba = numba
+        for fn, options in _pending:
+            register_jitable(**options)(fn)
+        _pending.clear()
+    return _numba
+
+
+def use_numba(flag=None) -> bool:
+    """Whether a kernel's compiled path runs: ``flag=None`` when numba is available,
+    else ``flag`` (True without numba is an error naming the extra to install)."""
+    if flag is None:
+        return HAVE_NUMBA
+    if flag and not HAVE_NUMBA:
+        raise ValueError("numba is not installed: pip install 'mechopt[fast]'")
+    return bool(flag)
+
+
+def select(cond, a, b):
+    """``a`` where ``cond``, else ``b``: ``np.where`` for arrays; in compiled code the
+    branch ``a if cond else b`` on scalars (both are evaluated first in either case)."""
+    return np.where(cond, a, b)
+
+
+def jitable(fn):
+    """Mark the plain Python function ``fn`` as callable from compiled kernels and
+    return it unchanged (Python callers, with floats or arrays, run it as Python).
+
+    numba compiles it, with :data:`OPTIONS`, for the kernels that call it and links it
+    into them, where LLVM inlines the small ones (numba's own IR inlining,
+    ``inline="always"``, is not used: it multiplies the compile time of kernels that
+    call many formulas). Nothing is imported before numba is loaded (:func:`load_numba`)."""
+    options = dict(error_model=OPTIONS["error_model"])
+    if _numba is not None:
+        from numba.extending import register_jitable
+
+        register_jitable(**options)(fn)
+    elif HAVE_NUMBA:
+        _pending.append((fn, options))
+    return fn
+
+
+def njit(fn=None, *, signature=None):
+    """``fn`` compiled by numba (cached on disk, :data:`OPTIONS`), or ``fn`` itself when
+    :data:`HAVE_NUMBA` is False.
+
+    Loads numba. Without ``signature`` it compiles on the first call, for the argument
+    types of that call; with one, now. Where no cache can be written (e.g. a read-only
+    installation) it compiles without the cache."""
+    def wrap(f):
+        nb = load_numba()
+        if nb is None:
+            return f
+        args = () if signature is None else (signature,)
+        try:
+            return nb.njit(*args, cache=True, **OPTIONS)(f)
+        except Exception:  # e.g. no writable cache location: compile without caching
+            return nb.njit(*args, **OPTIONS)(f)
+
+    return wrap if fn is None else wrap(fn)
