@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechopt.analysis.task import OBJECTIVES, DesignEvaluator, Requirements, Sampling, Task
+from mechopt.analysis.task import OBJECTIVES, DesignEvaluator, Requirements, Sampling
 
 from mechopt.run.problem import MechoptProblem, Objective
 

@@ -22,7 +22,8 @@ from __future__ import annotations
 import numpy as np
 
 from mechopt.core import geometry as _g
-from mechopt.mechanisms.biglide import Biglide, _gauss_nodes
+from mechopt.mechanisms.biglide import Biglide
+from mechopt.mechanisms.sliders import _gauss_nodes
 from mechopt.mechanisms.bipod import Bipod, bipod_tqi_integral, bipod_workspace_area
 
 from mechopt.run.problem import MechoptProblem, Objective

@@ -44,7 +44,7 @@ import numpy as np
 
 from mechopt.core import validation as _v
 from mechopt.core.protocol import Parameter, as_points
-from mechopt.mechanisms.sliders import ASSEMBLY_MODES, GTQI_METHODS, LIMIT_RTOL, TwoSliderMechanism, _gauss_nodes
+from mechopt.mechanisms.sliders import ASSEMBLY_MODES, GTQI_METHODS, TwoSliderMechanism
 
 __all__ = ["Biglide", "MODES", "ASSEMBLY_MODES", "GTQI_METHODS", "SUMMARY_KEYS"]
 
