@@ -45,7 +45,7 @@ _NUMERIC = ("paper", "reproduced", "rel_error")
 
 #: the names of the indices and quantities in the figure file names
 _TERMS = {
-    "gci": "GCI (global conditioning index)", "mci": "MCI (mean conditioning index)",
+    "gci": "GCI (global conditioning index)", "mci": "MCI (maximum conditioning index: the largest LCI over the MIC)",
     "gvi_max": "GVI max (global velocity index, largest)", "gvi_min": "GVI min (global velocity index, smallest)",
     "gpi_max": "GPI max (global payload index, largest)", "gpi_min": "GPI min (global payload index, smallest)",
     "gsi_max": "GSI max (global stiffness index, largest)", "gsi_min": "GSI min (global stiffness index, smallest)",
