@@ -54,6 +54,7 @@ __all__ = [
     "R3_MAX",
     "check_step",
     "parse_indices",
+    "index_columns",
     "plane_coordinates",
     "design_grid",
     "compute_atlas",
