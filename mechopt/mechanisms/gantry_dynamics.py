@@ -71,6 +71,7 @@ Asada H (1983), J. Dyn. Syst. Meas. Control 105:131-135 (generalized inertia ell
 from __future__ import annotations
 
 from dataclasses import dataclass, fields, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -224,6 +225,17 @@ class GantryInertia:
         return replace(sym, m13=half, m23=half)
 
 
+@lru_cache(maxsize=32)
+def _gauss_legendre(n: int):
+    """``numpy.polynomial.legendre.leggauss(n)``, computed once per order (the
+    eigenvalue problem costs about 1 ms for n = 48, and Wu's scans ask for the same
+    orders hundreds of times): read-only node and weight arrays."""
+    g, gw = np.polynomial.legendre.leggauss(n)
+    g.flags.writeable = False
+    gw.flags.writeable = False
+    return g, gw
+
+
 def rectangle_rule(box, n: int = 48):
     """Tensor Gauss-Legendre nodes ``(x, y)`` and weights (sum 1) on ``box = (xmin, xmax, ymin, ymax)``.
 
@@ -232,7 +244,7 @@ def rectangle_rule(box, n: int = 48):
     """
     n = _v.integer("n", n, 1)
     xmin, xmax, ymin, ymax = _v.finite_numbers("box", box, 4, "(xmin, xmax, ymin, ymax)")
-    g, gw = np.polynomial.legendre.leggauss(n)
+    g, gw = _gauss_legendre(n)
     xs = 0.5 * (xmax - xmin) * g + 0.5 * (xmax + xmin)
     ys = 0.5 * (ymax - ymin) * g + 0.5 * (ymax + ymin)
     X, Y = np.meshgrid(xs, ys, indexing="ij")
