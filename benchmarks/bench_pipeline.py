@@ -29,7 +29,11 @@ Rows (``--only`` takes a comma-separated subset, default all):
 ``evaluate``         ``mechopt evaluate five-bar --r1 0.85 --r2 1.6 --r3 0.55 --json``
                      (``--repeats`` times; median and best)
 ``atlas``            ``mechopt atlas five-bar --step 0.01`` (six indices, CSV and PNGs),
-                     with the compute / figures split of its ``atlas.json``
+                     with the compute / figures split of its ``atlas.json`` (with worker
+                     processes the figures are drawn there, side by side, while the
+                     command writes the CSV: ``figures`` runs from the first figure sent
+                     to the last one saved) and the rest of the wall time (``outside``:
+                     the interpreter, the imports before the run starts, and the exit)
 ``tests``            ``python -m pytest -q -p no:cacheprovider --durations=15`` plus
                      ``--pytest-args`` (e.g. ``-n 2``): wall time, peak memory, the
                      summary line and the slowest tests
@@ -263,7 +267,8 @@ def row_atlas(work: Path) -> dict:
     print("\n== atlas: mechopt atlas five-bar --step 0.01 (six indices, CSV and PNGs)")
     print(f"{'atlas':<22}{_fmt_mem(r)}{_target('atlas', r['wall'])}")
     if sec:
-        print("  atlas.json: " + ", ".join(f"{k} {v:.1f} s" for k, v in sec.items()))
+        outside = f", outside {r['wall'] - sec['total']:.1f} s" if "total" in sec else ""
+        print("  atlas.json: " + ", ".join(f"{k} {v:.1f} s" for k, v in sec.items()) + outside)
     return {"wall": r["wall"], "cpu": r["cpu"], "rss_mb": r["rss_mb"], "seconds": sec}
 
 

@@ -10,8 +10,9 @@ and ``tests/test_stan2008_readings.py`` each script's run inside it (the same
 Under ``pytest -n 2`` (pytest-xdist) the tests that share a fixture broader than a
 function (this session fixture, or a module-scoped one) go to one worker as a group
 (:func:`pytest_xdist_make_scheduler`), so that the fixture is computed once (except
-the modules of :data:`SPREAD`, whose tests are long beside their fixture); every
-other test is distributed on its own, the largest groups first.
+the modules of :data:`SPREAD`, whose tests are long beside their fixture, and those of
+:data:`SPLIT`, one group per fixture); every other test is distributed on its own,
+the largest groups first.
 """
 from __future__ import annotations
 
@@ -30,6 +31,11 @@ QUICK_GROUP = "quick_reproduction"
 #: building the fixture. (test_signals is not: its reference runs cost about as much
 #: as one of its tests, and a group of a few tests starts before the single tests.)
 SPREAD = {"test_docs", "test_fuzz"}
+#: modules whose module fixtures serve disjoint sets of tests: one group per word, made
+#: of the tests whose id (after the module) contains it, so that the groups (each with
+#: the fixture it needs) run side by side; a test with none of the words goes alone.
+#: (test_signals: an optimize and an atlas reference, each costing about one of its tests)
+SPLIT = {"test_signals": ("optimize", "atlas")}
 
 
 @pytest.fixture(scope="session")
@@ -91,6 +97,9 @@ def scope_of(nodeid: str, groups: dict) -> str:
     if nodeid.rfind("@") > nodeid.rfind("]"):
         return nodeid.split("@")[-1]
     module = Path(nodeid.split("::", 1)[0]).stem
+    if module in SPLIT:
+        name = nodeid.split("::", 1)[-1]
+        return next((f"{module}:{word}" for word in SPLIT[module] if word in name), nodeid)
     return groups.get(module, nodeid)
 
 
@@ -116,26 +125,3 @@ else:
 
         return GroupScheduling(config, log)
 
-
-def pytest_runtest_setup(item):
-    """A test that maps with ``joblib.Parallel`` needs loky's reusable executor to be
-    joblib's own: joblib reuses an executor that mechopt.run.parallel started (an earlier
-    test of the same process, which under xdist may be any test) and fails on its
-    missing temporary-folder manager (AttributeError in joblib/executor.py). Such an
-    executor is shut down first, as a fresh process would have none."""
-    import inspect
-
-    try:
-        source = inspect.getsource(item.function)
-    except (AttributeError, OSError, TypeError):
-        return
-    if "joblib import Parallel" not in source:
-        return
-    try:
-        from joblib.externals.loky import reusable_executor
-    except ImportError:  # pragma: no cover
-        return
-    ex = reusable_executor._executor
-    if ex is not None and not hasattr(ex, "_temp_folder_manager"):
-        ex.shutdown(wait=True)
-        reusable_executor._executor = None

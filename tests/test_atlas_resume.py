@@ -10,7 +10,8 @@ import pytest
 
 from mechopt.cli import main
 
-ARGS = ["atlas", "five-bar", "--step", "0.04", "--n-jobs", "1", "--chunk-size", "128", "--no-figures"]
+# 1364 designs in 22 chunks, one after another
+ARGS = ["atlas", "five-bar", "--step", "0.05", "--n-jobs", "1", "--chunk-size", "64", "--no-figures"]
 
 
 def _run(out, env):
@@ -23,19 +24,25 @@ def test_killed_atlas_resumes_to_the_same_table(tmp_path):
     # the pure-NumPy path is slow enough to be killed half-way, and both runs use it
     env = {**os.environ, "MECHOPT_NO_NUMBA": "1"}
     ref, run = tmp_path / "ref", tmp_path / "run"
-    assert _run(ref, env).wait() == 0
-    proc = _run(run, env)
-    chunks = run / ".atlas_chunks"
-    deadline = time.time() + 300
-    while len(list(chunks.glob("chunk_*.npz"))) < 3:
-        assert proc.poll() is None, "the atlas finished before it could be killed"
-        assert time.time() < deadline
-        time.sleep(0.05)
-    proc.send_signal(signal.SIGKILL)
-    proc.wait()
-    saved = len(list(chunks.glob("chunk_*.npz")))
-    assert not (run / "atlas.csv").exists()
-    assert _run(run, env).wait() == 0
+    uninterrupted = _run(ref, env)  # side by side with the run that is killed and resumed
+    try:
+        proc = _run(run, env)
+        chunks = run / ".atlas_chunks"
+        deadline = time.time() + 300
+        while len(list(chunks.glob("chunk_*.npz"))) < 3:
+            assert proc.poll() is None, "the atlas finished before it could be killed"
+            assert time.time() < deadline
+            time.sleep(0.05)
+        proc.send_signal(signal.SIGKILL)
+        proc.wait()
+        saved = len(list(chunks.glob("chunk_*.npz")))
+        assert not (run / "atlas.csv").exists()
+        assert _run(run, env).wait() == 0
+        assert uninterrupted.wait() == 0
+    finally:
+        if uninterrupted.poll() is None:  # a failed check above
+            uninterrupted.kill()
+            uninterrupted.wait()
     assert (run / "atlas.csv").read_bytes() == (ref / "atlas.csv").read_bytes()
     table = pd.read_csv(run / "atlas.csv")
     assert not table.duplicated(["r1", "r2", "r3"]).any()

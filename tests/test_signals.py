@@ -113,12 +113,21 @@ def _case(tmp_path, argv, sig, seed, reference, file, extra_env=None):
     assert not list(out.rglob(".*.tmp"))
 
 
+# one reference per command, each computed once per module and only where a test needs it:
+# under pytest-xdist the optimize and the atlas tests form two groups (tests/conftest.py,
+# SPLIT) that run side by side, each computing its own reference
 @pytest.fixture(scope="module")
-def references(tmp_path_factory):
-    base = tmp_path_factory.mktemp("ref")
-    _run_to_end(OPT, base / "opt")
-    _run_to_end(ATLAS, base / "atlas", {"MECHOPT_NO_NUMBA": "1"})
-    return {"optimize": base / "opt" / "front.csv", "atlas": base / "atlas" / "atlas.csv"}
+def optimize_reference(tmp_path_factory):
+    out = tmp_path_factory.mktemp("ref") / "opt"
+    _run_to_end(OPT, out)
+    return out / "front.csv"
+
+
+@pytest.fixture(scope="module")
+def atlas_reference(tmp_path_factory):
+    out = tmp_path_factory.mktemp("ref") / "atlas"
+    _run_to_end(ATLAS, out, {"MECHOPT_NO_NUMBA": "1"})
+    return out / "atlas.csv"
 
 
 #: in CI one signal per command and SIGKILL on both; every (command, signal) pair at
@@ -128,40 +137,50 @@ CI_CASES = [("optimize", signal.SIGINT), ("optimize", signal.SIGKILL), ("atlas",
 
 
 @pytest.mark.parametrize("sig", [s for w, s in CI_CASES if w == "optimize"], ids=lambda s: s.name)
-def test_optimize_under_a_signal(tmp_path, references, sig):
-    _case(tmp_path, OPT, sig, 1, references["optimize"], "front.csv")
+def test_optimize_under_a_signal(tmp_path, optimize_reference, sig):
+    _case(tmp_path, OPT, sig, 1, optimize_reference, "front.csv")
 
 
 @pytest.mark.parametrize("sig", [s for w, s in CI_CASES if w == "atlas"], ids=lambda s: s.name)
-def test_atlas_under_a_signal(tmp_path, references, sig):
+def test_atlas_under_a_signal(tmp_path, atlas_reference, sig):
     # the NumPy kernels are slow enough to be caught mid-way
-    _case(tmp_path, ATLAS, sig, 1, references["atlas"], "atlas.csv", {"MECHOPT_NO_NUMBA": "1"})
+    _case(tmp_path, ATLAS, sig, 1, atlas_reference, "atlas.csv", {"MECHOPT_NO_NUMBA": "1"})
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", range(2, 7))
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGKILL], ids=lambda s: s.name)
 @pytest.mark.parametrize("what", ["optimize", "atlas"])
-def test_random_moments(tmp_path, references, what, sig, seed):
+def test_random_moments(tmp_path, request, what, sig, seed):
     argv, file, env = ((OPT, "front.csv", None) if what == "optimize"
                        else (ATLAS, "atlas.csv", {"MECHOPT_NO_NUMBA": "1"}))
-    _case(tmp_path, argv, sig, seed, references[what], file, env)
+    reference = request.getfixturevalue(f"{what}_reference")
+    _case(tmp_path, argv, sig, seed, reference, file, env)
 
 
 def test_a_second_run_on_the_same_folder_fails_at_once(tmp_path):
     out = tmp_path / "shared"
-    tag = uuid.uuid4().hex
+    lone = tmp_path / "lone"  # the same run alone in its folder, side by side with the first
+    tag, lone_tag = uuid.uuid4().hex, uuid.uuid4().hex
     first = _start(OPT, out, tag)
-    assert _wait_for_workers(first, tag)
-    t0 = time.monotonic()
-    second = subprocess.run([sys.executable, "-m", "mechopt.cli", *OPT, "--seed", "4", "--out", str(out)],
-                            capture_output=True, text=True, timeout=120)
-    assert time.monotonic() - t0 < 20
-    assert second.returncode == 2
-    lines = second.stderr.strip().splitlines()
-    assert len(lines) == 1 and "in use by another mechopt run" in lines[0]
-    _, err = first.communicate(timeout=600)
-    assert first.returncode == 0, err
-    lone = tmp_path / "lone"
-    _run_to_end(OPT, lone)
+    alone = _start(OPT, lone, lone_tag)
+    try:
+        assert _wait_for_workers(first, tag)
+        t0 = time.monotonic()
+        second = subprocess.run([sys.executable, "-m", "mechopt.cli", *OPT, "--seed", "4", "--out",
+                                 str(out)], capture_output=True, text=True, timeout=120)
+        assert time.monotonic() - t0 < 20
+        assert second.returncode == 2
+        lines = second.stderr.strip().splitlines()
+        assert len(lines) == 1 and "in use by another mechopt run" in lines[0]
+        _, err = first.communicate(timeout=600)
+        assert first.returncode == 0, err
+        _, err = alone.communicate(timeout=600)
+        assert alone.returncode == 0, err
+    finally:
+        for proc in (first, alone):  # a failed check above
+            if proc.poll() is None:
+                proc.kill()
+                proc.communicate()
+    assert _no_survivors(tag) and _no_survivors(lone_tag)
     assert (out / "front.csv").read_bytes() == (lone / "front.csv").read_bytes()

@@ -32,11 +32,17 @@ over designs and quadrature nodes in compiled code (numba) or in NumPy arrays,
 never in Python. A design whose MIC radius is 0 (no singularity-free disk on
 the y axis: every design with ``r3 = 1.5``, where ``r1 + r2 = r3``) gets NaN
 indices.
+
+With worker processes, :func:`run_atlas` starts them first (their start-up overlaps
+its own), has one of them triangulate the plane beside the chunks, and draws the
+figures there too, side by side, while it writes the CSV: each figure is the one
+:func:`draw_atlas` gives, byte for byte.
 """
 from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -147,6 +153,13 @@ def design_grid(step):
     """
     import pandas as pd
 
+    r1, r2, r3 = _lattice(step)
+    s, t = plane_coordinates(r1, r2, r3)
+    return pd.DataFrame({"r1": r1, "r2": r2, "r3": r3, "s": s, "t": t})
+
+
+def _lattice(step):
+    """``(r1, r2, r3)`` arrays of :func:`design_grid` (NumPy only)."""
     step = check_step(step)
     n_sum = round(SUM / step)
     exact = abs(n_sum * step - SUM) <= 1e-9 * SUM
@@ -163,9 +176,7 @@ def design_grid(step):
     r3 = np.round(np.concatenate(r3s), 12)
     r2 = np.round(SUM - r1 - r3, 12)
     keep = r2 > 0
-    r1, r2, r3 = r1[keep], r2[keep], r3[keep]
-    s, t = plane_coordinates(r1, r2, r3)
-    return pd.DataFrame({"r1": r1, "r2": r2, "r3": r3, "s": s, "t": t})
+    return r1[keep], r2[keep], r3[keep]
 
 
 # --- evaluation -------------------------------------------------------------
@@ -175,11 +186,27 @@ def _atlas_chunk(task):
     return evaluate_designs(r1, r2, r3, quadrature=quadrature, mode=mode)
 
 
+def _prepare_worker(_):
+    """Sent to each worker when the pool starts (:func:`mechopt.run.parallel.start_workers`):
+    unpickling it imports this module there (NumPy, numba, the kernels' module) before
+    the first work unit arrives; the compiled kernels load with the warm-up or the
+    first chunk."""
+    return None
+
+
 def _warm_up(quadrature, mode):
     """Compile (or load from numba's cache) the kernels once in this process,
     so that worker processes started afterwards load them from the cache."""
     if _k.HAVE_NUMBA:
         evaluate_designs([1.0], [1.5], [0.5], quadrature=quadrature, mode=mode)
+
+
+def _warm_up_task(task):
+    """Work unit: :func:`_warm_up` in one worker, alone, before the chunks are sent: with
+    a cold numba cache the kernels compile there once and the other workers then load
+    them from the cache it wrote; with a warm one that worker has them loaded for its
+    first chunk (and this process, which evaluates nothing, loads nothing)."""
+    _warm_up(*task)
 
 
 #: designs per work unit: fixed (not tied to the worker count) so that the chunks
@@ -315,7 +342,7 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
     """
     import pandas as pd
 
-    from mechopt.run.parallel import chunks, parallel_map
+    from mechopt.run.parallel import chunks, map_async, parallel_map
     from mechopt.core.quadrature import QUADRATURES
 
     cols = index_columns(indices)
@@ -334,6 +361,11 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
             raise ValueError(f"n_jobs must be a positive integer, got {n_jobs!r}")
     chunk_size = DEFAULT_CHUNK_SIZE if chunk_size is None else _v.integer("chunk_size", chunk_size, 1)
     n_chunks = max(1, math.ceil(n / int(chunk_size)))
+    warm = None
+    if client is None and workers > 1 and n_chunks > 1:
+        # the kernels compile (or load from numba's cache) once, in one worker, while this
+        # process prepares the chunks; the other workers then load them from the cache
+        warm = map_async(_warm_up_task, [(quadrature, mode)], n_jobs=workers)
     idx = np.arange(n)
     parts = chunks(idx, n_chunks)
     r1, r2, r3 = (grid[c].to_numpy() for c in ("r1", "r2", "r3"))
@@ -354,7 +386,10 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
                 for i, t in enumerate(tasks)]
     todo = [i for i, d in enumerate(done) if d is None]
     if client is None and todo:
-        _warm_up(quadrature, mode)
+        if warm is not None:
+            warm.result(0)
+        else:
+            _warm_up(quadrature, mode)
 
     def _save(k, values):
         if store is not None:
@@ -465,15 +500,26 @@ def _triangulation(s, t):
     return tri
 
 
+def _delaunay(task):
+    """Work unit: qhull's ``(triangles, neighbors)`` of the points ``task = (s, t)``
+    (computed in a worker while the others evaluate designs; see :func:`_triangulation`)."""
+    s, t = task
+    tri = _triangulation(s, t)
+    return tri.triangles, tri._neighbors
+
+
 def draw_atlas(table, column: str, region=None, where: str | None = None, quadrature=None):
     """Filled-contour atlas of ``table[column]`` in the (s, t) plane: a
     :class:`matplotlib.figure.Figure` with the sub-region boundary lines, a
     colour bar and, when ``region`` (boolean per row) is given, its outline."""
+    return _draw_plane(table["s"].to_numpy(float), table["t"].to_numpy(float),
+                       table[column].to_numpy(float), column, region, where, quadrature)
+
+
+def _draw_plane(s, t, v, column, region=None, where=None, quadrature=None):
+    """:func:`draw_atlas` of the values ``v`` at the points ``(s, t)`` (float arrays)."""
     from matplotlib.figure import Figure
 
-    s = table["s"].to_numpy(float)
-    t = table["t"].to_numpy(float)
-    v = table[column].to_numpy(float)
     fig = Figure(figsize=(8.0, 5.4))
     ax = fig.add_subplot()
     tri = _triangulation(s, t)
@@ -512,6 +558,28 @@ def draw_atlas(table, column: str, region=None, where: str | None = None, quadra
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.3), fontsize=7, ncol=3, frameon=False)
     ax.set_ylim(-0.3, math.sqrt(1.5) * R3_MAX + 0.15)
     return fig
+
+
+def _figure_columns(cols, groups) -> list:
+    """The columns of ``cols`` that get a figure (not ``mic_center_y``; ``r_mic`` only
+    when asked for)."""
+    return [c for c in cols if c != "mic_center_y" and (c != "r_mic" or "r_mic" in groups)]
+
+
+def _draw_figure(task) -> str:
+    """Work unit: draw one atlas (:func:`_draw_plane`) and save it as ``task["path"]``
+    (:func:`mechopt.run.io.save_figure`); the figures of an atlas are independent, so
+    the workers draw them side by side. ``task["triangulation"]`` (qhull's triangles and
+    neighbours of the points, or None) spares each worker its own qhull run."""
+    from mechopt.run import io as _io
+
+    s, t = task["s"], task["t"]
+    if task.get("triangulation") is not None and _plane_key(s, t) not in _TRIANGULATIONS:
+        _remember_triangulation(s, t, *task["triangulation"])
+    fig = _draw_plane(s, t, task["values"], task["column"], task["region"], task["where"],
+                      task["quadrature"])
+    _io.save_figure(fig, task["path"])
+    return Path(task["path"]).name
 
 
 # --- the command ------------------------------------------------------------
@@ -568,12 +636,23 @@ def _run_atlas(out, run, step, groups, cols, quadrature, mode, n_jobs, dask, das
                figures, chunk_size, verbose, t0):
     """The computation and the files of :func:`run_atlas` (its inputs checked)."""
     from mechopt.run import io as _io
-    from mechopt.run.parallel import connect
+    from mechopt.run.parallel import connect, map_async, start_workers, stop_workers
     from mechopt.run.progress import Progress
 
     client = connect(dask, timeout=dask_timeout) if dask is not None else None
+    # worker processes of this machine: the chunks go there when there are several (else
+    # everything runs here, as parallel_map would), and then the figures too
+    grid_n = len(_lattice(step)[0])
+    size = DEFAULT_CHUNK_SIZE if chunk_size is None else chunk_size
+    local = n_jobs if client is None and n_jobs > 1 and grid_n > size else 1
+    tri = None
     try:
-        grid_n = len(design_grid(step))
+        if local > 1:  # their start-up overlaps the work of this process up to the first chunk
+            start_workers(local, prepare=_prepare_worker)
+        if figures and local > 1:  # the plane's triangulation, in a worker beside the chunks
+            grid = design_grid(step)
+            tri = map_async(_delaunay, [(grid["s"].to_numpy(float), grid["t"].to_numpy(float))],
+                            n_jobs=local)
         bar = Progress(1, "atlas") if verbose else None
 
         def _tick(done, total):
@@ -592,12 +671,21 @@ def _run_atlas(out, run, step, groups, cols, quadrature, mode, n_jobs, dask, das
         t_compute = time.perf_counter() - t1
         if bar is not None:
             bar.close()
+        if tri is not None:
+            try:
+                tri = tri.result(0)
+            except Exception:  # noqa: BLE001 - each figure then triangulates (and fails) itself
+                tri = None
+    except BaseException:  # e.g. chunks of other settings: no worker outlives the run
+        if local > 1:
+            stop_workers()
+        raise
     finally:
         if client is not None:
             client.close()
     with _io.output_set(out, run) as stage:
         _write_atlas(stage, table, groups, cols, cond, where, quadrature, figures, t0, t_compute, step,
-                     mode, dask, n_jobs)
+                     mode, dask, n_jobs, local=local, triangulation=tri)
     import shutil
 
     shutil.rmtree(out / CHUNK_DIR, ignore_errors=True)  # the atlas is complete
@@ -618,28 +706,44 @@ ATLAS_OUTPUTS = ("atlas.csv", "region.csv", "atlas.json", "atlas_*.png")
 
 
 def _write_atlas(stage, table, groups, cols, cond, where, quadrature, figures, t0, t_compute, step, mode,
-                 dask, n_jobs):
-    """The atlas's files, written into the staging folder of its output set."""
-    from mechopt.run import io as _io
+                 dask, n_jobs, local=1, triangulation=None):
+    """The atlas's files, written into the staging folder of its output set.
 
-    _io.write_csv(table, stage / "atlas.csv")
-    region = None
-    files = ["atlas.csv"]
-    if cond is not None:
-        region = cond.evaluate(table)
-        _io.write_csv(table[region], stage / "region.csv")
-        files.append("region.csv")
-    t2 = time.perf_counter()
+    With ``local`` > 1 worker processes the figures are drawn there, side by side, while
+    this process writes the tables (``seconds.figures`` is then the time from the first
+    figure sent to the last one saved); otherwise the tables first, then each figure."""
+    from mechopt.run import io as _io
+    from mechopt.run.parallel import map_async
+
+    region = cond.evaluate(table) if cond is not None else None
+    files = ["atlas.csv"] + (["region.csv"] if region is not None else [])
+    pending = None
     if figures:
-        for c in cols:
-            if c == "mic_center_y":
-                continue
-            if c == "r_mic" and "r_mic" not in groups:
-                continue
-            fig = draw_atlas(table, c, region=region, where=where, quadrature=quadrature)
-            _io.save_figure(fig, stage / f"atlas_{c}.png")
-            files.append(f"atlas_{c}.png")
-    t_draw = time.perf_counter() - t2
+        names = _figure_columns(cols, groups)
+        s, t = table["s"].to_numpy(float), table["t"].to_numpy(float)
+        mask = None if region is None else np.asarray(region, dtype=bool)
+        tasks = [{"s": s, "t": t, "values": table[c].to_numpy(float), "column": c, "region": mask,
+                  "where": where, "quadrature": quadrature,
+                  "path": os.path.abspath(stage / f"atlas_{c}.png"),  # workers keep their own cwd
+                  "triangulation": triangulation} for c in names]
+        files += [f"atlas_{c}.png" for c in names]
+        if local > 1:
+            t2 = time.perf_counter()
+            pending = map_async(_draw_figure, tasks, n_jobs=local)
+    try:
+        _io.write_csv(table, stage / "atlas.csv")
+        if region is not None:
+            _io.write_csv(table[region], stage / "region.csv")
+        if figures:
+            if pending is None:
+                t2 = time.perf_counter()
+                pending = map_async(_draw_figure, tasks, n_jobs=1)  # here, one after another
+            pending.results()
+    except BaseException:  # no worker draws into the staging folder once it is removed
+        if pending is not None:
+            pending.cancel()
+        raise
+    t_draw = time.perf_counter() - t2 if figures else 0.0
     n_bad = int((table["r_mic"] <= 0).sum())
     manifest = {
         "mechanism": "five-bar",

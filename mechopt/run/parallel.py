@@ -8,12 +8,14 @@ of a population), never over single points.
 from __future__ import annotations
 
 import math
+import os
+import threading
 from typing import Callable, Iterable, Sequence
 
 from mechopt.core import validation as _v
 
-__all__ = ["parallel_map", "chunks", "connect", "check_cluster", "kernel_path", "stop_workers",
-           "DEFAULT_STALL_S"]
+__all__ = ["parallel_map", "map_async", "start_workers", "chunks", "connect", "check_cluster",
+           "kernel_path", "stop_workers", "DEFAULT_STALL_S"]
 
 #: most local worker processes (a typo such as --n-jobs 1e9 would overflow joblib)
 MAX_JOBS = 1024
@@ -21,6 +23,11 @@ MAX_JOBS = 1024
 #: came from :func:`connect`, whose ``timeout`` is used instead
 DEFAULT_STALL_S = 300.0
 _STALL = {}  # id(client) -> stall timeout of clients made by connect()
+#: idle local workers exit after this many seconds (and are started again when needed)
+WORKER_IDLE_S = 10
+#: this process's pool of local workers: {"executor", "n_jobs", "pid"} (see _executor)
+_POOL: dict = {}
+_POOL_LOCK = threading.Lock()
 
 
 def kernel_path() -> str:
@@ -142,60 +149,219 @@ def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
             out.append(func(item))
             _tick(i, out[-1])
         return out
-    from joblib.externals.loky import get_reusable_executor
-
-    executor = get_reusable_executor(max_workers=n_jobs, initializer=_die_with_parent)
+    pending = map_async(func, items, n_jobs=n_jobs)
     try:
-        futures = [executor.submit(func, item) for item in items]
-        for i, fut in enumerate(futures):  # in input order, as they finish
-            out.append(fut.result())
+        for i in range(total):  # in input order, as they finish
+            out.append(pending.result(i))
             _tick(i, out[-1])
     except BaseException:  # an error, Ctrl-C or SIGTERM: no worker outlives the run
-        stop_workers()
+        pending.cancel()
         raise
     return out
 
 
-def stop_workers():
-    """End every local worker process now (after an interrupt or a fatal error)."""
-    import threading
+class _Pending:
+    """The results of :func:`map_async`, to collect in input order (``result(i)``,
+    ``results()``); ``cancel()`` ends every local worker at once (:func:`stop_workers`)."""
 
+    def __init__(self, func, items, futures):
+        self._func, self._items, self._futures = func, items, futures
+        self._done = {}
+
+    def __len__(self):
+        return len(self._items)
+
+    def result(self, i):
+        """The result of item ``i`` (waits for it; computed here when mapped with one job)."""
+        if i not in self._done:
+            self._done[i] = (self._func(self._items[i]) if self._futures is None
+                             else self._futures[i].result())
+        return self._done[i]
+
+    def results(self) -> list:
+        """Every result, in input order; any error (or an interrupt) ends every worker first."""
+        try:
+            return [self.result(i) for i in range(len(self._items))]
+        except BaseException:
+            self.cancel()
+            raise
+
+    def cancel(self):
+        if self._futures is not None:
+            for fut in self._futures:
+                fut.cancel()
+            stop_workers()
+
+
+def map_async(func: Callable, items: Iterable, n_jobs: int = 2) -> _Pending:
+    """Start ``[func(item) for item in items]`` on ``n_jobs`` local worker processes and
+    return at once (this process may work meanwhile); ``.results()`` waits for them, in
+    input order. With one job nothing starts: each item is evaluated in this process
+    when its result is asked for. An error ends every worker (:func:`stop_workers`)
+    before it is raised."""
+    items = list(items)
+    n_jobs = _v.integer("n_jobs", n_jobs, 1, MAX_JOBS)
+    if n_jobs == 1:
+        return _Pending(func, items, None)
+    executor = _executor(n_jobs)
+    futures = []
+    try:
+        for item in items:
+            futures.append(_submit(executor, func, item))
+    except BaseException:
+        for fut in futures:
+            fut.cancel()
+        stop_workers()
+        raise
+    return _Pending(func, items, futures)
+
+
+def start_workers(n_jobs: int = 2, prepare: Callable | None = None) -> None:
+    """Start the ``n_jobs`` local worker processes now, without waiting for them, so that
+    their start-up (a fresh interpreter and its imports each) overlaps this process's
+    own work before its first :func:`parallel_map`; nothing with one job.
+
+    ``prepare`` (a picklable, module-level function of one ignored argument) is sent
+    ``n_jobs`` times, so that each worker most likely runs it once: unpickling it
+    imports its module there, before the first real work unit arrives."""
+    n_jobs = _v.integer("n_jobs", n_jobs, 1, MAX_JOBS)
+    if n_jobs > 1:
+        executor = _executor(n_jobs)
+        for i in range(n_jobs if prepare is not None else 1):  # the first submit spawns every worker
+            _submit(executor, prepare if prepare is not None else int, i)
+
+
+def _usable(executor) -> bool:
+    flags = getattr(executor, "_flags", None)
+    return flags is None or not (flags.broken or flags.shutdown)
+
+
+def _executor(n_jobs: int):
+    """This process's pool of ``n_jobs`` loky worker processes, started on first use and
+    reused by later maps (replaced when ``n_jobs`` changes or the pool broke).
+
+    It is mechopt's own executor, not loky's process-wide reusable one: joblib.Parallel
+    (which reuses that one and expects its own memmapping executor there) keeps working
+    in the same process. Each worker gets this process's pid, so that one started
+    just before this process died ends as soon as it runs (:func:`_die_with_parent`)."""
+    from joblib.externals.loky import ProcessPoolExecutor
+
+    with _POOL_LOCK:
+        ex = _POOL.get("executor")
+        if ex is not None and _POOL.get("pid") != os.getpid():  # inherited through a fork
+            _POOL.clear()
+            ex = None
+        if ex is not None and (_POOL["n_jobs"] != n_jobs or not _usable(ex)):
+            _POOL.clear()
+            ex.shutdown(wait=True)
+            ex = None
+        if ex is None:
+            ex = ProcessPoolExecutor(max_workers=n_jobs, timeout=WORKER_IDLE_S,
+                                     initializer=_die_with_parent, initargs=(os.getpid(),))
+            _POOL.update(executor=ex, n_jobs=n_jobs, pid=os.getpid())
+        return ex
+
+
+_AT_EXIT = {}  # pid -> True once _end_pool_at_exit is registered in that process
+
+
+def _submit(executor, func, item):
+    """``executor.submit(func, item)``; the first submit of a process also registers
+    :func:`_end_pool_at_exit` (after loky's own exit hook, which that submit registers,
+    so that it runs before it)."""
+    fut = executor.submit(func, item)
+    if os.getpid() not in _AT_EXIT:
+        _AT_EXIT[os.getpid()] = True
+        try:  # the hook of concurrent.futures: runs before threads are joined, in reverse order
+            threading._register_atexit(_end_pool_at_exit)
+        except (AttributeError, RuntimeError):  # another Python, or already shutting down
+            pass
+    return fut
+
+
+def _end_pool_at_exit():
+    """At interpreter exit the pool's workers have nothing left to do: they are killed
+    rather than asked to stop, since loky would wait for each one's own interpreter
+    teardown (about a second with numba and matplotlib loaded), and the process with it."""
+    with _POOL_LOCK:
+        mine = _POOL.get("pid") == os.getpid()
+    if mine:
+        _kill_pool()
+
+
+def stop_workers():
+    """End every local worker process now (after an interrupt or a fatal error): this
+    process's pool is killed before this returns (so that none writes a file after it),
+    and loky's process-wide executor (joblib.Parallel's) is shut down."""
     from joblib.externals.loky import reusable_executor
 
-    # killing the workers can race loky's manager thread, which then dies with a
-    # KeyError traceback on stderr: the run is already ending with its one line
+    _kill_pool()
+    ex = reusable_executor._executor
+    if ex is not None:
+        ex.shutdown(wait=False, kill_workers=True)
+
+
+def _quiet_manager_threads():
+    """Killing workers can race loky's manager thread, which then dies with a KeyError
+    traceback on stderr: the run is already ending (with its one line, if any)."""
     previous = threading.excepthook
+    if getattr(previous, "_mechopt_quiet", False):
+        return
 
     def _quiet(args):
         if args.thread is not None and args.thread.name.startswith("ExecutorManagerThread"):
             return
         previous(args)
 
+    _quiet._mechopt_quiet = True
     threading.excepthook = _quiet
-    ex = reusable_executor._executor
-    if ex is not None:
-        ex.shutdown(wait=False, kill_workers=True)
 
 
-def _die_with_parent():
-    """Worker initializer: the worker ends when the process that started it dies, even
-    by SIGKILL (which runs no cleanup): PR_SET_PDEATHSIG on Linux, and everywhere a
-    daemon thread that exits once the parent pid changes."""
+def _kill_pool():
+    """Kill the workers of this process's pool now (SIGKILL) and forget the pool."""
+    _quiet_manager_threads()
+    with _POOL_LOCK:
+        ours = _POOL.get("executor") if _POOL.get("pid") == os.getpid() else None
+        _POOL.clear()
+    if ours is not None:
+        import signal
+
+        try:
+            procs = list(getattr(ours, "_processes", {}).values())
+        except RuntimeError:  # changed size under loky's manager thread
+            procs = []
+        for proc in procs:
+            try:
+                if proc.exitcode is None:  # alive (not reaped: its pid is still its own)
+                    # SIGKILL now: loky's own kill runs later, in its manager thread
+                    os.kill(proc.pid, signal.SIGKILL)
+            except (OSError, AttributeError, ValueError):
+                pass
+        ours.shutdown(wait=False, kill_workers=True)
+
+
+def _die_with_parent(parent: int | None = None):
+    """Worker initializer: the worker ends when the process that started it (pid
+    ``parent``, given by that process) dies, even by SIGKILL (which runs no cleanup):
+    PR_SET_PDEATHSIG on Linux, and everywhere a daemon thread that exits once the parent
+    pid changes. A worker whose parent died while it was starting (before this ran) ends
+    here at once: its parent pid is no longer ``parent``."""
     import os
     import signal
     import threading
     import time
 
-    parent = os.getppid()
+    if parent is None:
+        parent = os.getppid()
     try:
         import ctypes
 
         libc = ctypes.CDLL("libc.so.6", use_errno=True)
         libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
-        if os.getppid() != parent:  # the parent died before prctl took effect
-            os._exit(1)
     except (OSError, AttributeError):
         pass
+    if os.getppid() != parent:  # the parent died before the death signal was set
+        os._exit(1)
 
     def watch():
         while True:
