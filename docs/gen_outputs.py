@@ -595,7 +595,7 @@ def _design() -> str:
             derived = [f"theta{i}_{e}_deg" for i in (1, 2) for e in ("min", "max")]
         else:
             derived = [f"q{i}_{e}" for i in (1, 2) for e in ("min", "max")] + ["stroke"]
-        if m in ("gantry", "biglide"):
+        if spec.link_angles is not None:
             derived += [f"link{i}_angle_{e}_deg" for i in (1, 2) for e in ("min", "max")]
         rows.append((f"`{m}`", _codes(spec.lengths), _codes(spec.modes), _codes(derived)))
     for n in names:
@@ -617,7 +617,7 @@ def _design() -> str:
                ("`task_x`", "x of the task's reference point (its centre) in the base frame", "unit"),
                ("`task_y`", "y of the task's reference point", "unit"),
                ("`theta1_min_deg`, `theta1_max_deg`, `theta2_min_deg`, `theta2_max_deg`",
-                "five-bar: crank ranges over the task", "deg"),
+                "mechanisms with cranks (five-bar, asymmetric five-bar): crank ranges over the task", "deg"),
                ("`q1_min`, `q1_max`, `q2_min`, `q2_max`", "sliders: actuator ranges over the task", "unit"),
                ("`stroke`", "sliders: the longest stroke", "unit"),
                ("`link1_angle_min_deg`, `link1_angle_max_deg`, `link2_angle_min_deg`, `link2_angle_max_deg`",

@@ -36,6 +36,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy.optimize import brentq, minimize_scalar
 
+from mechopt.core import validation as _v
 from mechopt import FiveBar
 from mechopt.run import io as _io
 from mechopt.run.parallel import parallel_map
@@ -63,7 +64,7 @@ GOLDEN_STEP = 0.01
 #: golden-section bracket width at which the search stops [-]
 GOLDEN_TOL = 1e-6
 #: two staircase values within this are the same level (r_MIC = 1 carries ~1e-11 noise)
-LEVEL_ATOL = 1e-9
+LEVEL_ATOL = _v.RESOLUTION
 
 
 def _rec(q):
@@ -245,7 +246,7 @@ def _row_for_rho(rho):
 
 def _curve(step, n_jobs=2):
     lo, hi = RHO_BOUNDS
-    rhos = np.round(np.arange(lo, hi + 1e-9, step), 6)
+    rhos = np.round(np.arange(lo, hi + _v.RESOLUTION, step), 6)
     return pd.DataFrame(parallel_map(_row_for_rho, list(rhos), n_jobs=n_jobs))
 
 
@@ -381,7 +382,7 @@ def _claim_rows(curve, fa, lower, at_paper):
     g_lo, g_hi = lo_rec.value, hi_rec.value
     rows = []
     # a single optimum in (1.8, 2.3): a_MAX on a 0.01 grid of [1.8, 2.3]
-    rg = np.round(np.arange(g_lo, g_hi + 1e-9, 0.01), 6)
+    rg = np.round(np.arange(g_lo, g_hi + _v.RESOLUTION, 0.01), 6)
     av = np.array([_a_max(float(r)) for r in rg])
     d = np.diff(av)
     j = int(np.argmax(av))
@@ -431,7 +432,7 @@ def _claim_rows(curve, fa, lower, at_paper):
     inside = abs(ey - m.center_y) <= at_paper["a_max"] / 2.0
     rows.append(claim_row(
         "claim:isotropic_point_E", cite(PAPER, "sec. III, eq. (21)-(22); sec. IV, Fig. 6 text"),
-        err < 1e-9 and inside,
+        err < _v.RESOLUTION and inside,
         f"LCI at E = (0, sqrt(2)/2 (l1 + l2)) = 1 within {err:.1e} for all {len(curve)} tied designs "
         f"of curve.csv (rho in [{curve['rho'].min():g}, {curve['rho'].max():g}]); at rho* = {rho_star}: "
         f"LCI(E) = {lci_e:.12f}, E_y = {ey:.4f} inside the square (centre {m.center_y:.4f}, half side "

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from mechopt.core import validation as _v
 from mechopt import FiveBar
 from mechopt.analysis.performance import global_indices, region_indices
 from mechopt.core.published import cite, claim_row, compare, lookup, printed_half_unit, records
@@ -228,7 +229,7 @@ def _rim_singular_points(fb: FiveBar, n: int = 20000) -> int:
     samples 2 pi r / n apart it stays below ~1e-4)."""
     m = mic(fb)
     phi = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
-    r = m.radius * (1.0 - 1e-9)
+    r = m.radius * (1.0 - _v.RESOLUTION)
     L = fb.lci(r * np.cos(phi), m.center_y + r * np.sin(phi))
     low = (L < np.roll(L, 1)) & (L <= np.roll(L, -1)) & (L < 1e-3)
     return int(low.sum())
@@ -300,7 +301,7 @@ def claim_rows(out) -> pd.DataFrame:
     g0 = region_indices(fb, gcw(fb, 0.5))["gci"]
     g1 = region_indices(fb.scaled(d), gcw(fb.scaled(d), 0.5))["gci"]
     rows.append(claim_row("claim:gci_unchanged_by_D", cite(PAPER, "sec. 3.2.3 step 3"),
-                          abs(g1 - g0) <= 1e-9 * g0,
+                          abs(g1 - g0) <= _v.RESOLUTION * g0,
                           f"GCI over the GCW: {g0:.6f} non-dimensional, {g1:.6f} for D = {d:g} mm "
                           f"(the paper's 'still {gci_rec.printed}': the invariance holds; the value "
                           f"{gci_rec.printed} itself is the gcw_gci row)"))

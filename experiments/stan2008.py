@@ -91,6 +91,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 from scipy.optimize import brentq, minimize_scalar
 
+from mechopt.core import validation as _v
 from mechopt.run import io as _io
 from mechopt.mechanisms.biglide import Biglide
 from mechopt.mechanisms.bipod import Bipod, bipod_tqi_integral, bipod_workspace_area
@@ -101,7 +102,7 @@ from mechopt.run.weighted import WeightedSum
 from mechopt.run.plotting import labelled_colorbar
 from mechopt.core.published import (ACCURACY, TABLE_COLUMNS, claim_row, compare, lookup,
                                     printed_half_unit, records, tolerance)
-from mechopt.core.quadrature import grid_over
+from mechopt.core.quadrature import gauss_legendre, grid_over
 from mechopt.run.runner import make_algorithm, optimize, parse_weights, sweep
 
 __all__ = ["run", "SETTINGS", "WEIGHTS", "SEED",
@@ -271,11 +272,11 @@ def _reachable_optima(x, T, W):
 
 
 def _interval_text(opt, hi):
-    inner = opt[opt < hi - 1e-12]
+    inner = opt[opt < hi - _v.ROUNDING]
     parts = []
     if inner.size:
         parts.append(f"[{inner.min():.3f}, {inner.max():.3f}]" if inner.size > 1 else f"{inner[0]:.3f}")
-    if np.any(opt >= hi - 1e-12):
+    if np.any(opt >= hi - _v.ROUNDING):
         parts.append(f"{{{hi:g}}}")
     return " U ".join(parts)
 
@@ -399,7 +400,7 @@ def bipod_t_readings(u, n_gauss: int = 24, n_edge: int = 201) -> dict:
             raise RuntimeError("a strut pair of the design range does not assemble")
         return m.tqi(x, y)
 
-    t, w = np.polynomial.legendre.leggauss(n_gauss)
+    t, w = gauss_legendre(n_gauss)
     mid, half = 0.5 * (1 + k) * u, 0.5 * (k - 1) * u
     q = mid[:, None] + half[:, None] * t[None, :]
     Q1, Q2 = np.broadcast_arrays(q[:, :, None], q[:, None, :])

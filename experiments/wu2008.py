@@ -36,6 +36,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Circle, Ellipse, Rectangle
 from scipy.optimize import brentq
 
+from mechopt.core import validation as _v
 from mechopt.run import io as _io
 from mechopt import problems
 from mechopt.run import runner
@@ -358,7 +359,7 @@ def _plot_ellipses(quick: bool) -> Figure:
         cmap = colormaps["viridis_r"]
         for xx, yy, a, b, phi, kk in zip(X.ravel(), Y.ravel(), major.ravel(), minor.ravel(),
                                          angle.ravel(), kap.ravel()):
-            c = cmap((kk - norm_lo) / max(norm_hi - norm_lo, 1e-12))
+            c = cmap((kk - norm_lo) / max(norm_hi - norm_lo, _v.ROUNDING))
             ax.add_patch(Ellipse((1e3 * xx, 1e3 * yy), 2e3 * scale * a, 2e3 * scale * b,
                                  angle=math.degrees(phi), facecolor=c, edgecolor="k", lw=0.5,
                                  alpha=0.8))

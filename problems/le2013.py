@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechopt.core import validation as _v
 from mechopt import FiveBar
 from mechopt.analysis.workspace import largest_square_at, mic
 
@@ -69,7 +70,7 @@ def square_side(l1, l2, l0, gamma=GAMMA, theta_limits=THETA_LIMITS) -> dict:
     else:
         t1, t2, _ = fb.ik(0.0, m.center_y)
         excess = max(lo - float(t1), float(t1) - hi, lo - float(t2), float(t2) - hi) / np.pi
-        violation = max((gamma - float(fb.lci(0.0, m.center_y))) / gamma, excess, 1e-9)
+        violation = max((gamma - float(fb.lci(0.0, m.center_y))) / gamma, excess, _v.RESOLUTION)
     return dict(a_max=a, r_mic=m.radius, mic_center_y=m.center_y,
                 lci_min=float(L.min()) if a > 0 else np.nan, lci_max=float(L.max()) if a > 0 else np.nan,
                 violation=violation)

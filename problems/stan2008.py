@@ -23,7 +23,8 @@ import numpy as np
 
 from mechopt.core import geometry as _g
 from mechopt.mechanisms.biglide import Biglide
-from mechopt.mechanisms.sliders import _gauss_nodes
+from mechopt.core.quadrature import gauss_legendre
+from mechopt.mechanisms.sliders import GAUSS_ORDER_TQI
 from mechopt.mechanisms.bipod import Bipod, bipod_tqi_integral, bipod_workspace_area
 
 from mechopt.run.problem import MechoptProblem, Objective
@@ -193,7 +194,7 @@ def biglide_indices(l1: float, l2, q_min: float, q_max: float):
         h1, h2 = half_chords(x)
         return (a1 - a2) - s0 * h1 + s1 * h2
 
-    t, w = _gauss_nodes()
+    t, w = gauss_legendre(GAUSS_ORDER_TQI)
     area = np.zeros(n)
     tqi = np.zeros(n)
     for j in range(P.shape[1] - 1):

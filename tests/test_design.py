@@ -207,7 +207,7 @@ def test_bad_requirements_are_one_line_errors(capsys):
                        (["--joint-limits", "10"], "--joint-limits (deg) must be 2 or 4"),
                        (["--objectives", "speed"], "objective speed needs actuator_speed"),
                        (["--objectives", "size,weight"], "objective must be one of"),
-                       (["--link-angle", "15,75"], "link_angle applies to the gantry"),
+                       (["--link-angle", "15,75"], "link_angle applies to the biglide and the gantry"),
                        (["--mode", "+/"], "mode must be one of"),
                        (["--place", "somewhere"], "place must be one of")):
         assert main(["design", "five-bar", "--task", "rect:10,10@0,100", "--out", "/tmp/x-never", *extra]) == 2

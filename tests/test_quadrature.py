@@ -5,7 +5,7 @@ import pytest
 from mechopt import FiveBar
 from mechopt.analysis.performance import global_indices
 from mechopt.core.indices import GLOBAL_INDEX_NAMES
-from mechopt.core.quadrature import disk_rule, grid_over
+from mechopt.core.quadrature import disk_rule, gauss_legendre, grid_over
 from mechopt.analysis.workspace import mic
 
 
@@ -49,3 +49,23 @@ def test_global_indices_converged_at_default_resolution(r, rule):
     fine = global_indices(fb, rule, mic=m, n_r=192, n_theta=384)
     for name in GLOBAL_INDEX_NAMES:
         assert coarse[name] == pytest.approx(fine[name], rel=1e-3), name
+
+
+@pytest.mark.parametrize("n", [1, 2, 5, 48, 128])
+def test_gauss_legendre_is_exact_to_degree_2n_minus_1(n):
+    """int_{-1}^{1} x^k dx = 2/(k+1) for even k, 0 for odd k (closed form), for every
+    k <= 2n - 1; degree 2n is not integrated exactly (the rule has n nodes)."""
+    t, w = gauss_legendre(n)
+    for k in range(2 * n):
+        exact = 2.0 / (k + 1) if k % 2 == 0 else 0.0
+        assert abs(np.dot(w, t ** k) - exact) <= 1e-13 * max(1.0, n)
+    assert abs(np.dot(w, t ** (2 * n)) - 2.0 / (2 * n + 1)) > 1e-6 * 2.0 ** (-2 * n)
+
+
+def test_gauss_legendre_is_cached_and_read_only():
+    t, w = gauss_legendre(64)
+    assert gauss_legendre(64)[0] is t
+    with pytest.raises(ValueError):
+        t[0] = 0.0
+    with pytest.raises(ValueError):
+        w[0] = 0.0

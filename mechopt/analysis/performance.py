@@ -111,7 +111,7 @@ def _newton_isotropy(mech, px, py, cy, radius, h, n_iter):
         dx = -(j22 * r1[:, 0] - j12 * r2[:, 0]) / det
         dy = -(j11 * r2[:, 0] - j21 * r1[:, 0]) / det
         step = np.hypot(dx, dy)
-        keep = np.isfinite(step) & (step > 1e-15 * radius) & np.isfinite(g)
+        keep = np.isfinite(step) & (step > _v.STEP_FLOOR * radius) & np.isfinite(g)
         if it % 4 == 3 and keep.sum() > 8:  # keep the better half
             keep &= g <= np.median(g[keep])
         if not keep.any():
@@ -142,7 +142,7 @@ def _trust_region_step(gx, gy, hxx, hxy, hyy, delta, n_sec=12):
     gf = gy * ex - gx * ey
     newton = (l1 > 0) & (np.hypot(ge / l2, gf / l1) <= delta)
     mu_lo = np.maximum(0.0, -l1)
-    mu = mu_lo + 1e-12 * (np.abs(l1) + np.abs(l2)) + 1e-300
+    mu = mu_lo + _v.ROUNDING * (np.abs(l1) + np.abs(l2)) + 1e-300
     for _ in range(n_sec):
         de, df = -ge / (l2 + mu), -gf / (l1 + mu)
         nrm = np.hypot(de, df)
@@ -198,7 +198,7 @@ def _trust_region(mech, px, py, cy, radius, h, delta0, n_iter):
         delta = np.where(rho > 0.25, np.where((rho > 0.75) & (step > 0.99 * delta),
                                               np.minimum(2.0 * delta, radius), delta), 0.25 * step)
         # converged: nothing left to gain above rounding, or the region has collapsed
-        live &= np.isfinite(delta) & (delta > 1e-12 * radius) & ~(pred <= 1e-15 * g0)
+        live &= np.isfinite(delta) & (delta > _v.ROUNDING * radius) & ~(pred <= _v.STEP_FLOOR * g0)
     return px, py
 
 
@@ -287,7 +287,7 @@ def max_lci(mech, center_y, radius, n_r=64, n_theta=128, iters=40, n_seeds=6):
     best = float(np.max(v))
     if iters == 0:
         return min(max(best, _rim_search(mech, cy, R, 2 * n_theta, n_seeds, 0)), 1.0)
-    h = max(1e-5 * R, 1e-12 * (abs(cy) + R))  # finite-difference step
+    h = max(1e-5 * R, _v.ROUNDING * (abs(cy) + R))  # finite-difference step
     with np.errstate(all="ignore"):  # NaN (unreachable) points are simply never accepted
         # 2. isotropic points
         sx, sy, _ = disk_rule(R, "polar", n_r=max(1, n_r // 4), n_theta=max(1, n_theta // 4))

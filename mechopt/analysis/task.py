@@ -16,17 +16,23 @@ non-dimensional atlas. This module states such a problem on the shared evaluator
   sampling (:func:`certify`) and returns a :class:`~mechopt.workflows.design.DesignResult` (front as a
   DataFrame, :meth:`~mechopt.workflows.design.DesignResult.pick`, ``knee``).
 
-Mechanisms (:data:`MECHANISMS`) and their design variables, in the task's unit:
+Mechanisms (:func:`mechanisms`) and their design variables, in the task's unit. Each
+mechanism states them in its own module, as its
+:attr:`~mechopt.core.protocol.PlanarMechanism.design_spec` (a
+:class:`~mechopt.core.design_spec.DesignSpec`); :func:`get_spec` finds them through
+:func:`mechopt.mechanisms.registry`:
 
-==========  ====================================  ===========================================
-name        variables                             derived
-==========  ====================================  ===========================================
-five-bar    r1, r2, r3 (or D with ``shape``),     crank ranges
-            mode with ``mode="any"``
-biglide     l1, l2 (mode ``"--"`` ... ``"-+"``)   strokes: the q range over the task
-bipod       b (branch ``"up"``/``"down"``)        strut strokes: the q range over the task
-gantry      d1, l (mode ``"--"`` ...)             q_min, stroke: the q range over the task
-==========  ====================================  ===========================================
+===================  ====================================  ===========================================
+name                 variables                             derived
+===================  ====================================  ===========================================
+asymmetric-five-bar  a1, c1, a2, c2, r3 (or D with         crank ranges
+                     ``shape``), mode with ``mode="any"``
+biglide              l1, l2 (mode ``"--"`` ... ``"-+"``)   strokes: the q range over the task
+bipod                b (branch ``"up"``/``"down"``)        strut strokes: the q range over the task
+five-bar             r1, r2, r3 (or D with ``shape``),     crank ranges
+                     mode with ``mode="any"``
+gantry               d1, l (mode ``"--"`` ...)             q_min, stroke: the q range over the task
+===================  ====================================  ===========================================
 
 For the slider/strut mechanisms the strokes are not searched: the smallest stroke
 that covers the task is the range of each actuator coordinate over the task, and
@@ -47,9 +53,11 @@ reach
     toward the nearest boundary point of ``R`` lowers it), so once ``dT`` is in ``R``
     a point of ``T`` outside ``R`` can only belong to a bounded component (a hole) of
     the complement of ``R``; for every mechanism here each hole contains a base
-    joint (five-bar, bipod: the disks ``|P - A_i| < |r1 - r2|`` or ``< q_min``; the
-    biglide's and gantry's leg regions are simply connected, their complements
-    unbounded), so "no base joint in ``T``" closes the argument. Margin: ``c - h_b/2``
+    joint (five-bar, bipod: the disks ``|P - A_i| < |r1 - r2|`` or ``< q_min``, for
+    the asymmetric five-bar ``< |a_i - c_i|``; the biglide's and gantry's leg regions
+    are simply connected, their complements unbounded; a spec's
+    :meth:`~mechopt.core.design_spec.DesignSpec.holes` names them), so "no base joint
+    in ``T``" closes the argument. Margin: ``c - h_b/2``
     [L] > 0. A point task is checked at its points exactly.
 singular
     No type-II singularity in ``T``: ``s0 * type2_function`` (``s0`` its sign at the
@@ -108,9 +116,10 @@ import numpy as np
 
 from mechopt.core import indices as _ix
 from mechopt.core import validation as _v
+from mechopt.core.design_spec import DesignSpec
 
 __all__ = ["Task", "Requirements", "OBJECTIVES", "MECHANISMS", "PLACEMENTS", "DesignEvaluator",
-           "NoFeasibleDesign", "Sampling", "certify", "parse_task", "knee_index", "get_spec"]
+           "NoFeasibleDesign", "Sampling", "certify", "parse_task", "knee_index", "get_spec", "mechanisms"]
 
 #: length units a task may be given in, and their value in metres
 UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
@@ -158,7 +167,7 @@ def _polygon_simple(v):
                 other_j = p4 if j == i + 1 else p3
                 d1, d2 = other_i - shared, other_j - shared
                 cross = d1[0] * d2[1] - d1[1] * d2[0]
-                if abs(cross) <= 1e-12 * (np.hypot(*d1) * np.hypot(*d2)) and np.dot(d1, d2) > 0:
+                if abs(cross) <= _v.ROUNDING * (np.hypot(*d1) * np.hypot(*d2)) and np.dot(d1, d2) > 0:
                     return False
                 continue
             o1, o2 = orient(p1, p2, p3), orient(p1, p2, p4)
@@ -242,12 +251,12 @@ class Task:
         area2 = float(np.sum(v[:, 0] * np.roll(v[:, 1], -1) - np.roll(v[:, 0], -1) * v[:, 1]))
         scale = float(np.ptp(v, axis=0).max())
         collinear = bool(np.all(np.abs((v[:, 0] - v[0, 0]) * (v[1:2, 1] - v[0, 1]) - (v[:, 1] - v[0, 1]) * (v[1:2, 0] - v[0, 0]))
-                                <= 1e-12 * scale * scale))
+                                <= _v.ROUNDING * scale * scale))
         if collinear or not scale > 0:
             raise ValueError("polygon is empty (zero area: collinear vertices)")
         if not _polygon_simple(v):
             raise ValueError("polygon is self-intersecting (edges cross); give the vertices in boundary order")
-        if not abs(area2) > 1e-12 * scale * scale:
+        if not abs(area2) > _v.ROUNDING * scale * scale:
             raise ValueError("polygon is empty (zero area)")
         if area2 < 0:
             v = v[::-1].copy()
@@ -365,10 +374,10 @@ class Task:
         """Points inside or on the boundary (to rounding)."""
         x, y = np.asarray(x, float), np.asarray(y, float)
         if self.kind == "circle":
-            return np.hypot(x - self.center[0], y - self.center[1]) <= self.radius * (1 + 1e-12)
+            return np.hypot(x - self.center[0], y - self.center[1]) <= self.radius * (1 + _v.ROUNDING)
         if self.kind == "points":
             return np.zeros(np.broadcast(x, y).shape, bool)
-        return self.signed_distance(x, y) >= -1e-12 * self.diameter
+        return self.signed_distance(x, y) >= -_v.ROUNDING * self.diameter
 
     def signed_distance(self, x, y):
         """Distance to the boundary, positive inside, negative outside [unit]."""
@@ -522,14 +531,15 @@ class Requirements:
     payload: float | None = None
     singularity_margin: float = 1e-3
 
-    def checked(self, spec: "_Spec") -> "Requirements":
+    def checked(self, spec: DesignSpec) -> "Requirements":
         kw = {}
         if self.min_lci is not None:
             kw["min_lci"] = _v.open_unit_interval("min_lci", self.min_lci)
         if self.joint_limits is not None:
             if not spec.angular:
-                raise ValueError(f"joint_limits (crank angles) apply to the five-bar; the {spec.name} "
-                                 f"has sliders: use max_stroke")
+                cranked = [n for n in mechanisms() if get_spec(n).angular]
+                raise ValueError(f"joint_limits (crank angles) apply to {' and '.join('the ' + n for n in cranked)}; "
+                                 f"the {spec.name} has sliders: use max_stroke")
             jl = np.asarray(self.joint_limits, float)
             if jl.shape == (2,):
                 jl = np.vstack([jl, jl])
@@ -538,15 +548,18 @@ class Requirements:
                                  f"got {_v.show(self.joint_limits)}")
             kw["joint_limits"] = tuple(map(tuple, jl.tolist()))
         if self.link_angle is not None:
-            if spec.name not in ("gantry", "biglide"):
-                raise ValueError(f"link_angle applies to the gantry and the biglide, not the {spec.name}")
+            if spec.link_angles is None:
+                with_angles = [n for n in mechanisms() if get_spec(n).link_angles is not None]
+                raise ValueError(f"link_angle applies to {' and '.join('the ' + n for n in with_angles)}, "
+                                 f"not the {spec.name}")
             lo, hi = _v.finite_numbers("link_angle", self.link_angle, 2, "(lo, hi) in rad")
             if not 0 <= lo < hi <= math.pi / 2:
                 raise ValueError(f"link_angle must satisfy 0 <= lo < hi <= 90 deg, got {_v.show(self.link_angle)}")
             kw["link_angle"] = (lo, hi)
         if self.max_stroke is not None:
             if spec.angular:
-                raise ValueError("max_stroke applies to slider mechanisms; the five-bar has cranks: use joint_limits")
+                raise ValueError(f"max_stroke applies to slider mechanisms; the {spec.name} has cranks: "
+                                 f"use joint_limits")
             kw["max_stroke"] = _v.positive_length("max_stroke", self.max_stroke)
         for name, needs in (("min_speed", "actuator_speed"), ("min_force", "actuator_torque")):
             if getattr(self, name) is not None:
@@ -599,232 +612,37 @@ class Requirements:
 
 
 # -------------------------------------------------------------- mechanism specs
-class _Spec:
-    """How one mechanism of the protocol is sized: variables, construction in the
-    task frame, size, joints, holes of its reachable set."""
+# Each mechanism module defines its design spec next to its mechanism
+# (PlanarMechanism.design_spec): the registry is the one list of them, so a new
+# mechanism is sized without an edit here.
+def mechanisms() -> tuple[str, ...]:
+    """Names of the mechanisms ``mechopt design`` sizes: every mechanism of
+    :func:`mechopt.mechanisms.registry` (in its order) with a
+    :attr:`~mechopt.core.protocol.PlanarMechanism.design_spec`."""
+    from mechopt import mechanisms as _mechanisms
 
-    name = ""
-    lengths: tuple[str, ...] = ()
-    modes: tuple[str, ...] = ()
-    default_mode = ""
-    angular = False
-    length_constraint = False
-    derived_strokes = False
-    #: the size depends on the lengths alone (not on the task placement: no derived stroke in it)
-    size_from_lengths = True
+    return tuple(n for n, cls in _mechanisms.registry().items() if cls.design_spec is not None)
 
-    def size_of(self, v) -> float:
-        """:meth:`size` from the lengths of ``v`` alone (``size_from_lengths`` specs)."""
-        from types import SimpleNamespace
 
-        return float(self.size(SimpleNamespace(**{n: v[n] for n in self.lengths}), {}))
+#: the names of :func:`mechanisms` (computed on access: listing them imports every
+#: mechanism module, which importing this module does not)
+MECHANISMS: tuple[str, ...]
 
-    def lower_bounds(self, lmin):
-        return [lmin] * len(self.lengths)
 
-    def to_mech(self, mech, x, y):
-        return x, y
+def __getattr__(name):
+    if name == "MECHANISMS":
+        return mechanisms()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-    def validity(self, v, lmax) -> float:
-        """<= 0 when the variables describe a mechanism (normalised)."""
-        return -1.0
 
-    def placement_scale(self, v, lmax) -> float:
-        """Length over which a free task placement is searched (the design's reach)."""
-        return lmax
+def get_spec(name) -> DesignSpec:
+    """The design specification of mechanism ``name`` (one of :func:`mechanisms`): its
+    design variables, bounds, modes, size and joint positions over a task (a
+    :class:`~mechopt.core.design_spec.DesignSpec`, the mechanism's
+    :attr:`~mechopt.core.protocol.PlanarMechanism.design_spec`)."""
+    from mechopt import mechanisms as _mechanisms
 
-    def reach_radius(self, lmax) -> float:
-        """No design within the length bounds reaches a point farther than this from
-        the base midpoint (a necessary condition, checked before any run)."""
-        return math.inf
-
-    def x_reach(self, lmax) -> float:
-        return math.inf
-
-
-class _FiveBarSpec(_Spec):
-    name = "five-bar"
-    lengths = ("r1", "r2", "r3")
-    angular = True
-
-    def __init__(self):
-        from mechopt.mechanisms.five_bar.model import MODES
-
-        self.modes, self.default_mode = MODES, "+-"
-
-    def lower_bounds(self, lmin):
-        return [lmin, lmin, 0.0]
-
-    def build(self, v, mode, _samples=None, **_):
-        from mechopt.mechanisms.five_bar.model import FiveBar
-
-        return FiveBar(v["r1"], v["r2"], v["r3"], mode)
-
-    def size(self, mech, derived):
-        """``2 (r1 + r2 + r3)``: two cranks, two distal links, the base distance."""
-        return 2.0 * (mech.r1 + mech.r2 + mech.r3)
-
-    def joints(self, mech, x, y):
-        b1x, b1y, b2x, b2y, _ = mech.elbows(x, y)
-        return [(b1x, b1y), (b2x, b2y), (x, y), (np.full_like(x, mech.r3), np.zeros_like(x))]
-
-    def holes(self, mech):
-        return [(-mech.r3, 0.0), (mech.r3, 0.0)]
-
-    def reach_radius(self, lmax):
-        return 2.0 * lmax
-
-    def placement_scale(self, v, lmax):
-        return v["r1"] + v["r2"]
-
-
-class _SliderSpec(_Spec):
-    derived_strokes = True
-
-    def strokes_for(self, positions):
-        """``((q1_lo, q1_hi), (q2_lo, q2_hi))`` from the task's actuator extremes."""
-        return positions
-
-
-class _GuideSpec(_SliderSpec):
-    """Two sliders on the vertical guides ``x = g_i`` (``mech.guides``), each with one
-    link of the length named ``link`` (the Biglide, the gantry): the links must be
-    longer than the half guide distance named ``guide``; the reachable set has no
-    holes and lies within ``|x| <= lmax``."""
-
-    guide = link = ""
-
-    def validity(self, v, lmax):
-        return (v[self.guide] - v[self.link]) / lmax + 1e-9
-
-    def joints(self, mech, x, y):
-        q1, q2 = mech.slider_positions(x, y)  # the built gantries have l2 = 0: q_i = y - c_i
-        g = mech.guides
-        return [(np.full_like(x, g[0]), q1), (np.full_like(x, g[1]), q2), (x, y)]
-
-    def link_angles(self, mech, x, y):
-        """Each link's angle from its guide, ``arcsin(|x - g_i| / L)`` in [0, pi/2]."""
-        g, L = mech.guides, getattr(mech, self.link)
-        with np.errstate(invalid="ignore"):
-            return (np.arcsin(np.clip(np.abs(x - g[0]) / L, 0, 1)),
-                    np.arcsin(np.clip(np.abs(x - g[1]) / L, 0, 1)))
-
-    def holes(self, mech):
-        return []
-
-    def x_reach(self, lmax):
-        return lmax
-
-    def placement_scale(self, v, lmax):
-        return v[self.link]
-
-
-class _BiglideSpec(_GuideSpec):
-    name = "biglide"
-    lengths = ("l1", "l2")
-    guide, link = "l1", "l2"
-
-    def __init__(self):
-        from mechopt.mechanisms.biglide import MODES
-
-        self.modes, self.default_mode = MODES, "--"
-
-    def raw(self, v, mode):
-        from mechopt.mechanisms.biglide import Biglide
-
-        return Biglide(v["l1"], v["l2"], -1.0, 1.0, mode=mode)
-
-    def positions(self, v, mode, x, y):
-        return self.raw(v, mode).slider_positions(x, y)
-
-    def build(self, v, mode, strokes=None, pad=0.0):
-        from mechopt.mechanisms.biglide import Biglide
-
-        (a1, b1), (a2, b2) = strokes
-        return Biglide(v["l1"], v["l2"], a1 - pad, b1 + pad, a2 - pad, b2 + pad, mode=mode)
-
-    def size(self, mech, derived):
-        """``2 l1 + 2 l2``: the guide distance and the two links (strokes reported apart)."""
-        return 2.0 * (mech.l1 + mech.l2)
-
-
-class _GantrySpec(_GuideSpec):
-    name = "gantry"
-    lengths = ("d1", "l")
-    guide, link = "d1", "l"
-
-    def __init__(self):
-        from mechopt.mechanisms.gantry import MODES
-
-        self.modes, self.default_mode = MODES, "--"
-
-    def positions(self, v, mode, x, y):
-        s1, s2 = (1.0 if c == "+" else -1.0 for c in mode)
-        l, d1 = v["l"], v["d1"]
-        with np.errstate(invalid="ignore"):
-            w1 = np.sqrt(l * l - (x + d1) ** 2)
-            w2 = np.sqrt(l * l - (x - d1) ** 2)
-        # q_i = y - l2/2 - c_i, c_i = -s_i w_i (Gantry._offsets, l2 = 0)
-        return y + s1 * w1, y + s2 * w2
-
-    def build(self, v, mode, strokes=None, pad=0.0):
-        from mechopt.mechanisms.gantry import Gantry
-
-        (a1, b1), (a2, b2) = strokes
-        lo, hi = min(a1, a2) - pad, max(b1, b2) + pad
-        return Gantry(v["d1"], v["l"], hi - lo, q_min=lo, mode=mode)
-
-    def size(self, mech, derived):
-        """``2 d1 + 3 l``: the column distance and the three equal links (Wu Fig. 1)."""
-        return 2.0 * mech.d1 + 3.0 * mech.l
-
-
-class _BipodSpec(_SliderSpec):
-    name = "bipod"
-    lengths = ("b",)
-    length_constraint = True  # the struts at full extension are links too
-    size_from_lengths = False  # the struts' full extension follows the task's placement
-
-    def __init__(self):
-        self.modes, self.default_mode = ("up", "down"), "up"
-
-    def to_mech(self, mech, x, y):
-        return x + 0.5 * mech.b, y
-
-    def positions(self, v, mode, x, y):
-        b = v["b"]
-        return np.hypot(x + 0.5 * b, y), np.hypot(x - 0.5 * b, y)
-
-    def build(self, v, mode, strokes=None, pad=0.0):
-        from mechopt.mechanisms.bipod import Bipod
-
-        (a1, b1), (a2, b2) = strokes
-        lo = lambda a: max(a - pad, 1e-9 * v["b"])  # noqa: E731
-        return Bipod(v["b"], lo(a1), b1 + pad, lo(a2), b2 + pad, branch=mode)
-
-    def size(self, mech, derived):
-        """``b + q1_max + q2_max``: the base and both struts at full extension."""
-        return mech.b + mech.q1_max + mech.q2_max
-
-    def joints(self, mech, x, y):
-        return [(np.full_like(x, -0.5 * mech.b), np.zeros_like(x)),
-                (np.full_like(x, 0.5 * mech.b), np.zeros_like(x)), (x, y)]
-
-    def holes(self, mech):
-        return [(-0.5 * mech.b, 0.0), (0.5 * mech.b, 0.0)]
-
-    def reach_radius(self, lmax):
-        return lmax
-
-
-_SPECS = {"five-bar": _FiveBarSpec, "biglide": _BiglideSpec, "bipod": _BipodSpec, "gantry": _GantrySpec}
-MECHANISMS = tuple(_SPECS)
-
-
-def get_spec(name) -> _Spec:
-    """The design specification of mechanism ``name`` (one of :data:`MECHANISMS`): its
-    design variables, bounds, modes, size and joint positions over a task."""
-    return _SPECS[_v.choice("mechanism", name, MECHANISMS)]()
+    return _mechanisms.registry()[_v.choice("mechanism", name, mechanisms())].design_spec()
 
 
 # ------------------------------------------------------------------ evaluation
@@ -916,12 +734,11 @@ class DesignEvaluator:
         if self.mode_any:
             names.append("mode")
             xl.append(0.0)
-            xu.append(len(self.spec.modes) - 1e-9)
+            xu.append(len(self.spec.modes) - _v.RESOLUTION)
         # the placement relative to the design's own reach (spec.placement_scale):
         # task_y = y_lo + task_y_rel * scale, task_x = task_x_rel * scale
         x0, x1, y0, y1 = self.task.bbox
-        self._y_lo = 0.5 * (y1 - y0) if self.spec.name in ("five-bar", "bipod") and self.mode != "down" \
-            else None
+        self._y_lo = 0.5 * (y1 - y0) if self.spec.placement_above_base(self.mode) else None
         if self.place == "free":
             names.append("task_x_rel")
             xl.append(-1.0)
@@ -1040,7 +857,7 @@ class DesignEvaluator:
                 hi = -self._boundary_min(ctx, lambda x, y: _bad(-qf(x, y), np.inf), s.refine)
                 if not (math.isfinite(lo) and math.isfinite(hi)):
                     lo, hi = -1.0, 1.0  # some task point out of reach of the link: reach fails
-                strokes.append((lo, max(hi, lo + 1e-9 * self.task.diameter)))
+                strokes.append((lo, max(hi, lo + _v.RESOLUTION * self.task.diameter)))
             derived["strokes"] = strokes
             mech = self.spec.build(lengths, v["mode"], strokes=strokes)
             # the clearance to the type-I loci alone (the strokes cover the task by construction)
@@ -1126,12 +943,12 @@ class DesignEvaluator:
             task = ctx["task"]
             for hx, hy in spec.holes(mech):
                 depth = float(task.signed_distance(hx, hy))
-                if depth >= -1e-12 * D:
-                    reach_margin = min(reach_margin, -max(depth, 1e-9 * D))
+                if depth >= -_v.ROUNDING * D:
+                    reach_margin = min(reach_margin, -max(depth, _v.RESOLUTION * D))
         else:
             reach_margin = float(clr.min())
         out["margin"]["reach"] = reach_margin
-        out["g"]["reach"] = -reach_margin / D if reach_margin > 0 else -reach_margin / D + 1e-9
+        out["g"]["reach"] = -reach_margin / D if reach_margin > 0 else -reach_margin / D + _v.RESOLUTION
 
         # type II sign
         rx, ry = ctx["task"].reference if self.task.is_region else (allx.mean(), ally.mean())
@@ -1370,7 +1187,7 @@ def knee_index(F: np.ndarray) -> int:
         if n == 0:
             return int(np.argmin(Z.sum(1)))
         dist = np.abs(d[0] * (Z[:, 1] - a[1]) - d[1] * (Z[:, 0] - a[0])) / n
-        return int(np.argmax(dist - 1e-12 * Z.sum(1)))  # ties: the better sum
+        return int(np.argmax(dist - _v.ROUNDING * Z.sum(1)))  # ties: the better sum
     return int(np.argmin(np.sqrt((Z ** 2).sum(1))))
 
 

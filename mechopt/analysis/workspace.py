@@ -120,7 +120,7 @@ def type2_clearance(mech, cx, cy, radius, n_phi=128, n_r=96, n_refine=64):
         best = r[np.arange(r.shape[0]), j]
         dphi = 2 * np.pi / n_phi
         phi2 = phi[j][:, None] + np.linspace(-dphi, dphi, n_refine)[None, :]
-        r2 = _first_sign_change(mech, cxl, cyl, phi2, np.minimum(rl, best * 1.05 + 1e-12), 2 * n_r)
+        r2 = _first_sign_change(mech, cxl, cyl, phi2, np.minimum(rl, best * 1.05 + _v.ROUNDING), 2 * n_r)
         out[live] = np.minimum(best, r2.min(axis=1))
     return float(out[0]) if scalar else out
 
@@ -175,7 +175,7 @@ def _mic(mech, method="auto", n_y=48, tol=1e-6):
     explicit = mech.explicit_workspace() if method != "rays" else None
     if explicit is not None:
         r, y = explicit.mic()
-        if not r > 1e-9 * mech.length_scale:
+        if not r > _v.RESOLUTION * mech.length_scale:
             return None
         return MIC(radius=r, center_y=y)
     ymax = mech.bounding_box()[3]

@@ -22,8 +22,18 @@ NAME = "design"
 
 def add_parser(subparsers):
     """Register ``design``."""
+    from mechopt.analysis import task as _task
+
+    # the mechanisms and their modes come from their design specs (one module each)
+    names = _task.mechanisms()
+    specs = {n: _task.get_spec(n) for n in names}
+    by_modes = {}
+    for n, spec in specs.items():
+        by_modes.setdefault(spec.modes, []).append(n)
+    modes_text = "; ".join(f"{', '.join(ns)}: {', '.join(m)}" for m, ns in by_modes.items())
+    with_angles = ", ".join(n for n, spec in specs.items() if spec.link_angles is not None)
     ds = subparsers.add_parser(NAME, help="size a mechanism for a task region (requirements over the whole task)")
-    ds.add_argument("mechanism", help="five-bar, biglide, bipod or gantry")
+    ds.add_argument("mechanism", help=f"{', '.join(names[:-1])} or {names[-1]}")
     ds.add_argument("--task", required=True,
                     help="rect:W,H@X,Y | circle:R@X,Y | polygon:x1,y1;x2,y2;... | points:FILE.csv; "
                          "lengths [unit] of --unit, in the base frame (base midpoint at the origin, "
@@ -32,7 +42,7 @@ def add_parser(subparsers):
                     help="length unit of the task and of every length: mm, cm, m or in (default mm)")
     ds.add_argument("--min-lci", type=float, default=None,
                     help="LCI >= this everywhere on the task (dimensionless, in (0, 1))")
-    ds.add_argument("--mode", default=None, help="working mode (five-bar: +-, -+, ++, --; bipod: up, down) or any")
+    ds.add_argument("--mode", default=None, help=f"working mode ({modes_text}) or any")
     ds.add_argument("--place", default="fixed", help="fixed (default), free-y or free: task placement")
     ds.add_argument("--objectives", default="size,min-lci",
                     help="comma list of size, footprint, min-lci, mean-lci, speed, force, torque")
@@ -40,11 +50,11 @@ def add_parser(subparsers):
     ds.add_argument("--min-length", type=float, default=None, help="shortest link [unit]")
     ds.add_argument("--joint-limits", default=None, metavar="LO,HI[,LO2,HI2]", help="crank angle limits [deg]")
     ds.add_argument("--link-angle", default=None, metavar="LO,HI",
-                    help="|link angle from the slider axis| limits [deg] (gantry, biglide; Wu: 15,75)")
+                    help=f"|link angle from the slider axis| limits [deg] ({with_angles}; Wu: 15,75)")
     ds.add_argument("--max-stroke", type=float, default=None, help="longest actuator stroke [unit] (sliders)")
     ds.add_argument("--shape", default=None, metavar="R1,R2,R3",
-                    help="fix the link ratios (non-dimensional); the design variable is the scale "
-                         "D [unit] (Liu 2006 sec. 3.2.3)")
+                    help="fix the link ratios (non-dimensional, one per length of the mechanism); the "
+                         "design variable is the scale D [unit] (Liu 2006 sec. 3.2.3)")
     ds.add_argument("--actuator-speed", type=float, default=None, help="actuator speed limit [rad/s or unit/s]")
     ds.add_argument("--actuator-torque", type=float, default=None, help="actuator torque limit [N m or N]")
     ds.add_argument("--min-speed", type=float, default=None, help="guaranteed speed in every direction [unit/s]")
@@ -95,7 +105,8 @@ def run(args) -> int:
     la = None
     if args.link_angle is not None:
         la = tuple(math.radians(v) for v in _numbers(args.link_angle, "--link-angle (deg)", (2,)))
-    shape = _numbers(args.shape, "--shape", (1, 2, 3)) if args.shape is not None else None
+    counts = tuple(sorted({len(_task.get_spec(n).lengths) for n in _task.mechanisms()}))
+    shape = _numbers(args.shape, "--shape", counts) if args.shape is not None else None
     req = _task.Requirements(min_lci=args.min_lci, joint_limits=jl, link_angle=la, max_stroke=args.max_stroke,
                              min_speed=args.min_speed, min_force=args.min_force,
                              actuator_speed=args.actuator_speed, actuator_torque=args.actuator_torque,

@@ -22,7 +22,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechopt.core.jit import jitable
+
 __all__ = [
+    "two_smax_squared",
+    "lci_of_entries",
     "singular_values",
     "lci",
     "velocity_extremes",
@@ -60,23 +64,40 @@ def _entries(J):
     return J[..., 0, 0], J[..., 0, 1], J[..., 1, 0], J[..., 1, 1]
 
 
-def _discriminant(a, b, c, d):
-    """``sqrt(S^2 - 4 det^2)`` as ``sqrt(S - 2 det) sqrt(S + 2 det)``: each factor is a
-    sum of squares (no cancellation) and the product of roots cannot overflow."""
-    return np.sqrt((a - d) ** 2 + (b + c) ** 2) * np.sqrt((a + d) ** 2 + (b - c) ** 2)
+@jitable
+def two_smax_squared(a, b, c, d):
+    """``2 s_max^2 = S + sqrt(S^2 - 4 det^2)`` of ``[[a, b], [c, d]]`` (``S`` the squared
+    Frobenius norm), with the discriminant as ``sqrt(P) sqrt(Q)``,
+    ``P = S - 2 det = (a - d)^2 + (b + c)^2`` and ``Q = S + 2 det = (a + d)^2 + (b - c)^2``:
+    each factor is a sum of squares (no cancellation) and the product of the roots
+    cannot overflow where ``P Q`` would.
+
+    Scalars or arrays; compiled kernels call it too (:func:`mechopt.core.jit.jitable`).
+    """
+    S = a * a + b * b + c * c + d * d
+    return S + np.sqrt((a - d) ** 2 + (b + c) ** 2) * np.sqrt((a + d) ** 2 + (b - c) ** 2)
+
+
+@jitable
+def lci_of_entries(a, b, c, d):
+    """LCI ``s_min / s_max = |det| / s_max^2 = 2 |ad - bc| / (2 s_max^2)`` of
+    ``[[a, b], [c, d]]`` (Liu 2006 eq. 3): the one LCI formula of the package.
+
+    NaN for the zero matrix (0/0) and for NaN entries; every caller maps those to 0.
+    The LCI is invariant under scaling the matrix and swapping its rows, so the
+    five-bar kernels pass a scaled, row-swapped Jacobian (no division per entry).
+    """
+    return 2.0 * abs(a * d - b * c) / two_smax_squared(a, b, c, d)
 
 
 def singular_values(J):
     """Closed-form singular values ``(s_max, s_min)`` of 2x2 matrices.
 
-    Uses ``S +- 2 det = (a +- d)^2 + (b -+ c)^2`` so that the discriminant
-    ``S^2 - 4 det^2`` is a product of sums of squares (no cancellation), then
-    ``s_min = |det| / s_max``.
+    ``s_max = sqrt(two_smax_squared / 2)`` (:func:`two_smax_squared`: no cancellation),
+    then ``s_min = |det| / s_max``.
     """
     a, b, c, d = _entries(J)
-    S = a * a + b * b + c * c + d * d
-    disc = _discriminant(a, b, c, d)
-    s_max = np.sqrt(0.5 * (S + disc))
+    s_max = np.sqrt(0.5 * two_smax_squared(a, b, c, d))
     det = np.abs(a * d - b * c)
     with np.errstate(invalid="ignore", divide="ignore"):
         # 0/0 only for J = 0; NaN entries (unreachable poses) stay NaN
@@ -85,13 +106,11 @@ def singular_values(J):
 
 
 def lci(J):
-    """Local conditioning index ``s_min/s_max`` in [0, 1]; 0 where J is NaN or zero."""
+    """Local conditioning index ``s_min/s_max`` in [0, 1] (:func:`lci_of_entries`); 0
+    where J is NaN or zero."""
     a, b, c, d = _entries(J)
-    S = a * a + b * b + c * c + d * d
-    disc = _discriminant(a, b, c, d)
     with np.errstate(invalid="ignore", divide="ignore"):
-        # s_min/s_max = |det| / s_max^2 = 2|det| / (S + disc)
-        out = 2.0 * np.abs(a * d - b * c) / (S + disc)
+        out = lci_of_entries(a, b, c, d)
     return np.where(np.isfinite(out), out, 0.0)
 
 
@@ -133,11 +152,12 @@ def manipulability(J):
 
 
 def local_indices(J) -> dict:
-    """All local indices of :data:`LOCAL_INDEX_NAMES` at once (one SVD)."""
+    """All local indices of :data:`LOCAL_INDEX_NAMES` at once (one closed-form SVD;
+    the LCI by :func:`lci`)."""
     s_max, s_min = singular_values(J)
     with np.errstate(divide="ignore", invalid="ignore"):
         out = {
-            "lci": np.where(s_max > 0, s_min / s_max, 0.0),
+            "lci": lci(J),
             "v_max": 1.0 / s_min,
             "v_min": 1.0 / s_max,
             "tau_max": s_max,
@@ -145,5 +165,4 @@ def local_indices(J) -> dict:
             "d_max": 1.0 / s_min**2,
             "d_min": 1.0 / s_max**2,
         }
-    out["lci"] = np.where(np.isfinite(out["lci"]), out["lci"], 0.0)
     return out

@@ -16,18 +16,23 @@ A kernel's formula is written once, as a plain Python function of scalars:
 * :func:`njit` compiles a kernel called from Python (a loop over points or designs),
   or leaves it as plain Python without numba.
 
-numba's on-disk cache knows only the source file of the function it compiles: a
-kernel and every formula it calls are kept in one module, so that editing that
-module invalidates the kernel's cache.
+numba's on-disk cache knows only the source file of the function it compiles, while
+a kernel calls formulas of other modules (the five-bar kernels call
+:func:`mechopt.core.indices.lci_of_entries`, for example): a cache keyed on the
+kernel's file alone would keep running an edited formula's old code. So the cache
+lives in a directory named by a digest of every source file of the package
+(:func:`cache_dir`): any edit, or another version, compiles into a fresh directory.
 """
 from __future__ import annotations
 
+import hashlib
 import importlib.util
 import os
+from pathlib import Path
 
 import numpy as np
 
-__all__ = ["HAVE_NUMBA", "numba_wanted", "load_numba", "use_numba", "njit", "jitable", "select"]
+__all__ = ["HAVE_NUMBA", "numba_wanted", "load_numba", "use_numba", "njit", "jitable", "select", "cache_dir"]
 
 #: the environment variable that disables numba
 ENV_VAR = "MECHOPT_NO_NUMBA"
@@ -50,6 +55,24 @@ _numba = None  # the numba module once loaded
 _pending = []  # (function, options) marked jitable before numba was loaded
 
 
+def _source_digest() -> str:
+    """sha256 (16 hex digits) of the package's source files, paths and bytes."""
+    root = Path(__file__).resolve().parents[1]
+    h = hashlib.sha256()
+    for f in sorted(root.rglob("*.py")):
+        h.update(f.relative_to(root).as_posix().encode() + b"\0" + f.read_bytes() + b"\0")
+    return h.hexdigest()[:16]
+
+
+def cache_dir() -> Path:
+    """Where the compiled kernels are cached: ``numba-<digest>`` (:func:`_source_digest`)
+    under ``$NUMBA_CACHE_DIR`` when it is set, else under ``$XDG_CACHE_HOME/mechopt``
+    (``~/.cache/mechopt``)."""
+    base = os.environ.get("NUMBA_CACHE_DIR") or (
+        Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "mechopt")
+    return Path(base) / f"numba-{_source_digest()}"
+
+
 def load_numba():
     """The numba module, imported on the first call (None when :data:`HAVE_NUMBA` is
     False). Registers the formulas marked :func:`jitable` so far."""
@@ -57,6 +80,9 @@ def load_numba():
     if _numba is None and HAVE_NUMBA:
         import numba
         from numba.extending import overload, register_jitable
+
+        # read by numba when each cached kernel is made (njit below), not at its import
+        numba.config.CACHE_DIR = str(cache_dir())
 
         # compiled as a function that LLVM inlines (numba's IR inliner warns about the branch)
         @overload(select, jit_options=dict(error_model=OPTIONS["error_model"]))

@@ -77,20 +77,30 @@ class Parameter:
 POINT_MAX = 1e3 * _v.LENGTH_MAX
 
 
+def _within_reach(v):
+    """``v`` (a float array) with the coordinates beyond :data:`POINT_MAX` set to NaN."""
+    if v.size and not (v.max() <= POINT_MAX and v.min() >= -POINT_MAX):  # NaN or far away
+        v = np.where(np.abs(v) > POINT_MAX, np.nan, v)
+    return v
+
+
 def _coordinates(name, v):
     _v.real_array_dtype(name, np.asarray(v) if not hasattr(v, "dtype") else v)
     try:
         v = np.asarray(v, dtype=float)
     except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{name} must be a number or an array of numbers, got {_v.show(v)}") from None
-    if v.size and not (v.max() <= POINT_MAX and v.min() >= -POINT_MAX):  # NaN or far away
-        v = np.where(np.abs(v) > POINT_MAX, np.nan, v)
-    return v
+    return _within_reach(v)
 
 
 def as_points(x, y):
     """Broadcast ``x`` and ``y`` to float arrays of a common shape (coordinates
     beyond :data:`POINT_MAX` become NaN: unreachable)."""
+    if (type(x) is np.ndarray and type(y) is np.ndarray and x.dtype == np.float64
+            and y.dtype == np.float64 and x.shape == y.shape):
+        # the kinematics pass their points on to one another: nothing to convert or
+        # broadcast (a tenth of the time of a small design evaluation went here)
+        return _within_reach(x), _within_reach(y)
     x = _coordinates("x", x)
     y = _coordinates("y", y)
     try:
@@ -108,7 +118,8 @@ class PlanarMechanism(ABC):
     suite (``tests/test_contract.py``) checks each on every implementation. A new
     mechanism is one module of :mod:`mechopt.mechanisms` defining a subclass with a
     ``cli_name``: :func:`mechopt.mechanisms.registry` finds it, and ``mechopt
-    evaluate`` offers it with the options of its :attr:`parameters`.
+    evaluate`` offers it with the options of its :attr:`parameters`; with a
+    :attr:`design_spec`, ``mechopt design`` sizes it too.
     """
 
     #: name under ``mechopt evaluate`` (None: not offered there, e.g. a base class)
@@ -142,6 +153,12 @@ class PlanarMechanism(ABC):
     angular_joints: bool = False
     #: the working mode of this instance (one of :attr:`modes`)
     mode: str
+    #: how ``mechopt design`` sizes the mechanism: a subclass of
+    #: :class:`mechopt.core.design_spec.DesignSpec` (its variables, modes, construction
+    #: in the task frame, size, joints, holes, reach, sketch), defined in the
+    #: mechanism's own module; None: not offered by ``mechopt design``
+    #: (:func:`mechopt.analysis.task.get_spec` lists those that are)
+    design_spec: type | None = None
 
     @classmethod
     def from_parameters(cls, **values) -> "PlanarMechanism":
@@ -245,7 +262,7 @@ class PlanarMechanism(ABC):
         return None
 
     # --- derived once for every mechanism ------------------------------------
-    def _within_strokes(self, q1, q2, rtol: float = 1e-12):
+    def _within_strokes(self, q1, q2, rtol: float = _v.ROUNDING):
         """Actuator values inside ``self.joint_limits`` (for mechanisms with stroke
         limits), widened by ``rtol * length_scale`` so that a pose computed by
         ``fk`` from a limit value stays reachable despite rounding."""
@@ -326,7 +343,7 @@ class PlanarMechanism(ABC):
             return float("nan")
         return grid.mean(local(X, Y), mask)
 
-    def classify_singularity(self, x, y, tol: float = 1e-9):
+    def classify_singularity(self, x, y, tol: float = _v.RESOLUTION):
         """Array of strings: ``"none"``, ``"type-I"``, ``"type-II"``, ``"both"`` or
         ``"unreachable"``. Measures are made dimensionless: ``|B_ii|`` relative to
         ``|A_i| * length_scale`` and ``det A`` relative to ``|a1||a2|``.

@@ -1,4 +1,9 @@
-"""One place for input validation, shared by the Python API and the CLI.
+"""One place for input validation, limits and tolerances, shared by the Python API and the CLI.
+
+Limits (:data:`LENGTH_MIN`, :data:`LENGTH_MAX`, :data:`POINT_MAX`, :data:`MAX_WEIGHTS`)
+bound what a user may ask for; the three relative tolerances (:data:`ROUNDING`,
+:data:`RESOLUTION`, :data:`STEP_FLOOR`) are the package's only ones: every module
+compares derived values with them, scaled by the quantity's own magnitude.
 
 Every check raises :class:`ValueError` with a one-line message that names the
 parameter, the value given and what is allowed; the CLI turns it into exit status 2.
@@ -29,6 +34,9 @@ __all__ = [
     "stroke",
     "weights",
     "MAX_WEIGHTS",
+    "ROUNDING",
+    "RESOLUTION",
+    "STEP_FLOOR",
 ]
 
 #: admissible magnitudes of a length, in any unit: the kinematics square and
@@ -39,6 +47,20 @@ LENGTH_MAX = 1e12
 #: no workspace of an admissible design reaches farther from the origin than this
 #: (a sum of a few lengths of at most LENGTH_MAX); a point beyond is out of reach
 POINT_MAX = 1e3 * LENGTH_MAX
+
+#: relative rounding tolerance: a value derived from the lengths by a few dozen
+#: operations carries a relative error of some hundred ulps (2.2e-16 each) at most,
+#: so it is compared with a limit it may touch exactly (a stroke end, the reach
+#: boundary ``h^2 >= 0``, a tie between candidates) within ``ROUNDING`` times its scale
+ROUNDING = 1e-12
+#: relative resolution of values known to fewer digits than rounding: the result of
+#: an iterative search or a bracketing (converged to ~1e-10 and better), a grid
+#: coordinate made from a step, the smallest MIC radius told apart from none;
+#: ``RESOLUTION`` times the scale separates "equal" from "different" there
+RESOLUTION = 1e-9
+#: relative step at which an iterative search stops: a few ulps of the scale, below
+#: which a step no longer changes the iterate
+STEP_FLOOR = 1e-15
 
 
 def show(value, width: int = 80) -> str:
@@ -211,7 +233,7 @@ def weights(text: str):
             a, b, s = (float(v) for v in text.split(":"))
             if not s > 0 or b < a:
                 raise ValueError
-            n = int(np.floor((b - a) / s + 1e-9)) + 1
+            n = int(np.floor((b - a) / s + RESOLUTION)) + 1
             if n > MAX_WEIGHTS:
                 raise ValueError(f"weights {text!r} give {n} weights, more than {MAX_WEIGHTS}")
             w = a + s * np.arange(n)

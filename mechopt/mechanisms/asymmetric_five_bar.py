@@ -21,8 +21,10 @@ own numbers (:meth:`AsymmetricFiveBar.summary`) are the reachable area and the a
 means of the LCI and the TQI over it.
 
 This module is the whole implementation: the contract suite (a case in
-``tests/mechanism_cases.py``), ``mechopt evaluate asymmetric-five-bar`` and
-:func:`mechopt.analysis.evaluate.evaluate` pick it up from :func:`mechopt.mechanisms.registry`.
+``tests/mechanism_cases.py``), ``mechopt evaluate asymmetric-five-bar``,
+:func:`mechopt.analysis.evaluate.evaluate` and, through its design specification
+(:class:`AsymmetricFiveBarDesignSpec`), ``mechopt design asymmetric-five-bar`` pick it
+up from :func:`mechopt.mechanisms.registry`.
 
 References
 ----------
@@ -31,13 +33,45 @@ symmetric case).
 """
 from __future__ import annotations
 
+
 from mechopt.core import validation as _v
 from mechopt.core.protocol import Parameter, PlanarMechanism
 from mechopt.core.quadrature import RASTER_CELLS, grid_over
 from mechopt.mechanisms.five_bar import model as _fb
 from mechopt.mechanisms.five_bar.model import ASSEMBLY_MODES, MODES
 
-__all__ = ["AsymmetricFiveBar", "MODES", "ASSEMBLY_MODES"]
+__all__ = ["AsymmetricFiveBar", "AsymmetricFiveBarDesignSpec", "MODES", "ASSEMBLY_MODES"]
+
+
+class AsymmetricFiveBarDesignSpec(_fb.FiveBarDesignSpec):
+    """``mechopt design asymmetric-five-bar``: the lengths ``a1, c1, a2, c2`` (crank and
+    distal link of each leg) and ``r3`` (the half base, from 0) [L], the modes of the
+    five-bar (default ``"+-"``), cranks. As for the five-bar the reachable set is the
+    intersection of the legs' annuli ``|a_i - c_i| <= |P - A_i| <= a_i + c_i``,
+    symmetric about the base line; each bounded component of its complement lies in
+    the union of the inner disks, so it holds a base joint (the holes). The joints,
+    holes, reach and sketch are the five-bar's (its elbows by leg); with equal legs
+    (``a1 = a2 = r1``, ``c1 = c2 = r2``) every number equals the five-bar's."""
+
+    name = "asymmetric-five-bar"
+    lengths = ("a1", "c1", "a2", "c2", "r3")
+
+    def lower_bounds(self, lmin):
+        return [lmin, lmin, lmin, lmin, 0.0]
+
+    def build(self, v, mode, strokes=None, pad=0.0):
+        return AsymmetricFiveBar(v["a1"], v["c1"], v["a2"], v["c2"], v["r3"], mode)
+
+    def size(self, mech, derived):
+        """``a1 + c1 + a2 + c2 + 2 r3``: both legs and the base distance (the five-bar's
+        ``2 (r1 + r2 + r3)`` for equal legs)."""
+        return mech.a1 + mech.c1 + mech.a2 + mech.c2 + 2.0 * mech.r3
+
+    def placement_scale(self, v, lmax):
+        return max(v["a1"] + v["c1"], v["a2"] + v["c2"])
+
+    def joint_arc_radius(self, mech, leg):
+        return 0.35 * (mech.a1, mech.a2)[leg]
 
 
 class AsymmetricFiveBar(PlanarMechanism):
@@ -59,6 +93,7 @@ class AsymmetricFiveBar(PlanarMechanism):
     assembly_modes = ASSEMBLY_MODES
     joint_names = ("theta1", "theta2")
     angular_joints = True
+    design_spec = AsymmetricFiveBarDesignSpec
     #: the keys of :meth:`summary`, in order
     summary_keys = ("workspace_area", "mean_lci", "mean_tqi", "quadrature")
     #: the area scales as ``D^2``, the means of indices not at all

@@ -44,15 +44,41 @@ import numpy as np
 
 from mechopt.core import validation as _v
 from mechopt.core.protocol import Parameter, as_points
-from mechopt.mechanisms.sliders import ASSEMBLY_MODES, GTQI_METHODS, TwoSliderMechanism
+from mechopt.mechanisms.sliders import ASSEMBLY_MODES, GTQI_METHODS, GuideDesignSpec, TwoSliderMechanism
 
-__all__ = ["Biglide", "MODES", "ASSEMBLY_MODES", "GTQI_METHODS", "SUMMARY_KEYS"]
+__all__ = ["Biglide", "BiglideDesignSpec", "MODES", "ASSEMBLY_MODES", "GTQI_METHODS", "SUMMARY_KEYS"]
 
 MODES = ("--", "++", "+-", "-+")
 
 
 def _stroke(name_min, q_min, name_max, q_max):
     return _v.stroke(name_min, q_min, name_max, q_max, positive=False)
+
+
+class BiglideDesignSpec(GuideDesignSpec):
+    """``mechopt design biglide``: the lengths ``l1`` (half the guide distance) and ``l2``
+    (the links) [L], ``l2 > l1``, the modes :data:`MODES` (default ``"--"``); the
+    strokes are the ranges of ``q1``, ``q2`` over the task."""
+
+    name = "biglide"
+    lengths = ("l1", "l2")
+    guide, link = "l1", "l2"
+    modes, default_mode = MODES, "--"
+
+    def raw(self, v, mode):
+        """The design with placeholder strokes (its inverse kinematics ignores them)."""
+        return Biglide(v["l1"], v["l2"], -1.0, 1.0, mode=mode)
+
+    def positions(self, v, mode, x, y):
+        return self.raw(v, mode).slider_positions(x, y)
+
+    def build(self, v, mode, strokes=None, pad=0.0):
+        (a1, b1), (a2, b2) = strokes
+        return Biglide(v["l1"], v["l2"], a1 - pad, b1 + pad, a2 - pad, b2 + pad, mode=mode)
+
+    def size(self, mech, derived):
+        """``2 l1 + 2 l2``: the guide distance and the two links (strokes reported apart)."""
+        return 2.0 * (mech.l1 + mech.l2)
 
 
 class Biglide(TwoSliderMechanism):
@@ -76,6 +102,7 @@ class Biglide(TwoSliderMechanism):
     """
 
     cli_name = "biglide"
+    design_spec = BiglideDesignSpec
     cli_help = "Biglide PRRRP (Stan 2008): exact workspace area, global TQI, k_av"
     parameters = (
         Parameter("l1", "length", "L", "half the distance of the guides [L]"),

@@ -33,7 +33,7 @@ touches it, of the type-II x axis.
 
 TQI. With unit rows, ``J J^T = [[1, c], [c, 1]]`` with ``c = cos(gamma)``, ``gamma``
 the angle between the struts at ``P``, so ``kappa = sqrt((1+|c|)/(1-|c|))`` and the
-TQI of Stan eq. (9) (``2 kappa / (kappa^2 + 1)``, DESIGN) is ``|sin gamma| = |det J|``.
+TQI of Stan eq. (9) (``2 kappa / (kappa^2 + 1)``, Frobenius norms) is ``|sin gamma| = |det J|``.
 Because the area element is ``dA = dq1 dq2 / |det J|``, the integral of TQI over
 the workspace is the area of the admissible actuator region::
 
@@ -62,10 +62,12 @@ import numpy as np
 
 from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
+from mechopt.core.design_spec import DesignSpec
 from mechopt.core.protocol import Parameter, PlanarMechanism, as_points
 
 __all__ = [
     "Bipod",
+    "BipodDesignSpec",
     "BRANCHES",
     "ASSEMBLY_MODES",
     "GTQI_METHODS",
@@ -83,7 +85,7 @@ GTQI_METHODS = ("exact", "raster")
 
 #: stroke limits are tested with this tolerance relative to ``length_scale``, so
 #: that a pose computed from ``q = q_min`` or ``q_max`` (fk) is reachable
-LIMIT_RTOL = 1e-12
+LIMIT_RTOL = _v.ROUNDING
 
 
 def _stroke(name_min, q_min, name_max, q_max):
@@ -132,6 +134,55 @@ def bipod_tqi_integral(b, q1_min, q1_max, q2_min, q2_max, branch="up"):
     return 2.0 * _half_factor(branch) * q_area
 
 
+class BipodDesignSpec(DesignSpec):
+    """``mechopt design bipod``: the base distance ``b`` [L], the branch ``"up"`` (default)
+    or ``"down"``; the strut strokes are the ranges of ``q1``, ``q2`` over the task and
+    the struts at full extension are bounded by ``max_length``. The task frame has the
+    base midpoint at the origin, the bipod's own frame ``A1`` (:meth:`to_mech`); the
+    holes of the reachable set are the disks ``|P - A_i| < q_min`` about the base
+    joints."""
+
+    name = "bipod"
+    lengths = ("b",)
+    modes, default_mode = ("up", "down"), "up"
+    length_constraint = True  # the struts at full extension are links too
+    derived_strokes = True
+    size_from_lengths = False  # the struts' full extension follows the task's placement
+
+    def to_mech(self, mech, x, y):
+        return x + 0.5 * mech.b, y
+
+    def positions(self, v, mode, x, y):
+        b = v["b"]
+        return np.hypot(x + 0.5 * b, y), np.hypot(x - 0.5 * b, y)
+
+    def build(self, v, mode, strokes=None, pad=0.0):
+        (a1, b1), (a2, b2) = strokes
+        lo = lambda a: max(a - pad, _v.RESOLUTION * v["b"])  # noqa: E731
+        return Bipod(v["b"], lo(a1), b1 + pad, lo(a2), b2 + pad, branch=mode)
+
+    def size(self, mech, derived):
+        """``b + q1_max + q2_max``: the base and both struts at full extension."""
+        return mech.b + mech.q1_max + mech.q2_max
+
+    def joints(self, mech, x, y):
+        return [(np.full_like(x, -0.5 * mech.b), np.zeros_like(x)),
+                (np.full_like(x, 0.5 * mech.b), np.zeros_like(x)), (x, y)]
+
+    def holes(self, mech):
+        return [(-0.5 * mech.b, 0.0), (0.5 * mech.b, 0.0)]
+
+    def reach_radius(self, lmax):
+        return lmax
+
+    def placement_above_base(self, mode):
+        return mode != "down"
+
+    def sketch(self, mech, px, py, mx, my):
+        bases = [(-mech.b / 2, 0), (mech.b / 2, 0)]
+        return [[bases[0], (px, py)], [bases[1], (px, py)]], bases
+
+
 class Bipod(PlanarMechanism):
     """Bipod (RPRPR) ``Bipod(b, q1_min, q1_max, q2_min=None, q2_max=None, branch="up")``.
 
@@ -151,6 +202,7 @@ class Bipod(PlanarMechanism):
     """
 
     cli_name = "bipod"
+    design_spec = BipodDesignSpec
     cli_help = "Bipod RPRPR (Stan 2008): exact workspace area and global TQI"
     parameters = (
         Parameter("b", "length", "L", "base distance [L]"),

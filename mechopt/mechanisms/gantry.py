@@ -50,10 +50,11 @@ import numpy as np
 
 from mechopt.core import validation as _v
 from mechopt.core.protocol import Parameter, as_points
-from mechopt.mechanisms.sliders import ASSEMBLY_MODES, K_AV_READINGS, TwoSliderMechanism
+from mechopt.mechanisms.sliders import ASSEMBLY_MODES, K_AV_READINGS, GuideDesignSpec, TwoSliderMechanism
 
 __all__ = [
     "Gantry",
+    "GantryDesignSpec",
     "MODES",
     "ASSEMBLY_MODES",
     "K_AV_READINGS",
@@ -190,8 +191,8 @@ def check_synthesis(b, h, theta_1S, scales=(1.0,), unit: str = "") -> None:
     t_min = first(lambda t: b * _per_unit_width(t)[0] >= lo)  # d1 large enough from here
     t_max = first(lambda t: b * _per_unit_width(t)[1] > hi)  # l too large from here
     if t_min < t_max:
-        t_lo = "(0" if t_min < 1e-12 else f"[{math.degrees(t_min):.4g}"
-        t_hi = "45)" if t_max > math.pi / 4 - 1e-12 else f"{math.degrees(t_max):.4g}]"
+        t_lo = "(0" if t_min < _v.ROUNDING else f"[{math.degrees(t_min):.4g}"
+        t_hi = "45)" if t_max > math.pi / 4 - _v.ROUNDING else f"{math.degrees(t_max):.4g}]"
         msg += f"; for b = {b:g}{u}, theta_1S must lie in {t_lo}, {t_hi} deg"
     raise ValueError(msg)
 
@@ -226,6 +227,36 @@ def k_av_literal_of_design(theta_1S):
     return (F(s1) - F(s0)) / (s1 - s0)
 
 
+class GantryDesignSpec(GuideDesignSpec):
+    """``mechopt design gantry``: the lengths ``d1`` (half the column distance) and ``l``
+    (the three links) [L], ``l > d1``, the modes :data:`MODES` (default ``"--"``), a
+    platform of no height (``l2 = 0``); the stroke is the range of ``q1``, ``q2`` over
+    the task (both sliders share it, Wu eq. 16)."""
+
+    name = "gantry"
+    lengths = ("d1", "l")
+    guide, link = "d1", "l"
+    modes, default_mode = MODES, "--"
+
+    def positions(self, v, mode, x, y):
+        s1, s2 = (1.0 if c == "+" else -1.0 for c in mode)
+        l, d1 = v["l"], v["d1"]
+        with np.errstate(invalid="ignore"):
+            w1 = np.sqrt(l * l - (x + d1) ** 2)
+            w2 = np.sqrt(l * l - (x - d1) ** 2)
+        # q_i = y - l2/2 - c_i, c_i = -s_i w_i (Gantry._offsets, l2 = 0)
+        return y + s1 * w1, y + s2 * w2
+
+    def build(self, v, mode, strokes=None, pad=0.0):
+        (a1, b1), (a2, b2) = strokes
+        lo, hi = min(a1, a2) - pad, max(b1, b2) + pad
+        return Gantry(v["d1"], v["l"], hi - lo, q_min=lo, mode=mode)
+
+    def size(self, mech, derived):
+        """``2 d1 + 3 l``: the column distance and the three equal links (Wu Fig. 1)."""
+        return 2.0 * mech.d1 + 3.0 * mech.l
+
+
 class Gantry(TwoSliderMechanism):
     """Wu 2008 gantry ``Gantry(d1, l, stroke, q_min=0, l2=0, d2=0, mode="--")``.
 
@@ -257,6 +288,7 @@ class Gantry(TwoSliderMechanism):
     """
 
     cli_name = "gantry"
+    design_spec = GantryDesignSpec
     cli_help = "Wu 2008 gantry: synthesis (eq. 10-16), k_av, eta_D, GTQI"
     parameters = (
         Parameter("b", "length", "length unit", "task width", 500.0),

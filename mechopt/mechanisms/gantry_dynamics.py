@@ -71,7 +71,6 @@ Asada H (1983), J. Dyn. Syst. Meas. Control 105:131-135 (generalized inertia ell
 from __future__ import annotations
 
 from dataclasses import dataclass, fields, replace
-from functools import lru_cache
 
 import numpy as np
 
@@ -79,6 +78,7 @@ from mechopt.core import indices as _ix
 from mechopt.core import validation as _v
 from mechopt.data import published_values
 from mechopt.core.protocol import as_points
+from mechopt.core.quadrature import gauss_legendre
 from mechopt.core.motion import trapezoidal_profile, wu2008_trajectory  # noqa: F401 (importable from here too)
 
 __all__ = [
@@ -225,17 +225,6 @@ class GantryInertia:
         return replace(sym, m13=half, m23=half)
 
 
-@lru_cache(maxsize=32)
-def _gauss_legendre(n: int):
-    """``numpy.polynomial.legendre.leggauss(n)``, computed once per order (the
-    eigenvalue problem costs about 1 ms for n = 48, and Wu's scans ask for the same
-    orders hundreds of times): read-only node and weight arrays."""
-    g, gw = np.polynomial.legendre.leggauss(n)
-    g.flags.writeable = False
-    gw.flags.writeable = False
-    return g, gw
-
-
 def rectangle_rule(box, n: int = 48):
     """Tensor Gauss-Legendre nodes ``(x, y)`` and weights (sum 1) on ``box = (xmin, xmax, ymin, ymax)``.
 
@@ -244,7 +233,7 @@ def rectangle_rule(box, n: int = 48):
     """
     n = _v.integer("n", n, 1)
     xmin, xmax, ymin, ymax = _v.finite_numbers("box", box, 4, "(xmin, xmax, ymin, ymax)")
-    g, gw = _gauss_legendre(n)
+    g, gw = gauss_legendre(n)
     xs = 0.5 * (xmax - xmin) * g + 0.5 * (xmax + xmin)
     ys = 0.5 * (ymax - ymin) * g + 0.5 * (ymax + ymin)
     X, Y = np.meshgrid(xs, ys, indexing="ij")
@@ -291,7 +280,7 @@ class GantryDynamics:
                     raise ValueError(
                         f"inertia of link {name} must be 0 when its mass is 0 (a massless "
                         f"body has no inertia), got {I!r} kg m^2")
-                if I < m * s * s * (1.0 - 1e-12):
+                if I < m * s * s * (1.0 - _v.ROUNDING):
                     raise ValueError(
                         f"inertia of link {name} about its slider joint must be >= m s^2 = "
                         f"{m * s * s!r} kg m^2 (non-negative central inertia), got {I!r}")

@@ -65,13 +65,13 @@ eq. (1)-(9).
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 
 import numpy as np
 
 from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
 from mechopt.core.protocol import PlanarMechanism, as_points
+from mechopt.core.quadrature import gauss_legendre
 
 __all__ = ["TwoSliderMechanism", "ASSEMBLY_MODES", "GTQI_METHODS", "K_AV_READINGS"]
 
@@ -83,14 +83,15 @@ GTQI_METHODS = ("gauss", "quad", "raster")
 K_AV_READINGS = ("literal", "displacement", "max_speed")
 #: stroke limits are tested with this tolerance relative to the largest of the link
 #: length and the limits' magnitudes (module docstring)
-LIMIT_RTOL = 1e-12
+LIMIT_RTOL = _v.ROUNDING
 _QUAD_EPSREL = 1e-10
 _SIGN = {"+": 1.0, "-": -1.0}
 
 
-@lru_cache(maxsize=1)
-def _gauss_nodes(n: int = 128):
-    return np.polynomial.legendre.leggauss(n)
+#: Gauss-Legendre orders of the fixed rules: the TQI column integrals per interval
+#: between breakpoints (``tqi_mean(method="gauss")``) and the ``max_speed`` k_av integral
+GAUSS_ORDER_TQI = 128
+GAUSS_ORDER_KAV = 64
 
 
 def _w(u, l):
@@ -311,7 +312,7 @@ class TwoSliderMechanism(PlanarMechanism):
         xmin, xmax = self.x_range
         pts = set(self._breakpoints().tolist()) | {g for g in self._g if xmin <= g <= xmax}
         lo, hi = self._y_bounds(np.array(sorted(pts)))
-        keep = lo <= hi + 1e-9 * self._L  # non-empty (to rounding at pinch points)
+        keep = lo <= hi + _v.RESOLUTION * self._L  # non-empty (to rounding at pinch points)
         if not np.any(keep):
             (_, hi1), (_, hi2) = self._lims
             y = float(min(hi1, hi2) + self._e)
@@ -408,7 +409,7 @@ class TwoSliderMechanism(PlanarMechanism):
         """
         pts = self._breakpoints()
         if method == "gauss":
-            t, w = _gauss_nodes()
+            t, w = gauss_legendre(GAUSS_ORDER_TQI)
             total = 0.0
             for x0, x1 in zip(pts[:-1], pts[1:]):
                 if x1 > x0:
@@ -530,7 +531,7 @@ class TwoSliderMechanism(PlanarMechanism):
         if not x_min < x_max:
             raise ValueError(f"x_max must be greater than x_min = {x_min!r}, got {x_max!r}")
         lo, hi = self.x_range
-        tol = 1e-12 * self._L
+        tol = _v.ROUNDING * self._L
         if x_min < lo - tol or x_max > hi + tol:
             raise ValueError(
                 f"[x_min, x_max] must lie in the reachable x range [{lo!r}, {hi!r}], "
@@ -542,7 +543,7 @@ class TwoSliderMechanism(PlanarMechanism):
             return math.sqrt(max(l * l - u * u, 0.0))
 
         if reading == "max_speed":
-            g, gw = np.polynomial.legendre.leggauss(64)
+            g, gw = gauss_legendre(GAUSS_ORDER_KAV)
             xs = 0.5 * (x_max - x_min) * g + 0.5 * (x_max + x_min)
             u1, u2 = xs - self._g[0], xs - self._g[1]
             t1 = u1 / (-self._s[0] * _w(u1, l))  # tan theta_i = (x - g_i) / c_i
@@ -567,3 +568,59 @@ class TwoSliderMechanism(PlanarMechanism):
         else:
             travel = abs(wf(a) - wf(b))
         return (x_max - x_min) / travel if travel > 0 else math.inf
+
+
+# ------------------------------------------------------------ design specification
+from mechopt.core.design_spec import DesignSpec  # noqa: E402  (appended section: the design spec)
+
+
+class GuideDesignSpec(DesignSpec):
+    """``mechopt design`` of two sliders on the vertical guides ``x = g_i``
+    (``mech.guides``), each with one link of the length named :attr:`link` (the
+    Biglide, the gantry): the strokes are derived from the task, the links must be
+    longer than the half guide distance named :attr:`guide`; the reachable set has no
+    holes (its complement is unbounded) and lies within ``|x| <= lmax``. The link
+    angles from the guides depend on x alone (module docstring), so their extremes
+    over the task lie on its boundary."""
+
+    #: names (in :attr:`lengths`) of the half guide distance and of the link length
+    guide = link = ""
+    derived_strokes = True
+
+    def validity(self, v, lmax):
+        return (v[self.guide] - v[self.link]) / lmax + _v.RESOLUTION
+
+    def joints(self, mech, x, y):
+        q1, q2 = mech.slider_positions(x, y)  # the built gantries have l2 = 0: q_i = y - c_i
+        g = mech.guides
+        return [(np.full_like(x, g[0]), q1), (np.full_like(x, g[1]), q2), (x, y)]
+
+    def link_angles(self, mech, x, y):
+        """Each link's angle from its guide, ``arcsin(|x - g_i| / L)`` in [0, pi/2]."""
+        g, L = mech.guides, getattr(mech, self.link)
+        with np.errstate(invalid="ignore"):
+            return (np.arcsin(np.clip(np.abs(x - g[0]) / L, 0, 1)),
+                    np.arcsin(np.clip(np.abs(x - g[1]) / L, 0, 1)))
+
+    def holes(self, mech):
+        return []
+
+    def x_reach(self, lmax):
+        return lmax
+
+    def placement_scale(self, v, lmax):
+        return v[self.link]
+
+    def sketch(self, mech, px, py, mx, my):
+        q1, q2, _ = mech.ik(mx, my)
+        g = mech.guides
+        chains = [[(g[0], float(q1)), (px, py)], [(g[1], float(q2)), (px, py)]]
+        return chains, [(g[0], float(q1)), (g[1], float(q2))]
+
+    def actuator_paths(self, mech, strokes):
+        """Each guide over its slider's stroke."""
+        return [((g, lo), (g, hi)) for g, (lo, hi) in zip(mech.guides, strokes)]
+
+
+# the design spec joins the public names listed at the top of the module
+__all__ = [*__all__, "GuideDesignSpec"]

@@ -162,14 +162,14 @@ def _lattice(step):
     """``(r1, r2, r3)`` arrays of :func:`design_grid` (NumPy only)."""
     step = check_step(step)
     n_sum = round(SUM / step)
-    exact = abs(n_sum * step - SUM) <= 1e-9 * SUM
-    k_max = int(math.floor(R3_MAX / step + 1e-9))
+    exact = abs(n_sum * step - SUM) <= _v.RESOLUTION * SUM
+    k_max = int(math.floor(R3_MAX / step + _v.RESOLUTION))
     r1s, r3s = [], []
     for k in range(k_max + 1):
         if exact:
             j = np.arange(1, n_sum - k)  # r2 = (n_sum - k - j) step >= step
         else:
-            j = np.arange(1, int(math.ceil((SUM - k * step) / step - 1e-9)))
+            j = np.arange(1, int(math.ceil((SUM - k * step) / step - _v.RESOLUTION)))
         r1s.append(j * step)
         r3s.append(np.full(j.size, k * step))
     r1 = np.round(np.concatenate(r1s), 12)
@@ -445,10 +445,10 @@ def _levels(v):
     if hi - lo > 0 and (qhi - qlo) < 0.5 * (hi - lo):  # heavy tail (near-degenerate corners)
         lo, hi, extend = qlo, qhi, "both"
     if not hi > lo:
-        hi = lo + max(abs(lo), 1.0) * 1e-9
+        hi = lo + max(abs(lo), 1.0) * _v.RESOLUTION
     levels = MaxNLocator(nbins=20).tick_values(lo, hi)
     if extend == "neither":
-        levels = levels[(levels >= lo - 1e-12 * abs(hi)) | (np.arange(levels.size) == 0)]
+        levels = levels[(levels >= lo - _v.ROUNDING * abs(hi)) | (np.arange(levels.size) == 0)]
         if levels[-1] < hi:
             levels = np.append(levels, hi)
         if levels[0] > lo:

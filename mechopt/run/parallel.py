@@ -266,10 +266,10 @@ _AT_EXIT = {}  # pid -> True once _end_pool_at_exit is registered in that proces
 
 
 def _submit(executor, func, item):
-    """``executor.submit(func, item)``; the first submit of a process also registers
+    """``executor.submit(func, item)`` (through :func:`_run_item`); the first submit of a process also registers
     :func:`_end_pool_at_exit` (after loky's own exit hook, which that submit registers,
     so that it runs before it)."""
-    fut = executor.submit(func, item)
+    fut = executor.submit(_run_item, func, item)
     if os.getpid() not in _AT_EXIT:
         _AT_EXIT[os.getpid()] = True
         try:  # the hook of concurrent.futures: runs before threads are joined, in reverse order
@@ -338,6 +338,28 @@ def _kill_pool():
             except (OSError, AttributeError, ValueError):
                 pass
         ours.shutdown(wait=False, kill_workers=True)
+
+
+def _run_item(func, item):
+    """``func(item)`` in a worker, then the end of any pool it started there.
+
+    A work unit may map its own items on a pool of its worker (a paper of ``reproduce``
+    running its optimisations on two processes): that pool is closed when the unit
+    ends, since the worker is killed when its parent exits, which would leave the
+    pool's semaphores to the resource tracker ("leaked semlock objects" on stderr)."""
+    try:
+        return func(item)
+    finally:
+        _close_pool()
+
+
+def _close_pool():
+    """Shut this process's pool down, if it has one, and wait for its workers to end."""
+    with _POOL_LOCK:
+        ours = _POOL.get("executor") if _POOL.get("pid") == os.getpid() else None
+        _POOL.clear()
+    if ours is not None:
+        ours.shutdown(wait=True)
 
 
 def _die_with_parent(parent: int | None = None):

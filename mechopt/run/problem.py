@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 from pymoo.core.problem import Problem
 
+from mechopt.core import validation as _v
 from mechopt.run.parallel import chunks, parallel_map
 
 __all__ = ["MechoptProblem", "Objective", "HV_REFERENCE"]
@@ -164,7 +165,7 @@ class MechoptProblem(Problem):
             raise ValueError(f"X must have shape (n, {self.n_var}) for {self.name}, got {X.shape}")
         if not np.all(np.isfinite(X)):
             raise ValueError(f"X must be finite for {self.name}; got NaN or inf")
-        tol = 1e-9 * np.maximum(1.0, np.abs(self.xu - self.xl))
+        tol = _v.RESOLUTION * np.maximum(1.0, np.abs(self.xu - self.xl))
         bad = (X < self.xl - tol) | (X > self.xu + tol)
         if bad.any():
             i, j = np.argwhere(bad)[0]

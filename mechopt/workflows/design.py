@@ -17,6 +17,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import pandas as pd
 
+from mechopt.core import validation as _v
 from mechopt.core import indices as _ix
 from mechopt.core.numerics import golden_section_max
 from mechopt.analysis.task import (OBJECTIVES, DesignEvaluator, NoFeasibleDesign, Requirements, Sampling,
@@ -164,7 +165,7 @@ def _best_row(f, G):
     if not ok.any():
         return int(np.argmax(phi))
     fb = f[ok].min()
-    tie = ok & (f <= fb + 1e-12 * max(abs(fb), 1.0))
+    tie = ok & (f <= fb + _v.ROUNDING * max(abs(fb), 1.0))
     return int(np.flatnonzero(tie)[np.argmax(phi[tie])])
 
 
@@ -373,10 +374,10 @@ def _polish_lengths(problem, x0, j, sampling, seed=0, iters=100, step_min=1e-4, 
                 continue
             xc = x.copy()
             xc[cont] = problem.xl[cont] + zc * span[cont]
-            if not size_of(xc) < f - 1e-9 * max(abs(f), 1.0):
+            if not size_of(xc) < f - _v.RESOLUTION * max(abs(f), 1.0):
                 continue  # no better whatever the placement
             fc, Gc = evals(xc[None, :])
-            if not fc[0] < f - 1e-12 * max(abs(f), 1.0):
+            if not fc[0] < f - _v.ROUNDING * max(abs(f), 1.0):
                 continue
             xc, pc, fcc = _peak(problem, evals, xc, need=True, known=(float(_phi(Gc)[0]), float(fc[0])))
             if pc >= 0:
@@ -477,7 +478,7 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None):
         fc, okc = batch(cand)
         fc = np.where(okc, fc, np.inf)
         k = int(np.argmin(fc))
-        if fc[k] < f - 1e-12 * max(abs(f), 1.0):
+        if fc[k] < f - _v.ROUNDING * max(abs(f), 1.0):
             z, f = cand[k], fc[k]
             step = min(2.0 * step, 0.2)
         else:
@@ -579,7 +580,7 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
            algorithm=None, pop=None, gen=None, seed=1, n_jobs=1, client=None, out=None,
            progress=False, polish=True, pick=None, checkpoint_every=None, plot=True,
            overwrite=False) -> DesignResult:
-    """Size ``mechanism`` (one of :data:`MECHANISMS`) for ``task``.
+    """Size ``mechanism`` (one of :func:`mechopt.analysis.task.mechanisms`) for ``task``.
 
     Builds :class:`mechopt.problems.design.DesignProblem`, runs it with
     :func:`mechopt.run.runner.optimize` (seeded; ``n_jobs``/``client`` as there), polishes
@@ -779,34 +780,21 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
     # the mechanism at the reference pose
     px, py = float(rx), float(ry)
     pmx, pmy = spec.to_mech(mech, np.float64(px), np.float64(py))
-    if spec.name == "five-bar":
-        b1x, b1y, b2x, b2y, _ = mech.elbows(px, py)
-        chain = [[(-mech.r3, 0), (float(b1x), float(b1y)), (px, py)],
-                 [(mech.r3, 0), (float(b2x), float(b2y)), (px, py)]]
-        bases = [(-mech.r3, 0), (mech.r3, 0)]
-    elif spec.name == "bipod":
-        chain = [[(-mech.b / 2, 0), (px, py)], [(mech.b / 2, 0), (px, py)]]
-        bases = [(-mech.b / 2, 0), (mech.b / 2, 0)]
-    else:
-        q1, q2, _ = mech.ik(pmx, pmy)
-        gxs = mech.guides
-        chain = [[(gxs[0], float(q1)), (px, py)], [(gxs[1], float(q2)), (px, py)]]
-        bases = [(gxs[0], float(q1)), (gxs[1], float(q2))]
-        for (gxx, (lo, hi)) in zip(gxs, rec.get("strokes", [])):
-            ax.plot([gxx, gxx], [lo, hi], color="k", lw=4, alpha=0.3, solid_capstyle="butt")
+    chain, bases = spec.sketch(mech, px, py, pmx, pmy)  # the legs, drawn by the mechanism's spec
+    for (sx0, sy0), (sx1, sy1) in spec.actuator_paths(mech, rec.get("strokes", [])):
+        ax.plot([sx0, sx1], [sy0, sy1], color="k", lw=4, alpha=0.3, solid_capstyle="butt")
     for c in chain:
         c = np.array(c)
         ax.plot(c[:, 0], c[:, 1], "-o", color="k", lw=2, ms=4)
     ax.plot(*np.array(bases).T, "s", color="k", ms=7)
-    lines = [f"{spec.name} ({rec['variables']['mode']}): " + ", ".join(
-        f"{k} = {rec['variables'][k]:.4g} {unit}" for k in spec.lengths)]
+    lines = spec.variable_lines(rec["variables"], unit)
     if "joint_ranges_deg" in rec:
         for i, (a, b) in enumerate(rec["joint_ranges_deg"], 1):
             lines.append(f"theta{i} in [{a:.1f}, {b:.1f}] deg over the task")
-            if spec.name == "five-bar":
+            rr = spec.joint_arc_radius(mech, i - 1)
+            if rr is not None:  # the crank's range, as an arc about its base joint
                 base = bases[i - 1]
                 t = np.radians(np.linspace(a, b, 60))
-                rr = 0.35 * mech.r1
                 ax.plot(base[0] + rr * np.cos(t), base[1] + rr * np.sin(t), color="tab:purple", lw=1.5)
     if "strokes" in rec:
         for i, (lo, hi) in enumerate(rec["strokes"], 1):

@@ -20,7 +20,7 @@ __all__ = ["RESULT_COLUMNS", "evaluate_designs"]
 #: what :func:`evaluate_designs` returns, in order
 RESULT_COLUMNS = ("r_mic", "mic_center_y") + _k.DISK_STAT_NAMES
 #: a MIC radius below this (relative to the length scale 1) counts as none
-_MIN_RADIUS = 1e-9
+_MIN_RADIUS = _v.RESOLUTION
 
 
 def evaluate_designs(r1, r2, r3, quadrature: str = "area", mode: str = "+-", compiled=None):

@@ -22,7 +22,7 @@ MIC and disk means to rounding) and that the fast MIC and disk means agree with
 the reference :func:`mechopt.analysis.workspace.mic` + :func:`mechopt.analysis.performance.global_indices`.
 
 Geometry and conventions are those of :mod:`mechopt.mechanisms.five_bar.model`
-(DESIGN.md): ``A1 = (-r3, 0)``, ``A2 = (r3, 0)``, crank ``r1``, distal link ``r2``,
+(Le 2013 eq. 13-19): ``A1 = (-r3, 0)``, ``A2 = (r3, 0)``, crank ``r1``, distal link ``r2``,
 working-mode signs ``s1, s2`` (``+1`` for ``"+"``); elbows by circle intersection
 (no trigonometry); ``J = B^-1 A`` with ``theta_dot = J p_dot``. The kernels work
 on the design divided by its length scale ``(r1 + r2 + r3)/3`` and rescale.
@@ -71,7 +71,9 @@ import math
 
 import numpy as np
 
+from mechopt.core.indices import lci_of_entries, two_smax_squared
 from mechopt.core.jit import HAVE_NUMBA, jitable, njit, select, use_numba
+from mechopt.core.validation import ROUNDING, STEP_FLOOR
 from mechopt.mechanisms.five_bar import mic as _mic
 from mechopt.mechanisms.five_bar.model import MODES
 
@@ -87,7 +89,7 @@ __all__ = [
 ]
 
 #: reachability tolerance on ``h^2`` (same as FiveBar.elbows)
-_REACH_TOL = 1e-12
+_REACH_TOL = ROUNDING
 #: sizes of the fast MIC (:data:`mechopt.mechanisms.five_bar.mic.MIC_SIZES`)
 MIC_SIZES = _mic.MIC_SIZES
 #: iterations of the compass search and of the trust-region polish of the MCI
@@ -149,25 +151,17 @@ def _mrows(r1sq, half_d, r3, s1, s2, x, y):
 
 
 @jitable
-def _two_smax_sq(a, b, c, d):
-    """``|M|_F^2 + sqrt(P Q) = 2 s_max(M)^2`` of ``M = [a b; c d]`` (Liu 2006 eq. 3), with
-    ``P = (a - d)^2 + (b + c)^2``, ``Q = (a + d)^2 + (b - c)^2``."""
-    S = a * a + b * b + c * c + d * d
-    return S + np.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
-
-
-@jitable
 def _lci_m(a, b, c, d, ok):
-    """LCI ``s_min / s_max = 2 |det M| / (2 s_max^2)`` of ``M``; 0 where not ``ok`` or ``M = 0``."""
-    den = _two_smax_sq(a, b, c, d)
-    v = 2.0 * abs(a * d - b * c) / den
-    return select(ok & (den > 0.0), v, 0.0)
+    """LCI of ``M`` (:func:`mechopt.core.indices.lci_of_entries`); 0 where not ``ok``, for
+    ``M = 0`` and where the entries overflowed (NaN fails ``v >= 0``)."""
+    v = lci_of_entries(a, b, c, d)
+    return select(ok & (v >= 0.0), v, 0.0)
 
 
 @jitable
 def _sv_m(a, b, c, d, kk):
     """``(s_max, s_min)`` of J from ``M = kk J``."""
-    sm = np.sqrt(0.5 * _two_smax_sq(a, b, c, d))
+    sm = np.sqrt(0.5 * two_smax_squared(a, b, c, d))
     ak = abs(kk)
     return sm / ak, abs(a * d - b * c) / (sm * ak)
 
@@ -552,7 +546,7 @@ def _tr_step(gx, gy, hxx, hxy, hyy, delta):
     gf = gy * ex - gx * ey
     newton = (l1 > 0.0) & (np.hypot(ge / l2, gf / l1) <= delta)
     mu_lo = select(-l1 > 0.0, -l1, 0.0)
-    mu = mu_lo + 1e-12 * (abs(l1) + abs(l2)) + 1e-300
+    mu = mu_lo + ROUNDING * (abs(l1) + abs(l2)) + 1e-300
     for _ in range(12):  # More-Sorensen: Newton on 1/|d(mu)| - 1/delta
         de = -ge / (l2 + mu)
         df = -gf / (l1 + mu)
@@ -654,7 +648,7 @@ def _tr_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, delta, n_iter):
     py)``, as :func:`mechopt.analysis.performance._trust_region`: gradient and Hessian from
     central differences of ``r`` (6-point stencil), trial points projected into
     the disk, a step kept only if it lowers ``g``. Returns the LCI at the end."""
-    h = max(1e-5 * R, 1e-12 * (abs(cy) + R))
+    h = max(1e-5 * R, ROUNDING * (abs(cy) + R))
     h2 = h * h
     for _ in range(n_iter):
         a1, a2 = _iso_r(r1sq, half_d, r3, s1, s2, px, cy + py)
@@ -688,7 +682,7 @@ def _tr_polish_nb(r1sq, half_d, r3, s1, s2, cy, R, px, py, delta, n_iter):
         else:
             delta = 0.25 * step
         # converged: nothing left to gain above rounding, or the region has collapsed
-        if not (math.isfinite(delta) and delta > 1e-12 * R) or pred <= 1e-15 * g0:
+        if not (math.isfinite(delta) and delta > ROUNDING * R) or pred <= STEP_FLOOR * g0:
             break
     return _lci_point(r1sq, half_d, r3, s1, s2, px, cy + py)
 
@@ -803,7 +797,7 @@ def _iso_newton_nb(r1sq, half_d, r3, s1, s2, cy, R, sx, sy, n_iter, n_min, wk):
     for k in range(n):
         px[k] = R * sx[k]
         py[k] = R * sy[k]
-    h = max(1e-5 * R, 1e-12 * (abs(cy) + R))
+    h = max(1e-5 * R, ROUNDING * (abs(cy) + R))
     bx = 0.0
     by = 0.0
     bg = np.inf
@@ -833,7 +827,7 @@ def _iso_newton_nb(r1sq, half_d, r3, s1, s2, cy, R, sx, sy, n_iter, n_min, wk):
         m = 0
         for k in range(n):
             st = math.hypot(ddx[k], ddy[k])
-            if math.isfinite(st) and st > 1e-15 * R and math.isfinite(gk[k]):
+            if math.isfinite(st) and st > STEP_FLOOR * R and math.isfinite(gk[k]):
                 wk[5, m] = gk[k]
                 m += 1
         if m == 0:
@@ -844,7 +838,7 @@ def _iso_newton_nb(r1sq, half_d, r3, s1, s2, cy, R, sx, sy, n_iter, n_min, wk):
         j = 0
         for k in range(n):
             st = math.hypot(ddx[k], ddy[k])
-            if math.isfinite(st) and st > 1e-15 * R and math.isfinite(gk[k]) and gk[k] <= med:
+            if math.isfinite(st) and st > STEP_FLOOR * R and math.isfinite(gk[k]) and gk[k] <= med:
                 cap = 0.5 * R / st if st > 0.5 * R else 1.0
                 qx = px[k] + cap * ddx[k]
                 qy = py[k] + cap * ddy[k]
@@ -1028,7 +1022,7 @@ def _tr_polish_np(rr, s1, s2, cy, R, px, py, delta, n_iter):
     """:func:`_tr_polish_nb` for arrays of designs (rr: (B, 1) columns, the rest (B,))."""
     c1 = lambda v: v[:, None]  # noqa: E731
     res = lambda x, y: tuple(v[:, 0] for v in _iso_r_np(rr, s1, s2, c1(x), c1(cy + y)))  # noqa: E731
-    h = np.maximum(1e-5 * R, 1e-12 * (np.abs(cy) + R))
+    h = np.maximum(1e-5 * R, ROUNDING * (np.abs(cy) + R))
     h2 = h * h
     live = np.ones(R.size, bool)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -1059,7 +1053,7 @@ def _tr_polish_np(rr, s1, s2, cy, R, px, py, delta, n_iter):
             nd = np.where(rho > 0.25, np.where(grow, np.where(2.0 * delta < R, 2.0 * delta, R),
                                                delta), 0.25 * step)
             delta = np.where(live, nd, delta)
-            live &= np.isfinite(delta) & (delta > 1e-12 * R) & ~(pred <= 1e-15 * g0)
+            live &= np.isfinite(delta) & (delta > ROUNDING * R) & ~(pred <= STEP_FLOOR * g0)
     return _lci_at_np(rr, s1, s2, c1(px), c1(cy + py))[:, 0]
 
 
@@ -1181,7 +1175,7 @@ def _iso_newton_np(rr, s1, s2, cy, R, sx, sy, n_iter, n_min):
     B = R.size
     bx, by = np.zeros(B), np.zeros(B)
     bg = np.full(B, np.inf)
-    h = np.maximum(1e-5 * R, 1e-12 * (np.abs(cy) + R))
+    h = np.maximum(1e-5 * R, ROUNDING * (np.abs(cy) + R))
     idx = np.arange(B)  # designs still searching
     px, py = c1(R) * sx[None, :], c1(R) * sy[None, :]
     alive = np.ones(px.shape, bool)
@@ -1206,7 +1200,7 @@ def _iso_newton_np(rr, s1, s2, cy, R, sx, sy, n_iter, n_min):
             bg[idx[up]] = gmin[up]
             dx, dy = _cd_step(f0, q0, f1, q1, f2, q2, f3, q3, f4, q4, hh)
             st = np.hypot(dx, dy)
-            keep = alive & np.isfinite(st) & (st > 1e-15 * Rc) & np.isfinite(g)
+            keep = alive & np.isfinite(st) & (st > STEP_FLOOR * Rc) & np.isfinite(g)
             m = keep.sum(axis=1)
             if it % 4 == 3:  # keep the better half
                 half = m > n_min

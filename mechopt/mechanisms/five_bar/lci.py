@@ -5,7 +5,7 @@
 temporaries: no elbow coordinates, no ``(..., 2, 2)`` stacks, no trigonometry.
 :meth:`mechopt.mechanisms.five_bar.model.FiveBar.lci` calls it.
 
-Derivation (DESIGN conventions; Le 2013 eq. 13-19). For leg i with base joint
+Derivation (the conventions of :mod:`mechopt.mechanisms.five_bar.model`; Le 2013 eq. 13-19). For leg i with base joint
 ``A_i = (ax_i, 0)``, ``v = P - A_i = (dx, y)``, ``w = (-y, dx)`` and ``q = |v|^2``, the
 circle intersection gives the elbow ``B_i = A_i + c v + h w`` with
 ``c = (r1^2 - r2^2 + q) / (2 q)`` and ``h = s_i sqrt(n) / (2 q)``, where
@@ -18,12 +18,9 @@ Then
 
 so the Jacobian row ``a_i / b_i`` is ``a~_i`` divided by ``-s_i q sqrt(n)``. The LCI is
 invariant under scaling J and under row order, so it is evaluated on
-``M = [g1 a~2; g2 a~1]`` with ``g_i = q_i sqrt(n_i)`` (no division), and the closed
-form ``LCI = 2 |det| / (S + sqrt(S^2 - 4 det^2))`` with ``S = (P + Q) / 2``,
-``S^2 - 4 det^2 = P Q``, ``P = (m11 - m22)^2 + (m12 + m21)^2``,
-``Q = (m11 + m22)^2 + (m12 - m21)^2`` becomes
-
-    LCI = 4 |det M| / (sqrt(P) + sqrt(Q))^2.
+``M = [g1 a~2; g2 a~1]`` with ``g_i = q_i sqrt(n_i)`` (no division) by the package's
+one LCI formula, :func:`mechopt.core.indices.lci_of_entries`
+(``2 |det M| / (S + sqrt(P) sqrt(Q))``, Liu 2006 eq. 3).
 
 Coordinates are divided by the length scale first so that nothing over- or
 underflows in any unit. Unreachable points (``n < 0``), a base joint at P
@@ -46,11 +43,12 @@ import time
 import numpy as np
 
 from mechopt.core import jit as _jit
+from mechopt.core.indices import lci_of_entries
 from mechopt.core.jit import HAVE_NUMBA
 
 __all__ = ["five_bar_lci", "five_bar_lci_numpy", "five_bar_lci_numba", "HAVE_NUMBA"]
 
-#: points per block of the NumPy kernel: its 17 buffers stay in L2/L3 cache
+#: points per block of the NumPy kernel: its 14 buffers stay in L2/L3 cache
 CHUNK = 16384
 
 
@@ -74,17 +72,6 @@ def _signed_sum(u, a, t, b, s, out, tmp):
         out -= tmp
 
 
-def _hypot_of(op1, op2, a, b, c, d, out, tmp):
-    """``out = sqrt(op1(a, b)^2 + op2(c, d)^2)`` in place (``tmp`` is overwritten): ``sqrt(P)``
-    and ``sqrt(Q)`` of the module docstring."""
-    op1(a, b, out=out)
-    out *= out
-    op2(c, d, out=tmp)
-    tmp *= tmp
-    out += tmp
-    np.sqrt(out, out=out)
-
-
 def five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2, chunk: int = CHUNK):
     """LCI of the five-bar working mode with elbow signs ``s1, s2`` (+1/-1).
 
@@ -98,12 +85,12 @@ def five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2, chunk: int = CHUNK):
     out = np.empty(n)
     inv_l, r3n, lo2, hi2, kk = _consts(r1, r2, r3)
     m = min(chunk, n) if n else 0
-    buf = np.empty((17, m))
+    buf = np.empty((14, m))
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         for i0 in range(0, n, chunk):
             i1 = min(i0 + chunk, n)
             k = i1 - i0
-            (xs, ys, y2, dx, q, t, u, g1, g2, m11, m12, m21, m22, p, pq, det, tmp) = (
+            (xs, ys, y2, dx, q, t, u, g1, g2, m11, m12, m21, m22, tmp) = (
                 b[:k] for b in buf
             )
             np.multiply(xf[i0:i1], inv_l, out=xs)
@@ -129,19 +116,8 @@ def five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2, chunk: int = CHUNK):
             m22 *= g2
             m11 *= g1
             m12 *= g1
-            # det M
-            np.multiply(m11, m22, out=det)
-            np.multiply(m12, m21, out=tmp)
-            det -= tmp
-            np.abs(det, out=det)
-            # sqrt(P) + sqrt(Q)
-            _hypot_of(np.subtract, np.add, m11, m22, m12, m21, p, tmp)
-            _hypot_of(np.add, np.subtract, m11, m22, m12, m21, pq, tmp)
-            p += pq
-            p *= p
             res = out[i0:i1]
-            np.divide(det, p, out=res)
-            res *= 4.0
+            res[...] = lci_of_entries(m11, m12, m21, m22)
             # NaN (unreachable, 0/0 at type-I or q = 0) -> 0; fmax drops NaN
             np.fmax(res, 0.0, out=res)
     return out.reshape(shape)
@@ -175,13 +151,7 @@ def _five_bar_lci_loop(xf, yf, inv_l, r3n, lo2, hi2, kk, s1, s2, out):
         m12 = g1 * a2y
         m21 = g2 * a1x
         m22 = g2 * a1y
-        det = abs(m11 * m22 - m12 * m21)
-        d1 = m11 - m22
-        d2 = m12 + m21
-        d3 = m11 + m22
-        d4 = m12 - m21
-        r = np.sqrt(d1 * d1 + d2 * d2) + np.sqrt(d3 * d3 + d4 * d4)
-        v = 4.0 * det / (r * r)
+        v = lci_of_entries(m11, m12, m21, m22)
         out[i] = v if v >= 0.0 else 0.0  # NaN -> 0
 
 

@@ -65,6 +65,7 @@ import numpy as np
 
 from mechopt.core.jit import HAVE_NUMBA, jitable, njit, select
 from mechopt.core.numerics import INV_PHI, golden_section_max
+from mechopt.core.validation import RESOLUTION, ROUNDING
 
 __all__ = ["FiveBarWorkspace", "five_bar_mic", "MIC_SIZES", "MIC_NUMBA_AFTER_SECONDS"]
 
@@ -166,7 +167,7 @@ def _coupler_point(r1, r2, r3, s1, s2, leg, sigma, cos_th, sin_th):
     b2y = select(first, cy, by)
     c1 = (px + r3) * b1y - py * (b1x + r3)
     c2 = (px - r3) * b2y - py * (b2x - r3)
-    ok = (L2 > 0.0) & (hh2 >= -1e-12 * cc) & (s1 * c1 >= 0.0) & (s2 * c2 >= 0.0)
+    ok = (L2 > 0.0) & (hh2 >= -ROUNDING * cc) & (s1 * c1 >= 0.0) & (s2 * c2 >= 0.0)
     return px, py, ok
 
 
@@ -648,7 +649,7 @@ class FiveBarWorkspace:
         fb = self.fb
         r1, r2, r3 = fb.r1, fb.r2, fb.r3
         hi = r1 + r2
-        m = 1e-3 * fb.length_scale + 1e-9 * hi ** 3 / (r1 * r2)
+        m = 1e-3 * fb.length_scale + RESOLUTION * hi ** 3 / (r1 * r2)
         lo2 = max(abs(r1 - r2) - m, 0.0) ** 2
         hi2 = (hi + m) ** 2
 
@@ -681,12 +682,12 @@ class FiveBarWorkspace:
         scale = (r1 + r2 + r3) / 3.0
         if not r3 < r1 + r2:
             return f"no point of the y axis is reachable by both legs: r3 must be less than r1 + r2 = {r1 + r2:g}"
-        if fb.mode in ("++", "--") and r3 <= 1e-12 * scale:
+        if fb.mode in ("++", "--") and r3 <= ROUNDING * scale:
             return (f"with r3 = {r3:g} the working mode {fb.mode!r} puts both elbows on (nearly) one point, "
-                    "singular everywhere: use r3 > 1e-12 (r1 + r2 + r3)/3 or the mode '+-' or '-+'")
-        if min(r1, r2) < 1e-9 * scale:
-            return (f"the MIC radius is at most min(r1, r2) = {min(r1, r2):g}, below 1e-9 (r1 + r2 + r3)/3 "
-                    f"= {1e-9 * scale:g}, the smallest radius double precision resolves here: "
+                    f"singular everywhere: use r3 > {ROUNDING:g} (r1 + r2 + r3)/3 or the mode '+-' or '-+'")
+        if min(r1, r2) < RESOLUTION * scale:
+            return (f"the MIC radius is at most min(r1, r2) = {min(r1, r2):g}, below {RESOLUTION:g} (r1 + r2 + r3)/3 "
+                    f"= {RESOLUTION * scale:g}, the smallest radius double precision resolves here: "
                     "min(r1, r2) must be at least that")
         return "every point of the y axis near the workspace is singular or unreachable in this working mode"
 

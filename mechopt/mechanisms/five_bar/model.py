@@ -1,6 +1,6 @@
 """The symmetric five-bar (5R) planar parallel mechanism.
 
-Geometry (Liu 2006 Fig. 1; Le 2013 Fig. 1, with DESIGN conventions): base joints
+Geometry (Liu 2006 Fig. 1; Le 2013 Fig. 1): base joints
 ``A1 = (-r3, 0)`` and ``A2 = (r3, 0)`` (``r3`` is HALF the base distance, Le's
 ``l0``, Liu's ``R3``); cranks ``A_i B_i`` of length ``r1`` (actuated angles
 ``theta_i`` from the x axis); distal links ``B_i P`` of length ``r2``.
@@ -22,9 +22,10 @@ import numpy as np
 
 from mechopt.mechanisms.five_bar import lci as _fast_lci
 from mechopt.core import validation as _v
+from mechopt.core.design_spec import DesignSpec
 from mechopt.core.protocol import Parameter, PlanarMechanism, as_points
 
-__all__ = ["FiveBar", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows", "legs_closure", "legs_reachable",
+__all__ = ["FiveBar", "FiveBarDesignSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows", "legs_closure", "legs_reachable",
            "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk", "legs_assembly_of"]
 
 MODES = ("+-", "-+", "++", "--")
@@ -32,7 +33,7 @@ ASSEMBLY_MODES = ("up", "down")
 _SIGN = {"+": 1.0, "-": -1.0}
 #: reachability tolerance on ``h^2`` of the elbow intersection: rounding on the
 #: boundary of a leg's annulus is clipped to the boundary itself
-_H2_TOL = 1e-12
+_H2_TOL = _v.ROUNDING
 
 
 # --- the geometry of a 5R with legs of any lengths -------------------------------
@@ -56,23 +57,21 @@ def legs_elbows(x, y, r3, legs):
     """
     x, y = as_points(x, y)
     out = []
-    ok = np.ones(x.shape, dtype=bool)
-    for ax, (a, c, s) in zip((-r3, r3), legs):
-        dx = x - ax
-        dsq = dx * dx + y * y
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # P at A_i: masked
+    ok = None
+    # P at A_i (0/0) and inf * 0 at a base joint: masked below by ``ok``
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for ax, (a, c, s) in zip((-r3, r3), legs):
+            dx = x - ax
+            dsq = dx * dx + y * y
             # law of cosines at A_i (Le eq. 13-14), scaled by a/d
             k = (a * a + dsq - c * c) / (2.0 * dsq)  # = a cos(alpha) / d
             h2 = (a * a) / dsq - k * k  # = (a sin(alpha) / d)^2
-        # reachable <=> |a - c| <= d <= a + c (Le eq. 19); tiny negative h2 from
-        # rounding on the boundary is clipped to the boundary itself.
-        leg_ok = (h2 >= -_H2_TOL) & (dsq > 0)
-        h = np.sqrt(np.clip(h2, 0.0, None)) * s
-        with np.errstate(invalid="ignore", over="ignore"):  # inf * 0 at a base joint: masked below
-            bx = ax + k * dx - h * y
-            by = k * y + h * dx
-        out += [bx, by]
-        ok &= leg_ok
+            # reachable <=> |a - c| <= d <= a + c (Le eq. 19); tiny negative h2 from
+            # rounding on the boundary is clipped to the boundary itself.
+            leg_ok = (h2 >= -_H2_TOL) & (dsq > 0)
+            h = np.sqrt(np.maximum(h2, 0.0)) * s
+            out += [ax + k * dx - h * y, k * y + h * dx]
+            ok = leg_ok if ok is None else ok & leg_ok
     b1x, b1y, b2x, b2y = (np.where(ok, v, np.nan) for v in out)
     return b1x, b1y, b2x, b2y, ok
 
@@ -171,6 +170,53 @@ def legs_assembly_of(x, y, r3, legs):
     return np.where(cross >= 0, "up", "down")
 
 
+class FiveBarDesignSpec(DesignSpec):
+    """``mechopt design five-bar``: the lengths ``r1, r2, r3`` [L] (``r3``, the half base,
+    from 0), the modes :data:`MODES` (default ``"+-"``), cranks; the reachable set is the
+    intersection of two annuli, symmetric about the base line, its holes the disks
+    ``|P - A_i| < |r1 - r2|`` about the base joints (Le 2013 eq. 19)."""
+
+    name = "five-bar"
+    lengths = ("r1", "r2", "r3")
+    modes, default_mode = MODES, "+-"
+    angular = True
+
+    def lower_bounds(self, lmin):
+        return [lmin, lmin, 0.0]
+
+    def build(self, v, mode, strokes=None, pad=0.0):
+        return FiveBar(v["r1"], v["r2"], v["r3"], mode)
+
+    def size(self, mech, derived):
+        """``2 (r1 + r2 + r3)``: two cranks, two distal links, the base distance."""
+        return 2.0 * (mech.r1 + mech.r2 + mech.r3)
+
+    def joints(self, mech, x, y):
+        b1x, b1y, b2x, b2y, _ = mech.elbows(x, y)
+        return [(b1x, b1y), (b2x, b2y), (x, y), (np.full_like(x, mech.r3), np.zeros_like(x))]
+
+    def holes(self, mech):
+        return [(-mech.r3, 0.0), (mech.r3, 0.0)]
+
+    def reach_radius(self, lmax):
+        return 2.0 * lmax
+
+    def placement_scale(self, v, lmax):
+        return v["r1"] + v["r2"]
+
+    def placement_above_base(self, mode):
+        return True
+
+    def sketch(self, mech, px, py, mx, my):
+        b1x, b1y, b2x, b2y, _ = mech.elbows(px, py)
+        chains = [[(-mech.r3, 0), (float(b1x), float(b1y)), (px, py)],
+                  [(mech.r3, 0), (float(b2x), float(b2y)), (px, py)]]
+        return chains, [(-mech.r3, 0), (mech.r3, 0)]
+
+    def joint_arc_radius(self, mech, leg):
+        return 0.35 * mech.r1
+
+
 class FiveBar(PlanarMechanism):
     """Symmetric 5R mechanism ``FiveBar(r1, r2, r3, mode="+-")``.
 
@@ -210,6 +256,7 @@ class FiveBar(PlanarMechanism):
     assembly_modes = ASSEMBLY_MODES
     joint_names = ("theta1", "theta2")
     angular_joints = True
+    design_spec = FiveBarDesignSpec
 
     def __init__(self, r1, r2, r3, mode: str = "+-"):
         self.r1 = _v.positive_length("r1", r1)
