@@ -77,6 +77,30 @@ def quick_reproduction(tmp_path_factory):
     return SimpleNamespace(out=out, runs=runs, figures=figures)
 
 
+def pytest_configure(config):
+    """Compile the numba kernels once, before any worker process starts (in the main
+    process of ``pytest -n 2``, or of a plain run): otherwise the two workers, and the
+    subprocesses and pools the tests start meanwhile, each compile the same kernels
+    (about 11 s of CPU each) until one of them has written numba's cache. Nothing
+    when the cache of this state of the sources is complete (a marker file in it)."""
+    if hasattr(config, "workerinput"):  # an xdist worker: the main process did it
+        return
+    import subprocess
+    import sys
+
+    from mechopt.core import jit
+
+    if not jit.HAVE_NUMBA:
+        return
+    marker = jit.cache_dir() / "compiled-by-the-test-suite"
+    if marker.exists():
+        return
+    code = "from mechopt.mechanisms.five_bar.kernels import compile_all; compile_all()"
+    subprocess.run([sys.executable, "-c", code], check=True)
+    marker.parent.mkdir(parents=True, exist_ok=True)
+    marker.touch()
+
+
 def _groups():
     """``{module: scope}`` of the test modules whose tests go to one worker together:
     those that use the quick reproduction (one scope for all of them) and those with a

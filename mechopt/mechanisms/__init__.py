@@ -1,9 +1,13 @@
 """The mechanisms: one module per mechanism, each a :class:`~mechopt.core.protocol.PlanarMechanism`.
 
 :func:`registry` finds every mechanism that declares a ``cli_name`` in the modules of
-this package and its subpackages (``five_bar/``), so a new mechanism is one new module (plus its case in the contract
-suite, ``tests/mechanism_cases.py``): ``mechopt evaluate`` and
-:func:`mechopt.analysis.evaluate.evaluate` pick it up without edits elsewhere.
+this package and in the ``__init__`` of its subpackages (``five_bar/`` exports
+:class:`~mechopt.mechanisms.five_bar.FiveBar` there), so a new mechanism is one new
+module (plus its case in the contract suite, ``tests/mechanism_cases.py``):
+``mechopt evaluate``, ``mechopt design`` and :func:`mechopt.analysis.evaluate.evaluate`
+pick it up without edits elsewhere. A subpackage's other modules (the five-bar's
+compiled kernels) are not imported to list the mechanisms: building the command
+line does not load numba.
 """
 from __future__ import annotations
 
@@ -16,16 +20,19 @@ __all__ = ["registry", "get"]
 
 @lru_cache(maxsize=1)
 def registry() -> dict:
-    """``{cli_name: class}`` of every mechanism module of this package, sorted by name."""
+    """``{cli_name: class}`` of every mechanism of this package, sorted by name: those
+    defined in its modules, or in a subpackage and exported by its ``__init__``."""
     from mechopt.core.protocol import PlanarMechanism
 
     found = {}
-    for info in pkgutil.walk_packages(__path__, prefix=f"{__name__}."):
+    for info in pkgutil.iter_modules(__path__, prefix=f"{__name__}."):
         module = importlib.import_module(info.name)
+        home = module.__name__ + "." if info.ispkg else None
         for obj in vars(module).values():
-            if (isinstance(obj, type) and issubclass(obj, PlanarMechanism)
-                    and obj.__module__ == module.__name__ and obj.cli_name):
-                if obj.cli_name in found:
+            if (isinstance(obj, type) and issubclass(obj, PlanarMechanism) and obj.cli_name
+                    and (obj.__module__ == module.__name__
+                         or (home is not None and obj.__module__.startswith(home)))):
+                if obj.cli_name in found and found[obj.cli_name] is not obj:
                     raise RuntimeError(f"two mechanisms are named {obj.cli_name!r}")
                 found[obj.cli_name] = obj
     return dict(sorted(found.items()))

@@ -23,8 +23,11 @@ MAX_JOBS = 1024
 #: came from :func:`connect`, whose ``timeout`` is used instead
 DEFAULT_STALL_S = 300.0
 _STALL = {}  # id(client) -> stall timeout of clients made by connect()
-#: idle local workers exit after this many seconds (and are started again when needed)
-WORKER_IDLE_S = 10
+#: idle local workers exit after this many seconds (and are started again when needed);
+#: joblib's own default. A short one races loky's idle exit against a new map's first
+#: submit, which loky reports as "A worker stopped while some jobs were given to the
+#: executor" (joblib issue 869) although nothing is lost
+WORKER_IDLE_S = 300
 #: this process's pool of local workers: {"executor", "n_jobs", "pid"} (see _executor)
 _POOL: dict = {}
 _POOL_LOCK = threading.Lock()
