@@ -109,6 +109,7 @@ task's unit per second (prismatic); ``actuator_torque`` in N m (revolute) or N;
 from __future__ import annotations
 
 import math
+from functools import cached_property
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
@@ -338,6 +339,19 @@ class Task:
         v = np.vstack([self.vertices, self.vertices[:1]])
         return v[:, 0], v[:, 1]
 
+    @cached_property
+    def _edges(self):
+        """The polygon's edges, computed once (the design evaluation asks for them at
+        every boundary sample): ``(w, ex, ey, L2, L, cum)`` with ``w`` the next vertex,
+        ``(ex, ey) = w - v``, ``L2 = |e|^2``, ``L = |e|`` and ``cum`` the arc-length
+        fractions of the vertices (``cum[-1] = 1``)."""
+        v = self.vertices
+        w = np.roll(v, -1, 0)
+        e = w - v
+        ex, ey = e[:, 0], e[:, 1]
+        L = np.hypot(ex, ey)
+        return w, ex, ey, ex * ex + ey * ey, L, np.r_[0.0, np.cumsum(L)] / L.sum()
+
     def boundary_at(self, t):
         """Point at arc-length fraction ``t`` (mod 1) of the boundary, counter-clockwise."""
         t = np.mod(np.asarray(t, float), 1.0)
@@ -345,12 +359,10 @@ class Task:
             a = 2 * np.pi * t
             return self.center[0] + self.radius * np.cos(a), self.center[1] + self.radius * np.sin(a)
         v = self.vertices
-        e = np.roll(v, -1, 0) - v
-        L = np.hypot(e[:, 0], e[:, 1])
-        cum = np.r_[0.0, np.cumsum(L)] / L.sum()
+        _, ex, ey, _, L, cum = self._edges
         k = np.clip(np.searchsorted(cum, t, side="right") - 1, 0, len(v) - 1)
         s = (t - cum[k]) / np.where(L[k] > 0, (cum[k + 1] - cum[k]), 1.0)
-        return v[k, 0] + s * e[k, 0], v[k, 1] + s * e[k, 1]
+        return v[k, 0] + s * ex[k], v[k, 1] + s * ey[k]
 
     def boundary_params(self, n):
         """Arc-length fractions of about ``n`` boundary samples, every vertex included;
@@ -387,10 +399,8 @@ class Task:
         if self.kind == "points":
             raise ValueError("a point task has no inside")
         v = self.vertices
-        w = np.roll(v, -1, 0)
+        w, ex, ey, L2, _, _ = self._edges
         px, py = x[..., None], y[..., None]
-        ex, ey = w[:, 0] - v[:, 0], w[:, 1] - v[:, 1]
-        L2 = ex * ex + ey * ey
         s = np.clip(((px - v[:, 0]) * ex + (py - v[:, 1]) * ey) / L2, 0, 1)
         d = np.hypot(px - v[:, 0] - s * ex, py - v[:, 1] - s * ey).min(-1)
         # even-odd rule (the polygon is simple)

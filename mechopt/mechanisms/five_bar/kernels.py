@@ -87,6 +87,7 @@ __all__ = [
     "disk_stats_batch",
     "DISK_STAT_NAMES",
     "compile_all",
+    "KERNEL_GROUPS",
 ]
 
 #: reachability tolerance on ``h^2`` (same as FiveBar.elbows)
@@ -1390,35 +1391,50 @@ def disk_stats_batch(r1, r2, r3, center_y, radius, mode="+-", quadrature="area",
 # =============================================================================
 # Compiling ahead of use
 # =============================================================================
-def compile_all() -> bool:
-    """Compile every compiled kernel of the five-bar now (this module's, the explicit
-    MIC's of :mod:`~mechopt.mechanisms.five_bar.mic` and the fused LCI of
-    :mod:`~mechopt.mechanisms.five_bar.lci`), for the argument types the package
-    passes them, into numba's on-disk cache (:func:`mechopt.core.jit.cache_dir`).
+#: the groups of :func:`compile_all`, by the entry points that run them
+KERNEL_GROUPS = ("disk", "mic", "points")
+
+
+def compile_all(groups=KERNEL_GROUPS) -> bool:
+    """Compile the five-bar's compiled kernels now, for the argument types the package
+    passes them, into numba's on-disk cache (:func:`mechopt.core.jit.cache_dir`):
+    ``"disk"`` the disk means and the MCI (:func:`disk_stats_batch`), ``"mic"`` the
+    explicit MIC (:func:`mic_batch`, :mod:`~mechopt.mechanisms.five_bar.mic`),
+    ``"points"`` the local indices (:func:`lci_points`, :func:`local_points`, the fused
+    LCI of :mod:`~mechopt.mechanisms.five_bar.lci`).
 
     A process that finds them there loads them in about 0.4 s instead of compiling
-    them (about 11 s; two processes starting at once would both compile). The test
-    suite calls this once before its worker processes start; a user may call it after
-    installing. Returns False (and does nothing) without numba.
+    them (about 11 s for all; two processes starting at once would both compile). The
+    test suite calls this before its worker processes start, the groups in two
+    processes; a user may call it after installing. Returns False (and does nothing)
+    without numba.
     """
+    groups = tuple(groups)
+    for g in groups:
+        if g not in KERNEL_GROUPS:
+            raise ValueError(f"kernel group must be one of {', '.join(map(repr, KERNEL_GROUPS))}, got {g!r}")
     if not HAVE_NUMBA:
         return False
-    from mechopt.mechanisms.five_bar import lci as _lci
-
+    one = np.array([0.85]), np.array([1.6]), np.array([0.55])
     x, y = np.array([0.0, 0.3]), np.array([1.2, 1.5])
-    for mode in ("+-", "++"):  # the mirror-symmetric modes and the others take other branches
-        r, cy = mic_batch([0.85], [1.6], [0.55], mode=mode, compiled=True)
-        for quadrature in ("area", "polar"):
-            disk_stats_batch([0.85], [1.6], [0.55], cy, r, mode=mode, quadrature=quadrature,
-                             compiled=True)
-    lci_points(0.85, 1.6, 0.55, x, y, compiled=True)
-    local_points(0.85, 1.6, 0.55, x, y, compiled=True)
-    _mic._compiled_one(0.85, 1.6, 0.55, 1.0, -1.0)
-    _lci.five_bar_lci_numba(x, y, 0.85, 1.6, 0.55, 1.0, -1.0)
-    qx, qy = np.array([0.1, -0.2]), np.array([1.0, 1.1])
-    sx, sy = np.empty(2), np.empty(2)
-    m = _sort_cloud_nb(qx, qy, 2, sx, sy)
-    ay = np.array([np.nan, 1.3, np.nan, -0.2])
-    _radius_nb(1.1, 1.4, 0.3, qx, qy, 2, ay, 1.0)
-    _radius_sorted_nb(1.1, 1.4, 0.3, sx, sy, m, ay, 1.0, -1)
+    if "disk" in groups:
+        for mode in ("+-", "++"):  # the mirror-symmetric modes and the others take other branches
+            for quadrature in ("area", "polar"):
+                disk_stats_batch(*one, np.array([1.5]), np.array([0.5]), mode=mode,
+                                 quadrature=quadrature, compiled=True)
+    if "mic" in groups:
+        mic_batch(*one, compiled=True)
+        _mic._compiled_one(0.85, 1.6, 0.55, 1.0, -1.0)
+        qx, qy = np.array([0.1, -0.2]), np.array([1.0, 1.1])
+        sx, sy = np.empty(2), np.empty(2)
+        m = _sort_cloud_nb(qx, qy, 2, sx, sy)
+        ay = np.array([np.nan, 1.3, np.nan, -0.2])
+        _radius_nb(1.1, 1.4, 0.3, qx, qy, 2, ay, 1.0)
+        _radius_sorted_nb(1.1, 1.4, 0.3, sx, sy, m, ay, 1.0, -1)
+    if "points" in groups:
+        from mechopt.mechanisms.five_bar import lci as _lci
+
+        lci_points(0.85, 1.6, 0.55, x, y, compiled=True)
+        local_points(0.85, 1.6, 0.55, x, y, compiled=True)
+        _lci.five_bar_lci_numba(x, y, 0.85, 1.6, 0.55, 1.0, -1.0)
     return True
