@@ -20,7 +20,7 @@ so the Jacobian row ``a_i / b_i`` is ``a~_i`` divided by ``-s_i q sqrt(n)``. The
 invariant under scaling J and under row order, so it is evaluated on
 ``M = [g1 a~2; g2 a~1]`` with ``g_i = q_i sqrt(n_i)`` (no division) by the package's
 one LCI formula, :func:`mechopt.core.indices.lci_of_entries`
-(``2 |det M| / (S + sqrt(P) sqrt(Q))``, Liu 2006 eq. 3).
+(``2 |det M| / (S + sqrt(P Q))``, Liu 2006 eq. 3).
 
 Coordinates are divided by the length scale first so that nothing over- or
 underflows in any unit. Unreachable points (``n < 0``), a base joint at P
