@@ -19,8 +19,12 @@ run: $(STAMP)
 	$(BIN)/mechopt reproduce all
 	$(BIN)/mechopt report results --out results/report.html
 
+# The suite starts a few hundred interpreters (workers, pools, command-line runs): with
+# bytecode caches, Python's default, which PYTHONDONTWRITEBYTECODE turns off where it is
+# set, none of them compiles the package's sources again (about 50 s of CPU).
 test: $(STAMP)
-	$(BIN)/python -m pytest -q -n 2
+	PYTHONDONTWRITEBYTECODE= $(BIN)/python -m compileall -q mechopt problems experiments tests
+	PYTHONDONTWRITEBYTECODE= $(BIN)/python -m pytest -q -n 2
 
 # the API reference (autodoc + numpydoc), the tutorials and the output reference
 # (myst-parser), warnings as errors; the docs extra is installed when missing
