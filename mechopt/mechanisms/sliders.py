@@ -73,7 +73,7 @@ from mechopt.core import validation as _v
 from mechopt.core.protocol import PlanarMechanism, as_points
 from mechopt.core.quadrature import gauss_legendre
 
-__all__ = ["TwoSliderMechanism", "ASSEMBLY_MODES", "GTQI_METHODS", "K_AV_READINGS"]
+__all__ = ["TwoSliderMechanism", "GuideDesignSpec", "ASSEMBLY_MODES", "GTQI_METHODS", "K_AV_READINGS"]
 
 ASSEMBLY_MODES = ("up", "down")
 #: how :meth:`TwoSliderMechanism.gtqi` integrates: 1-D adaptive quadrature of exact
@@ -621,6 +621,3 @@ class GuideDesignSpec(DesignSpec):
         """Each guide over its slider's stroke."""
         return [((g, lo), (g, hi)) for g, (lo, hi) in zip(mech.guides, strokes)]
 
-
-# the design spec joins the public names listed at the top of the module
-__all__ = [*__all__, "GuideDesignSpec"]
