@@ -33,6 +33,7 @@ import numpy as np
 
 from mechopt.core import validation as _v
 from mechopt.analysis import workspace as _ws
+from mechopt.core.indices import GLOBAL_INDEX_NAMES
 from mechopt.core.protocol import Parameter
 from mechopt.analysis.performance import global_indices, region_indices
 from mechopt.core.quadrature import MAX_NODES, QUADRATURES
@@ -42,8 +43,7 @@ __all__ = ["DISK_KEYS", "DISK_OPTIONS", "disk_powers", "Evaluation", "evaluate",
            "disk_evaluation", "unit_of"]
 
 DISK_KEYS = (
-    "r_mic", "mic_center_y", "gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min",
-    "gsi_max", "gsi_min", "usable_area", "gcw_area", "gcw_gci", "gcw_gsi_max", "gcw_gsi_min",
+    "r_mic", "mic_center_y", *GLOBAL_INDEX_NAMES, "usable_area", "gcw_area", "gcw_gci", "gcw_gsi_max", "gcw_gsi_min",
     "gcw_square_side", "gcw_square_center_y", "theta1_range_deg", "theta2_range_deg",
     "quadrature", "mode", "gamma",
 )

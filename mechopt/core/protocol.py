@@ -26,7 +26,11 @@ from mechopt.core import indices as _ix
 from mechopt.core import validation as _v
 from mechopt.core.quadrature import RASTER_CELLS
 
-__all__ = ["PlanarMechanism", "Parameter", "REQUIRED", "PARAMETER_KINDS", "as_points"]
+__all__ = ["PlanarMechanism", "Parameter", "REQUIRED", "PARAMETER_KINDS", "ASSEMBLY_MODES", "as_points"]
+
+#: the two assembly modes of the forward problem of a two-legged mechanism: which side
+#: of the line through its two distal joints (or base joints) the platform point lies on
+ASSEMBLY_MODES = ("up", "down")
 
 #: the kinds of a declared parameter (the CLI's converters and the fuzz tests' value
 #: generators both follow them): a positive length, a length that may vanish, a signed
@@ -146,7 +150,7 @@ class PlanarMechanism(ABC):
     #: working modes (inverse-kinematics branches) the mechanism supports
     modes: tuple[str, ...] = ()
     #: assembly modes of the forward problem (``fk(q1, q2, assembly)``)
-    assembly_modes: tuple[str, ...] = ("up", "down")
+    assembly_modes: tuple[str, ...] = ASSEMBLY_MODES
     #: names of the two actuator coordinates, for tables and plots
     joint_names: tuple[str, str] = ("q1", "q2")
     #: True when the actuator coordinates are angles (reported in degrees)

@@ -63,7 +63,7 @@ import numpy as np
 from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
 from mechopt.core.design_spec import DesignSpec
-from mechopt.core.protocol import Parameter, PlanarMechanism, as_points
+from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
 __all__ = [
     "Bipod",
@@ -79,7 +79,6 @@ __all__ = [
 #: workspace branches: half plane y >= 0, y <= 0, or both
 BRANCHES = ("up", "down", "full")
 #: forward-kinematics assembly modes: y >= 0 ("up") or y <= 0 ("down")
-ASSEMBLY_MODES = ("up", "down")
 #: how :meth:`Bipod.gtqi` integrates: closed form, or mid-point raster
 GTQI_METHODS = ("exact", "raster")
 
@@ -144,7 +143,7 @@ class BipodDesignSpec(DesignSpec):
 
     name = "bipod"
     lengths = ("b",)
-    modes, default_mode = ("up", "down"), "up"
+    modes, default_mode = ASSEMBLY_MODES, "up"
     length_constraint = True  # the struts at full extension are links too
     derived_strokes = True
     size_from_lengths = False  # the struts' full extension follows the task's placement

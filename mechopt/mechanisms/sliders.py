@@ -70,12 +70,11 @@ import numpy as np
 
 from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
-from mechopt.core.protocol import PlanarMechanism, as_points
+from mechopt.core.protocol import ASSEMBLY_MODES, PlanarMechanism, as_points
 from mechopt.core.quadrature import gauss_legendre
 
 __all__ = ["TwoSliderMechanism", "GuideDesignSpec", "ASSEMBLY_MODES", "GTQI_METHODS", "K_AV_READINGS"]
 
-ASSEMBLY_MODES = ("up", "down")
 #: how :meth:`TwoSliderMechanism.gtqi` integrates: 1-D adaptive quadrature of exact
 #: chords, a fixed Gauss rule of them, or a raster
 GTQI_METHODS = ("gauss", "quad", "raster")

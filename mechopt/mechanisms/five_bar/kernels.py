@@ -71,7 +71,7 @@ import math
 
 import numpy as np
 
-from mechopt.core.indices import lci_of_entries, two_smax_squared
+from mechopt.core.indices import GLOBAL_INDEX_NAMES, lci_of_entries, two_smax_squared
 from mechopt.core.jit import HAVE_NUMBA, jitable, njit, select, use_numba
 from mechopt.core.validation import ROUNDING, STEP_FLOOR
 from mechopt.mechanisms.five_bar import mic as _mic
@@ -115,7 +115,7 @@ _AXIS_N = 64
 _AXIS_ITERS = 100
 
 #: columns of :func:`disk_stats_batch`
-DISK_STAT_NAMES = ("gci", "mci", "gvi_max", "gvi_min", "gpi_max", "gpi_min", "gsi_max", "gsi_min")
+DISK_STAT_NAMES = GLOBAL_INDEX_NAMES
 
 
 # =============================================================================

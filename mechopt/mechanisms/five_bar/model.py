@@ -23,13 +23,12 @@ import numpy as np
 from mechopt.mechanisms.five_bar import lci as _fast_lci
 from mechopt.core import validation as _v
 from mechopt.core.design_spec import DesignSpec
-from mechopt.core.protocol import Parameter, PlanarMechanism, as_points
+from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
 __all__ = ["FiveBar", "FiveBarDesignSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows", "legs_closure", "legs_reachable",
            "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk", "legs_assembly_of"]
 
 MODES = ("+-", "-+", "++", "--")
-ASSEMBLY_MODES = ("up", "down")
 _SIGN = {"+": 1.0, "-": -1.0}
 #: reachability tolerance on ``h^2`` of the elbow intersection: rounding on the
 #: boundary of a leg's annulus is clipped to the boundary itself
