@@ -106,11 +106,27 @@ def _run_locked(args, out):
         return command.run(args)
 
 
+#: a warnings filter for loky's resource tracker, a helper process that outlives the
+#: workers: when an interrupted run kills its workers (SIGKILL, at once), the tracker
+#: may find one of their semaphores already gone at its own exit and print a
+#: UserWarning and its source line after the run's one-line message
+_TRACKER_WARNINGS = "ignore:resource_tracker:UserWarning"
+
+
+def _quiet_resource_tracker():
+    """Pass :data:`_TRACKER_WARNINGS` to the processes this run starts (the tracker
+    starts with the first worker pool and reads ``PYTHONWARNINGS`` then)."""
+    current = os.environ.get("PYTHONWARNINGS", "")
+    if _TRACKER_WARNINGS not in current.split(","):
+        os.environ["PYTHONWARNINGS"] = ",".join(filter(None, (current, _TRACKER_WARNINGS)))
+
+
 def main(argv=None) -> int:
     """Run ``mechopt`` with ``argv`` (default ``sys.argv[1:]``); returns the exit status."""
     import signal
     import threading
 
+    _quiet_resource_tracker()
     parser = build_parser()
     out_before = out = None
     previous = None
