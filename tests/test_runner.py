@@ -1,5 +1,6 @@
 """The seeded runner: files written, determinism across runs, n_jobs and backends."""
 import json
+import time
 
 import numpy as np
 import pandas as pd
@@ -119,8 +120,14 @@ def test_unwritable_out(tmp_path, capsys):
     assert "not writable" in capsys.readouterr().err
 
 
-def test_unreachable_scheduler(tmp_path, capsys):
+@pytest.mark.parametrize("argv", [["optimize", "le2013"], ["sweep", "le2013"],
+                                  ["design", "five-bar", "--task", "rect:100,60@0,250"]])
+def test_unreachable_scheduler(argv, tmp_path, capsys):
+    # --dask-timeout: the default 10 s would be waited out in full (nothing listens on port 9)
     pytest.importorskip("dask.distributed")
-    assert main(["optimize", "le2013", "--dask", "tcp://127.0.0.1:9", "--out", str(tmp_path / "o")]) == 2
-    assert "cannot reach the Dask scheduler" in capsys.readouterr().err
+    t0 = time.perf_counter()
+    assert main([*argv, "--dask", "tcp://127.0.0.1:9", "--dask-timeout", "0.5", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "cannot reach the Dask scheduler" in err and err.count("\n") == 1
     assert not (tmp_path / "o").exists()
+    assert time.perf_counter() - t0 < 8, "--dask-timeout was not used"

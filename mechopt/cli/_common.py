@@ -46,14 +46,21 @@ def add_run_options(p, resumable=False):
     p.add_argument("--n-jobs", type=int, default=None,
                    help="joblib worker processes (default: auto, 1 if a generation evaluates in under "
                         "0.2 s, else 2; recorded in run.json)")
-    p.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None,
-                   help="evaluate on a Dask cluster instead of joblib")
+    add_dask_options(p)
     p.add_argument("--out", required=not resumable, default=None, help="output folder")
     p.add_argument("--quadrature", default=None, choices=None,
                    help="rule of the disk means of the Liu 2006 problems: polar (default, the "
                         "paper's) or area; recorded in run.json")
     p.add_argument("--overwrite", action="store_true",
                    help="replace another run that --out holds (only the files that run wrote)")
+
+
+def add_dask_options(p, group=None, help="evaluate on a Dask cluster instead of joblib"):
+    """``--dask`` (in ``group``, a mutually exclusive group, where given) and
+    ``--dask-timeout``, which :func:`dask_client` reads."""
+    (group or p).add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None, help=help)
+    p.add_argument("--dask-timeout", type=float, default=10.0, metavar="SECONDS",
+                   help="time to wait for the Dask scheduler and its first worker [s] (default 10)")
 
 
 def problem_options(args) -> dict:
@@ -82,7 +89,7 @@ def dask_client(args):
     # here, not at the top: evaluate loads this module and must start without the run layer
     from mechopt.run.parallel import connect
 
-    client = connect(args.dask)
+    client = connect(args.dask, timeout=args.dask_timeout)
     try:
         yield client
     finally:

@@ -8,6 +8,7 @@ into ``DIR``; the same command again resumes from the finished chunks.
 """
 from __future__ import annotations
 
+from mechopt.cli import _common
 from mechopt.cli._common import Parser
 
 NAME = "atlas"
@@ -32,10 +33,8 @@ def add_parser(subparsers):
     # default None (meaning 2): argparse only sees a conflict with --dask when the value
     # given is not the default object
     par.add_argument("--n-jobs", type=int, default=None, help="joblib worker processes (default 2)")
-    par.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None,
-                     help="run the chunks on an existing Dask scheduler, e.g. tcp://10.0.0.5:8786")
-    fb.add_argument("--dask-timeout", type=float, default=10.0,
-                    help="time to wait for the Dask scheduler [s] (default 10)")
+    _common.add_dask_options(fb, par, help="run the chunks on an existing Dask scheduler, e.g. "
+                                           "tcp://10.0.0.5:8786")
     fb.add_argument("--out", required=True, help="output folder")
     fb.add_argument("--where", default=None,
                     help="optimum region, e.g. \"r_mic > 0.8 and gci > 0.6\": outlined on the "

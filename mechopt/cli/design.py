@@ -70,7 +70,7 @@ def add_parser(subparsers):
     ds.add_argument("--overwrite", action="store_true",
                     help="replace another run that --out holds (only the files that run wrote)")
     ds.add_argument("--n-jobs", type=int, default=2, help="joblib worker processes (default 2)")
-    ds.add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None, help="evaluate on a Dask cluster")
+    _common.add_dask_options(ds)
     ds.add_argument("--no-polish", action="store_true",
                     help="skip the local polish of each objective's best design (SLSQP, COBYLA and a "
                          "direct search; with a free placement, lengths searched with the best "
