@@ -51,7 +51,13 @@ def test_every_liu_design_in_the_box_has_a_mic():
 
     p = get("liu2006-many")
     rng = np.random.default_rng(3)
-    X = np.vstack([rng.uniform(p.xl, p.xu, (20000, 2)), _designs(p, 0, 0)])
+    # the MIC shrinks toward the box's edges (r3 -> R3_MAX, r1 or r2 -> 0): 250 designs
+    # on each edge, the corners, and 4000 uniform ones inside
+    t = np.linspace(0.0, 1.0, 250)[:, None]
+    (u0, r0), (u1, r1) = p.xl, p.xu
+    edges = [np.column_stack([u0 + (u1 - u0) * t[:, 0], np.full(len(t), r)]) for r in (r0, r1)]
+    edges += [np.column_stack([np.full(len(t), u), r0 + (r1 - r0) * t[:, 0]]) for u in (u0, u1)]
+    X = np.vstack([rng.uniform(p.xl, p.xu, (4000, 2)), *edges, _designs(p, 0, 0)])
     assert np.all(np.isfinite(liu_indices(*designs(X))["r_mic"]))
     # the excluded edge r3 = 1.5 has none: the region problems' guard catches it
     out = get("liu2006-w-gci").evaluate_designs(np.array([[0.5, 1.5]]))
