@@ -11,8 +11,9 @@ Under ``pytest -n 2`` (pytest-xdist) the tests that share a fixture broader than
 function (this session fixture, or a module-scoped one) go to one worker as a group
 (:func:`pytest_xdist_make_scheduler`), so that the fixture is computed once (except
 the modules of :data:`SPREAD`, whose tests are long beside their fixture, and those of
-:data:`SPLIT`, one group per fixture); every other test is distributed on its own,
-the largest groups first.
+:data:`SPLIT`, one group per fixture), and so do the tests of :data:`TOGETHER`, which
+share a session fixture across modules (``default_run``); every other test is
+distributed on its own, the largest groups first.
 """
 from __future__ import annotations
 
@@ -36,6 +37,13 @@ SPREAD = {"test_docs", "test_fuzz"}
 #: the fixture it needs) run side by side; a test with none of the words goes alone.
 #: (test_signals: an optimize and an atlas reference, each costing about one of its tests)
 SPLIT = {"test_signals": ("optimize", "atlas")}
+#: tests of several modules that share a session fixture, one group each (the fixture
+#: is then computed once): ``{group: (node id, ...)}``, ids without their parameters
+TOGETHER = {
+    "le2013_default_runs": ("tests/test_problems.py::test_le_ga_finds_the_best_of_a_dense_scan",
+                            "tests/test_problems.py::test_le_relaxed_is_at_least_as_good",
+                            "tests/test_convergence.py::test_le_relaxed_default_optimum_is_at_least_the_tied_one"),
+}
 
 
 @pytest.fixture(scope="session")
@@ -75,6 +83,25 @@ def quick_reproduction(tmp_path_factory):
         assert main(["reproduce", "all", "--quick", "--out", str(out)]) == 0
     assert set(runs) == set(rep.PAPERS)
     return SimpleNamespace(out=out, runs=runs, figures=figures)
+
+
+@pytest.fixture(scope="session")
+def default_run():
+    """``default_run(name)``: the run of the registered problem ``name`` with its
+    default algorithm and sizes, seed 1 (``mechopt.run.runner.optimize``, nothing
+    written), made once per session (the same run gives the same front for any
+    ``n_jobs``: tests/test_runner.py)."""
+    from mechopt.problems import get
+    from mechopt.run.runner import optimize
+
+    runs = {}
+
+    def run(name):
+        if name not in runs:
+            runs[name] = optimize(get(name), seed=1, progress=False, plot=False)
+        return runs[name]
+
+    return run
 
 
 def pytest_configure(config):
@@ -123,6 +150,10 @@ def scope_of(nodeid: str, groups: dict) -> str:
     ``--dist loadgroup``), else the test alone."""
     if nodeid.rfind("@") > nodeid.rfind("]"):
         return nodeid.split("@")[-1]
+    bare = nodeid.split("[", 1)[0]
+    group = next((g for g, ids in TOGETHER.items() if bare in ids), None)
+    if group is not None:
+        return group
     module = Path(nodeid.split("::", 1)[0]).stem
     if module in SPLIT:
         name = nodeid.split("::", 1)[-1]

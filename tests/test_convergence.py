@@ -110,11 +110,10 @@ def test_bench_helpers():
     assert set(B.bench_problems()) == {n for n in names() if get(n).n_var <= 2}
 
 
-def test_le_relaxed_default_optimum_is_at_least_the_tied_one():
+def test_le_relaxed_default_optimum_is_at_least_the_tied_one(default_run):
     """The relaxed problem contains the tied one: its default optimum must not be lower
     (GA 40 x 80 gave 1.33205 < 1.33221; DE best/1/bin reaches 1.332249 >= 1.332245)."""
-    tied = optimize(get("le2013"), seed=1, progress=False, plot=False)
-    relaxed = optimize(get("le2013-relaxed"), seed=1, progress=False, plot=False)
+    tied, relaxed = default_run("le2013"), default_run("le2013-relaxed")
     a_tied, a_relaxed = tied.front["a_max"].iloc[0], relaxed.front["a_max"].iloc[0]
     assert a_relaxed >= a_tied, (a_relaxed, a_tied)
     assert a_tied == pytest.approx(1.332245, abs=2e-6)  # the brute-force optimum (benchmarks/bench_fronts.py)
