@@ -101,7 +101,12 @@ def _reach(x, y, r3, legs):
 
 def legs_reachable(x, y, r3, legs):
     """Both legs assemble: ``|a_i - c_i| <= |P - A_i| <= a_i + c_i``, ``P`` not on a base joint."""
-    (d1, lo1, hi1), (d2, lo2, hi2) = _reach(x, y, r3, legs)
+    return _assembles(_reach(x, y, r3, legs))
+
+
+def _assembles(reach):
+    """:func:`legs_reachable` from the annuli of :func:`_reach`."""
+    (d1, lo1, hi1), (d2, lo2, hi2) = reach
     return (d1 >= lo1) & (d1 <= hi1) & (d2 >= lo2) & (d2 <= hi2) & (d1 > 0) & (d2 > 0)
 
 
@@ -124,9 +129,9 @@ def legs_ik(x, y, r3, legs):
     (Le eq. 13-18), unwrapped (see :meth:`FiveBar.ik`); NaN where unreachable."""
     x, y = as_points(x, y)
     (a1, c1, s1), (a2, c2, s2) = legs
-    ok = legs_reachable(x, y, r3, legs)
-    d1 = np.hypot(x + r3, y)
-    d2 = np.hypot(x - r3, y)
+    reach = _reach(x, y, r3, legs)
+    ok = _assembles(reach)
+    d1, d2 = reach[0][0], reach[1][0]  # |P - A_i|
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # clipped below
         k1 = (a1 * a1 + d1 * d1 - c1 * c1) / (2 * a1 * d1)
         k2 = (a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2)
