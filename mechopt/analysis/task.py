@@ -109,7 +109,7 @@ task's unit per second (prismatic); ``actuator_torque`` in N m (revolute) or N;
 from __future__ import annotations
 
 import math
-from functools import cached_property
+from functools import cached_property, lru_cache
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
@@ -289,9 +289,10 @@ class Task:
         x0, x1, y0, y1 = self.bbox
         return (0.5 * (x0 + x1), 0.5 * (y0 + y1))
 
-    @property
+    @cached_property
     def diameter(self) -> float:
-        """Largest distance between two points of the task (a length scale, > 0)."""
+        """Largest distance between two points of the task (a length scale, > 0);
+        computed once (:meth:`contains` needs it at every call)."""
         if self.kind == "circle":
             return 2.0 * self.radius
         p = self.vertices if self.vertices is not None else self.pts
@@ -342,15 +343,16 @@ class Task:
     @cached_property
     def _edges(self):
         """The polygon's edges, computed once (the design evaluation asks for them at
-        every boundary sample): ``(w, ex, ey, L2, L, cum)`` with ``w`` the next vertex,
-        ``(ex, ey) = w - v``, ``L2 = |e|^2``, ``L = |e|`` and ``cum`` the arc-length
-        fractions of the vertices (``cum[-1] = 1``)."""
+        every boundary sample): ``(vx, vy, wy, ex, ey, L2, L, cum)`` with ``(vx, vy)``
+        the vertices, ``wy`` the next vertex's y, ``(ex, ey) = w - v``, ``L2 = |e|^2``,
+        ``L = |e|`` and ``cum`` the arc-length fractions of the vertices (``cum[-1] = 1``)."""
         v = self.vertices
         w = np.roll(v, -1, 0)
         e = w - v
-        ex, ey = e[:, 0], e[:, 1]
+        ex, ey = e[:, 0].copy(), e[:, 1].copy()
         L = np.hypot(ex, ey)
-        return w, ex, ey, ex * ex + ey * ey, L, np.r_[0.0, np.cumsum(L)] / L.sum()
+        return (v[:, 0].copy(), v[:, 1].copy(), w[:, 1].copy(), ex, ey, ex * ex + ey * ey, L,
+                np.r_[0.0, np.cumsum(L)] / L.sum())
 
     def boundary_at(self, t):
         """Point at arc-length fraction ``t`` (mod 1) of the boundary, counter-clockwise."""
@@ -358,11 +360,10 @@ class Task:
         if self.kind == "circle":
             a = 2 * np.pi * t
             return self.center[0] + self.radius * np.cos(a), self.center[1] + self.radius * np.sin(a)
-        v = self.vertices
-        _, ex, ey, _, L, cum = self._edges
-        k = np.clip(np.searchsorted(cum, t, side="right") - 1, 0, len(v) - 1)
+        vx, vy, _, ex, ey, _, L, cum = self._edges
+        k = np.clip(np.searchsorted(cum, t, side="right") - 1, 0, len(vx) - 1)
         s = (t - cum[k]) / np.where(L[k] > 0, (cum[k + 1] - cum[k]), 1.0)
-        return v[k, 0] + s * ex[k], v[k, 1] + s * ey[k]
+        return vx[k] + s * ex[k], vy[k] + s * ey[k]
 
     def boundary_params(self, n):
         """Arc-length fractions of about ``n`` boundary samples, every vertex included;
@@ -398,15 +399,14 @@ class Task:
             return self.radius - np.hypot(x - self.center[0], y - self.center[1])
         if self.kind == "points":
             raise ValueError("a point task has no inside")
-        v = self.vertices
-        w, ex, ey, L2, _, _ = self._edges
+        vx, vy, wy, ex, ey, L2, _, _ = self._edges
         px, py = x[..., None], y[..., None]
-        s = np.clip(((px - v[:, 0]) * ex + (py - v[:, 1]) * ey) / L2, 0, 1)
-        d = np.hypot(px - v[:, 0] - s * ex, py - v[:, 1] - s * ey).min(-1)
+        dx, dy = px - vx, py - vy
+        s = np.clip((dx * ex + dy * ey) / L2, 0, 1)
+        d = np.hypot(dx - s * ex, dy - s * ey).min(-1)
         # even-odd rule (the polygon is simple)
-        yi, yj = v[:, 1], w[:, 1]
         with np.errstate(divide="ignore", invalid="ignore"):
-            cross = ((yi > py) != (yj > py)) & (px < (w[:, 0] - v[:, 0]) * (py - yi) / (yj - yi) + v[:, 0])
+            cross = ((vy > py) != (wy > py)) & (px < ex * dy / ey + vx)
         inside = np.count_nonzero(cross, axis=-1) % 2 == 1
         return np.where(inside, d, -d)
 
@@ -675,6 +675,157 @@ def _bad(v, bad):
     return np.where(np.isfinite(v), v, bad)
 
 
+#: placements whose samples a :class:`DesignEvaluator` keeps (:meth:`DesignEvaluator._context`)
+_CONTEXTS_KEPT = 8
+
+
+def _readonly(*arrays):
+    """``arrays``, made read-only (kept samples are shared by many evaluations)."""
+    for a in arrays:
+        a.setflags(write=False)
+    return arrays
+
+
+def _samples(task, s: Sampling) -> dict:
+    """The samples of one evaluation of ``task`` (module doc): boundary parameters
+    ``tb`` and points ``bx, by`` (largest gap ``gap``), interior grid ``ix, iy`` (step
+    ``step``), and both together, ``allx, ally``. A point task's points are its
+    boundary samples (contiguous copies: every sample set is a contiguous array)."""
+    if task.is_region:
+        tb, gap = task.boundary_params(s.n_boundary)
+        bx, by = task.boundary_at(tb)
+        ix, iy, step = task.grid(s.n_interior)
+    else:
+        tb, gap = np.zeros(0), 0.0
+        bx, by = task.pts[:, 0].copy(), task.pts[:, 1].copy()
+        ix, iy, step = np.zeros(0), np.zeros(0), 0.0
+    allx, ally = np.concatenate([bx, ix]), np.concatenate([by, iy])
+    _readonly(tb, bx, by, ix, iy, allx, ally)
+    return dict(task=task, tb=tb, gap=gap, bx=bx, by=by, ix=ix, iy=iy, step=step, allx=allx, ally=ally)
+
+
+@lru_cache(maxsize=None)
+def _boundary_offsets(size, levels, n):
+    """Parameter offsets of each level of the boundary zoom over ``size`` samples:
+    ``n`` points over +-1.5 sample spacings, each level ``(n - 1) / 2`` times finer."""
+    dt = 1.0 / size * 1.5
+    out = []
+    for _ in range(levels):
+        out.append(np.linspace(-dt, dt, n))
+        dt = 2.0 * dt / (n - 1)
+    return _readonly(*out)
+
+
+@lru_cache(maxsize=None)
+def _interior_offsets(n):
+    """The ``n x n`` offsets (in steps) of the interior zoom, ravelled: ``(GX, GY)``."""
+    g = np.linspace(-1.0, 1.0, n)
+    return _readonly(*(a.ravel() for a in np.meshgrid(g, g)))
+
+
+def _lowest(vals, k):
+    """``np.argsort(vals)[:k]``, the indices of the ``k`` lowest values, lowest first,
+    without sorting them all: by a partition when the ``k + 1`` lowest values are
+    distinct (their order is then unique); with ties (or NaN) by the full sort, whose
+    choice among equal values the zoom has always started from."""
+    if vals.size > k + 1:
+        part = np.argpartition(vals, k)[:k + 1]  # the k + 1 lowest, in no order
+        o = np.argsort(vals[part])
+        low = vals[part][o]
+        if np.all(low[1:] > low[:-1]):
+            return part[o[:k]]
+    return np.argsort(vals)[:k]
+
+
+def _boundary_search(ctx, vals, refine, row=0, k=3, levels=4, n=17):
+    """Minimum of a function over the task's boundary (``vals``: its values at the
+    boundary samples), refined by zooming (module doc) around the ``k`` lowest
+    samples. A generator run by :func:`_minimise`: it yields the boundary parameters
+    of each zoom level and is sent the values there (row ``row`` of them); it returns
+    the minimum."""
+    if vals.size == 0:
+        return math.inf
+    best = float(np.min(vals))
+    if not refine or ctx["tb"].size == 0:
+        return best
+    t = ctx["tb"][_lowest(vals, k)]
+    for off in _boundary_offsets(ctx["tb"].size, levels, n):
+        ts = t[:, None] + off[None, :]
+        vv = (yield ts.ravel())[row].reshape(ts.shape)
+        j = np.argmin(vv, axis=1)
+        t = ts[np.arange(len(t)), j]
+        best = min(best, float(vv.min()))
+    return best
+
+
+def _interior_search(ctx, vals, refine, row=0, k=3, levels=3, n=9):
+    """Minimum of a function over the task's interior grid (``vals``: its values
+    there), refined by zooming (module doc) around the ``k`` lowest grid points; a
+    generator run by :func:`_minimise`, as :func:`_boundary_search`, that yields
+    points ``(x, y)``."""
+    if ctx["ix"].size == 0:
+        return math.inf
+    best = float(np.min(vals))
+    if not refine:
+        return best
+    order = _lowest(vals, k)
+    px, py = ctx["ix"][order], ctx["iy"][order]
+    h = ctx["step"]
+    task = ctx["task"]
+    GX, GY = _interior_offsets(n)
+    for _ in range(levels):
+        X = px[:, None] + h * GX[None, :]
+        Y = py[:, None] + h * GY[None, :]
+        inside = task.contains(X, Y)
+        vv = np.where(inside, (yield X.ravel(), Y.ravel())[row].reshape(X.shape), np.inf)
+        j = np.argmin(vv, axis=1)
+        px, py = X[np.arange(len(px)), j], Y[np.arange(len(py)), j]
+        best = min(best, float(vv.min()))
+        h = 2.0 * h / (n - 1)
+    return best
+
+
+def _minimise(F, searches, task):
+    """Run the zoom ``searches`` (generators of :func:`_boundary_search` and
+    :func:`_interior_search` on ``task``) together and return their minima: each
+    round maps the boundary parameters they ask for to points in one call and passes
+    all the points to ``F`` in one call (``F(x, y)``: the values of the searched
+    functions as rows, shape ``(m, N)``), then sends each search its columns. A call of
+    a mechanism's method on 50 points costs mostly its overhead: batching the searches
+    of one evaluation saves most of its time."""
+    out = [None] * len(searches)
+    asks = {}
+
+    def advance(i, values=None):
+        try:
+            asks[i] = searches[i].send(values)
+        except StopIteration as stop:
+            out[i] = stop.value
+
+    for i in range(len(searches)):
+        advance(i)
+    while asks:
+        ids, reqs = list(asks), list(asks.values())
+        asks.clear()
+        ts = [r for r in reqs if not isinstance(r, tuple)]  # boundary parameters
+        bx, by = task.boundary_at(np.concatenate(ts)) if ts else (None, None)
+        xs, ys, at = [], [], 0
+        for r in reqs:
+            if isinstance(r, tuple):
+                xs.append(r[0])
+                ys.append(r[1])
+            else:
+                xs.append(bx[at:at + r.size])
+                ys.append(by[at:at + r.size])
+                at += r.size
+        V = F(np.concatenate(xs), np.concatenate(ys))
+        at = 0
+        for i, x in zip(ids, xs):
+            advance(i, V[:, at:at + x.size])
+            at += x.size
+    return out
+
+
 class DesignEvaluator:
     """Evaluates one design (a dict of variables) against a task: every requirement's
     margin, every objective, the derived strokes. Picklable (travels to workers)."""
@@ -722,6 +873,7 @@ class DesignEvaluator:
             self.shape = s
         self._precheck()
         self._build_vars()
+        self._contexts = {}  # placement -> samples (_context)
 
     # --- variables -------------------------------------------------------------------
     def _build_vars(self):
@@ -846,25 +998,13 @@ class DesignEvaluator:
         return self._setup(v, sampling or Sampling.fine())[0]
 
     def _setup(self, v, s: Sampling):
-        task = self.task.moved_to(v["task_x"], v["task_y"])
         lengths = {n: v[n] for n in self.spec.lengths}
-        if task.is_region:
-            tb, gap = task.boundary_params(s.n_boundary)
-            bx, by = task.boundary_at(tb)
-            ix, iy, step = task.grid(s.n_interior)
-        else:
-            tb, gap = np.zeros(0), 0.0
-            bx, by = task.pts[:, 0], task.pts[:, 1]
-            ix, iy, step = np.zeros(0), np.zeros(0), 0.0
-        ctx = dict(task=task, tb=tb, gap=gap, bx=bx, by=by, ix=ix, iy=iy, step=step)
+        ctx = self._context(v["task_x"], v["task_y"], s)
         derived = {}
         if self.spec.derived_strokes:
             strokes = []
-            for leg in (0, 1):
-                def qf(x, y, leg=leg):
-                    return self.spec.positions(lengths, v["mode"], x, y)[leg]
-                lo = self._boundary_min(ctx, lambda x, y: _bad(qf(x, y), np.inf), s.refine)
-                hi = -self._boundary_min(ctx, lambda x, y: _bad(-qf(x, y), np.inf), s.refine)
+            for lo, hi in self._leg_ranges(ctx, lambda x, y: self.spec.positions(lengths, v["mode"], x, y),
+                                           s.refine):
                 if not (math.isfinite(lo) and math.isfinite(hi)):
                     lo, hi = -1.0, 1.0  # some task point out of reach of the link: reach fails
                 strokes.append((lo, max(hi, lo + _v.RESOLUTION * self.task.diameter)))
@@ -877,53 +1017,51 @@ class DesignEvaluator:
             check = mech
         return mech, check, ctx, derived
 
-    def _boundary_min(self, ctx, f, refine, k=3, levels=4, n=17):
-        """Minimum of ``f`` over the boundary samples, refined by zooming (module doc)."""
-        vals = f(ctx["bx"], ctx["by"])
-        if vals.size == 0:
-            return math.inf
-        best = float(np.min(vals))
-        if not refine or ctx["tb"].size == 0:
-            return best
-        order = np.argsort(vals)[:k]
-        t = ctx["tb"][order]
-        dt = 1.0 / ctx["tb"].size * 1.5
-        task = ctx["task"]
-        for _ in range(levels):
-            ts = t[:, None] + np.linspace(-dt, dt, n)[None, :]
-            vv = f(*task.boundary_at(ts.ravel())).reshape(ts.shape)
-            j = np.argmin(vv, axis=1)
-            t = ts[np.arange(len(t)), j]
-            best = min(best, float(vv.min()))
-            dt = 2.0 * dt / (n - 1)
-        return best
+    def _context(self, x, y, s: Sampling) -> dict:
+        """The samples of the task placed at ``(x, y)`` (:func:`_samples`). They do not
+        depend on the design, and the polish evaluates hundreds of designs at one
+        placement: the last few placements' samples are kept (read-only)."""
+        key = (x, y, s.n_boundary, s.n_interior)
+        ctx = self._contexts.get(key)
+        if ctx is None:
+            ctx = _samples(self.task.moved_to(x, y), s)
+            if len(self._contexts) >= _CONTEXTS_KEPT:
+                self._contexts.pop(next(iter(self._contexts), None), None)  # the oldest
+            self._contexts[key] = ctx
+        return ctx
 
-    def _interior_min(self, ctx, f, refine, k=3, levels=3, n=9):
-        if ctx["ix"].size == 0:
-            return math.inf
-        vals = f(ctx["ix"], ctx["iy"])
-        best = float(np.min(vals))
-        if not refine:
-            return best
-        order = np.argsort(vals)[:k]
-        px, py = ctx["ix"][order], ctx["iy"][order]
-        h = ctx["step"]
-        task = ctx["task"]
-        g = np.linspace(-1.0, 1.0, n)
-        GX, GY = (a.ravel() for a in np.meshgrid(g, g))
-        for _ in range(levels):
-            X = px[:, None] + h * GX[None, :]
-            Y = py[:, None] + h * GY[None, :]
-            inside = task.contains(X, Y)
-            vv = np.where(inside, f(X, Y), np.inf)
-            j = np.argmin(vv, axis=1)
-            px, py = X[np.arange(len(px)), j], Y[np.arange(len(py)), j]
-            best = min(best, float(vv.min()))
-            h = 2.0 * h / (n - 1)
-        return best
+    def __getstate__(self):  # the samples' cache stays behind (workers build their own)
+        state = dict(self.__dict__)
+        state.pop("_contexts", None)
+        return state
 
-    def _region_min(self, ctx, f, refine):
-        return min(self._boundary_min(ctx, f, refine), self._interior_min(ctx, f, refine))
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._contexts = {}
+
+    def _leg_ranges(self, ctx, legs, refine, bad=(np.inf, np.inf)):
+        """``[(lo1, hi1), (lo2, hi2)]``: the range over the task's boundary of each of the
+        two values ``legs(x, y)`` returns (one per leg: actuator or link angle), NaN
+        replaced by ``bad[0]`` for the minimum and ``bad[1]`` for the maximum: the
+        boundary minima (:func:`_boundary_search`) of ``q1, -q1, q2, -q2``, searched
+        together (:func:`_minimise`: one call of ``legs`` per round, not four)."""
+        def rows(x, y):
+            q1, q2 = legs(x, y)[:2]
+            return np.stack([_bad(q1, bad[0]), _bad(-q1, bad[1]), _bad(q2, bad[0]), _bad(-q2, bad[1])])
+
+        vals = rows(ctx["bx"], ctx["by"])
+        m = _minimise(rows, [_boundary_search(ctx, vals[i], refine, i) for i in range(len(vals))], ctx["task"])
+        return [(m[0], -m[1]), (m[2], -m[3])]
+
+    @staticmethod
+    def _region_min(ctx, f, refine, vals):
+        """Minimum of ``f`` over the task: its boundary and interior searches
+        (:func:`_boundary_search`, :func:`_interior_search`) run together; ``vals`` is
+        ``f`` at ``ctx["allx"], ctx["ally"]`` (the boundary samples, then the grid)."""
+        nb = ctx["bx"].size
+        return min(_minimise(lambda x, y: f(x, y)[None],
+                             [_boundary_search(ctx, vals[:nb], refine), _interior_search(ctx, vals[nb:], refine)],
+                             ctx["task"]))
 
     def evaluate(self, v: dict, sampling: Sampling | None = None) -> dict:
         """Every requirement's ``g`` (<= 0 feasible), margin, objective and derived value."""
@@ -937,8 +1075,8 @@ class DesignEvaluator:
             return self._invalid(v, names, validity)
         mech, check, ctx, derived = self._setup(v, s)
         spec, req = self.spec, self.req
-        allx = np.concatenate([ctx["bx"], ctx["ix"]])
-        ally = np.concatenate([ctx["by"], ctx["iy"]])
+        allx, ally = ctx["allx"], ctx["ally"]
+        nb = ctx["bx"].size
 
         def tm(x, y):
             return spec.to_mech(mech, x, y)
@@ -946,7 +1084,6 @@ class DesignEvaluator:
         # reach (certified: 1-Lipschitz clearance on the boundary + holes)
         clr = _bad(check.serial_clearance(*spec.to_mech(check, allx, ally)), -D)
         if self.task.is_region:
-            nb = ctx["bx"].size
             c_b = float(clr[:nb].min())
             reach_margin = c_b - 0.5 * ctx["gap"]
             reach_margin = min(reach_margin, float(clr.min()))
@@ -977,41 +1114,33 @@ class DesignEvaluator:
         def svals(x, y):
             return _ix.singular_values(mech.jacobian(*tm(x, y)))
 
-        lci_s = lci(allx, ally)
-        t2_s = t2(allx, ally)
-        smax_s, smin_s = (_bad(a, np.nan) for a in svals(allx, ally))
+        # the sample values, computed once: the minima below start from them
+        t2_s = _bad(s0 * f_all, -1.0)
+        J_s = mech.jacobian(*tm(allx, ally))
+        lci_s = _bad(_ix.lci(J_s), 0.0)
         sample_vals = dict(t2=float(t2_s.min()), lci=float(lci_s.min()))
         # decide whether to refine: only designs that are feasible or nearly so
         near = reach_margin > -0.05 * D and sample_vals["t2"] > -0.05 and \
             (req.min_lci is None or sample_vals["lci"] >= 0.9 * req.min_lci)
         refine = s.refine and near
-        t2_min = self._region_min(ctx, t2, refine) if self.task.is_region else sample_vals["t2"]
+        t2_min = self._region_min(ctx, t2, refine, t2_s) if self.task.is_region else sample_vals["t2"]
         out["values"]["type2_min"] = t2_min
         out["margin"]["singular"] = t2_min - req.singularity_margin
         out["g"]["singular"] = req.singularity_margin - t2_min if t2_min < req.singularity_margin \
             else -(t2_min - req.singularity_margin)
         need_lci = req.min_lci is not None or {"min-lci"} & set(self.objectives)
-        lci_min = (self._region_min(ctx, lci, refine) if self.task.is_region else float(lci_s.min())) \
+        lci_min = (self._region_min(ctx, lci, refine, lci_s) if self.task.is_region else float(lci_s.min())) \
             if need_lci else float(lci_s.min())
         out["values"]["lci_min"] = lci_min
-        out["values"]["lci_mean"] = float(np.mean(lci(*(self._mean_points(ctx)))))
+        # over the interior grid (the boundary samples for a point task)
+        out["values"]["lci_mean"] = float(np.mean(lci_s[nb:] if ctx["ix"].size else lci_s[:nb]))
         if req.min_lci is not None:
             out["margin"]["lci"] = lci_min - req.min_lci
             out["g"]["lci"] = (req.min_lci - lci_min) / req.min_lci
 
-        # joint / stroke / link angle (boundary extremes)
-        if self.task.is_region:
-            bmin = lambda f: self._boundary_min(ctx, f, refine)  # noqa: E731
-        else:
-            bmin = lambda f: float(np.min(f(allx, ally)))  # noqa: E731
+        # joint / stroke / link angle (boundary extremes; a point task's samples are its points)
         if spec.angular:
-            rng = []
-            for leg in (0, 1):
-                def q(x, y, leg=leg):
-                    return mech.ik(*tm(x, y))[leg]
-                lo = bmin(lambda x, y: _bad(q(x, y), np.inf))
-                hi = -bmin(lambda x, y: _bad(-q(x, y), np.inf))
-                rng.append((lo, hi))
+            rng = self._leg_ranges(ctx, lambda x, y: mech.ik(*tm(x, y)), refine)
             derived["joint_ranges"] = rng
             if req.joint_limits is not None:
                 m = min(min(q_lo - lim_lo, lim_hi - q_hi)
@@ -1030,11 +1159,8 @@ class DesignEvaluator:
         if req.link_angle is not None:
             lo_req, hi_req = req.link_angle
             m = math.inf
-            for leg in (0, 1):
-                def a(x, y, leg=leg):
-                    return spec.link_angles(mech, x, y)[leg]
-                lo = bmin(lambda x, y: _bad(a(x, y), 0.0))
-                hi = -bmin(lambda x, y: _bad(-a(x, y), -math.pi / 2))
+            ranges = self._leg_ranges(ctx, lambda x, y: spec.link_angles(mech, x, y), refine, (0.0, -math.pi / 2))
+            for leg, (lo, hi) in enumerate(ranges):
                 derived[f"link_angle{leg + 1}"] = (lo, hi)
                 m = min(m, lo - lo_req, hi_req - hi)
             out["margin"]["link_angle"] = m
@@ -1054,12 +1180,14 @@ class DesignEvaluator:
             def smin(x, y):
                 return _bad(svals(x, y)[1], 0.0)
 
+            smax_s, smin_s = _ix.singular_values(J_s)
+            neg_smax_s, smin_s = _bad(-smax_s, -np.inf), _bad(smin_s, 0.0)
             if self.task.is_region:
-                smax_max = -self._region_min(ctx, neg_smax, refine)
-                smin_min = self._region_min(ctx, smin, refine)
+                smax_max = -self._region_min(ctx, neg_smax, refine, neg_smax_s)
+                smin_min = self._region_min(ctx, smin, refine, smin_s)
             else:
-                smax_max = -float(neg_smax(allx, ally).min())
-                smin_min = float(smin(allx, ally).min())
+                smax_max = -float(neg_smax_s.min())
+                smin_min = float(smin_s.min())
             # J in rad/[unit] (revolute) or 1 (prismatic); torque N m -> N [unit] for revolute
             t_factor = 1.0 / u_m if spec.angular else 1.0
             if req.actuator_speed is not None:
@@ -1092,11 +1220,6 @@ class DesignEvaluator:
         out["mechanism"] = mech
         out["names"] = names
         return out
-
-    def _mean_points(self, ctx):
-        if ctx["ix"].size:
-            return ctx["ix"], ctx["iy"]
-        return ctx["bx"], ctx["by"]
 
     def _invalid(self, v, names, validity):
         """A design whose variables describe no mechanism: finite objectives, every

@@ -12,6 +12,7 @@ with a finer sampling (:func:`~mechopt.analysis.task.certify`) and returns a
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -132,6 +133,30 @@ def _json_record(rec) -> dict:
 _PLACEMENT_VARS = ("task_x_rel", "task_y_rel")
 
 
+#: per problem, ``(row bytes, sampling) -> (objective values, constraints)`` of the rows
+#: :func:`_evaluated` has evaluated: the polish evaluates some rows again (a start and
+#: its placement, the design a round ends on, its certification), and an evaluation
+#: is deterministic
+_EVALUATED = weakref.WeakKeyDictionary()
+
+
+def _evaluated(problem, x, sampling):
+    """``(objective values, constraints g)`` of the row ``x`` (as the evaluator returns
+    them, in ``problem.constr_names`` order) with ``sampling``, evaluated once."""
+    seen = _EVALUATED.setdefault(problem, {})
+    key = (np.asarray(x, float).tobytes(), sampling)
+    if key not in seen:
+        ev = problem.evaluator
+        res = ev.evaluate(ev.decode(x), sampling)
+        seen[key] = (ev.objective_values(res), [res["g"][n] for n in problem.constr_names])
+    return seen[key]
+
+
+def _certified(problem, x) -> bool:
+    """:func:`certify`'s verdict on the row ``x``: every ``g <= 0`` with its sampling."""
+    return all(g <= 0 for g in _evaluated(problem, x, Sampling.fine())[1])
+
+
 def _rows_eval(problem, X, j, sampling):
     """Objective ``j`` (minimisation form) and the constraints ``G`` of the rows ``X``
     evaluated with ``sampling`` (the polish uses the certification's, so what it accepts
@@ -142,9 +167,9 @@ def _rows_eval(problem, X, j, sampling):
     f = np.empty(len(X))
     G = np.empty((len(X), len(problem.constr_names)))
     for i, x in enumerate(X):
-        res = ev.evaluate(ev.decode(x), sampling)
-        f[i] = sense * ev.objective_values(res)[j]
-        G[i] = [res["g"][n] for n in problem.constr_names]
+        values, g = _evaluated(problem, x, sampling)
+        f[i] = sense * values[j]
+        G[i] = g
     f = np.where(np.isfinite(f), f, 1e300)
     G = np.where(np.isfinite(G), G, 1e3)
     return f, G
@@ -411,7 +436,6 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None):
     toward ``x0`` until it passes. Returns the new X row or None."""
     sampling = sampling or Sampling.fine()
     span = np.where(problem.xu > problem.xl, problem.xu - problem.xl, 1.0)
-    ev = problem.evaluator
     cont = np.array([i for i, n in enumerate(problem.var_names) if n != "mode"])
     if cont.size == 0:
         return None
@@ -489,7 +513,7 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None):
         return None
     for _ in range(40):  # the fine check; pull back toward x0 until it passes
         x = full(z)
-        if certify(ev, ev.decode(x))["feasible"]:
+        if _certified(problem, x):
             return x
         z = z0 + 0.5 * (z - z0) if _ % 2 else z0 + 0.9 * (z - z0)
     return None
@@ -505,7 +529,6 @@ def _polish_start(item):
     certified design better than the start, or None."""
     problem, x, j, seed, rounds = item
     fine = Sampling.fine()
-    ev = problem.evaluator
     x = np.asarray(x, float)
     f, G = _rows_eval(problem, x[None, :], j, fine)
     f0 = float(f[0]) if np.all(G <= 0) else math.inf
@@ -530,7 +553,7 @@ def _polish_start(item):
                 cur, f_cur = new, fn
             if not gain > 1e-3:
                 break
-    if not f_cur < f0 or not certify(ev, ev.decode(cur))["feasible"]:
+    if not f_cur < f0 or not _certified(problem, cur):
         return None
     return cur, float(f_cur)
 
