@@ -204,3 +204,21 @@ def test_all_lists_the_public_definitions(module):
     assert sorted(set(names) - bound) == [], f"{module}: __all__ names nothing called so"
     assert sorted(n for n in defined if not n.startswith("_") and n not in names) == [], (
         f"{module}: public definitions missing from __all__")
+
+
+def test_problems_and_experiments_are_imported_as_mechopt_subpackages():
+    """``problems/`` and ``experiments/`` are installed as ``mechopt.problems`` and
+    ``mechopt.experiments``; run from the repository, ``import problems`` also works but
+    loads a second copy of every module (its own memos and classes: an object of one
+    copy fails ``isinstance`` against the other)."""
+    top = {"problems", "experiments"}
+    bad = []
+    for folder in ("mechopt", "problems", "experiments", "tests", "benchmarks", "docs"):
+        for f in sorted((ROOT / folder).rglob("*.py")):
+            for node in ast.walk(ast.parse(f.read_text(), filename=str(f))):
+                names = ([a.name for a in node.names] if isinstance(node, ast.Import)
+                         else [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level
+                         else [])
+                bad += [f"{f.relative_to(ROOT)}:{node.lineno} imports {n}" for n in names
+                        if n.split(".")[0] in top]
+    assert not bad, bad

@@ -47,7 +47,7 @@ def test_feasible_rows_hold_no_placeholder_and_undefined_rows_are_infeasible(nam
 
 def test_every_liu_design_in_the_box_has_a_mic():
     """Why liu2006-many needs no constraint: r3 <= R3_MAX < 1.5 keeps a MIC everywhere."""
-    from problems.liu2006 import designs, liu_indices
+    from mechopt.problems.liu2006 import designs, liu_indices
 
     p = get("liu2006-many")
     rng = np.random.default_rng(3)
@@ -88,7 +88,7 @@ def test_pymoo_conventions(name):
 
 def test_keyword_arguments_reach_pymoo_and_derived_quantities_reach_the_population():
     seen = []
-    from problems.liu2006 import LiuRegion
+    from mechopt.problems.liu2006 import LiuRegion
 
     p = LiuRegion("w-gci", callback=lambda X, out: seen.append(len(X)))
     res = minimize(p, NSGA2(pop_size=8), ("n_gen", 2), seed=1)
