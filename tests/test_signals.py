@@ -164,6 +164,23 @@ def test_random_moments(tmp_path, request, what, sig, seed):
     _case(tmp_path, argv, sig, seed, reference, file, env)
 
 
+def test_a_second_signal_while_the_run_stops_is_ignored(tmp_path):
+    """Ctrl-C pressed twice: the second SIGINT lands while the run stops its workers or
+    while the interpreter exits (the pools' exit handlers join their threads); it
+    printed a traceback there or ended the process by SIGINT (status -2)."""
+    tag = uuid.uuid4().hex
+    proc = _start(OPT, tmp_path / "twice", tag)
+    assert _wait_for_workers(proc, tag), "the run ended before its workers started"
+    time.sleep(1.0)
+    for gap in (0.02, 0.05, 0.1):
+        proc.send_signal(signal.SIGINT)
+        time.sleep(gap)
+    _, err = proc.communicate(timeout=60)
+    assert _no_survivors(tag), [p.cmdline() for p in _tagged(tag)]
+    messages = [l for l in err.strip().splitlines() if l.strip() and not PROGRESS.match(l)]
+    assert proc.returncode == 130 and len(messages) == 1 and "interrupted" in messages[0], (proc.returncode, err)
+
+
 def test_a_second_run_on_the_same_folder_fails_at_once(tmp_path):
     out = tmp_path / "shared"
     lone = tmp_path / "lone"  # the same run alone in its folder, side by side with the first

@@ -10,7 +10,9 @@ folder's lock and turns every way a run can end into one line and an exit status
   status 2, never a traceback (a failed run removes the output folders it created,
   unless they hold finished or resumable work);
 * SIGINT/SIGTERM end a run with one line (and how to resume, where a run can) and exit
-  status 130/143;
+  status 130/143; signals that follow (a second Ctrl-C) are ignored while the run
+  stops its workers and, from the command (:func:`console`), while the interpreter
+  exits;
 * an empty result (no feasible design, an empty GCW) is a result, exit status 0.
 """
 from __future__ import annotations
@@ -121,6 +123,27 @@ def _quiet_resource_tracker():
         os.environ["PYTHONWARNINGS"] = ",".join(filter(None, (current, _TRACKER_WARNINGS)))
 
 
+def _ignore_interrupts():
+    """SIGINT and SIGTERM ignored from now on (in the main thread; elsewhere nothing)."""
+    import signal
+    import threading
+
+    if threading.current_thread() is threading.main_thread():
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(sig, signal.SIG_IGN)
+
+
+def console():
+    """The ``mechopt`` command: :func:`main` on ``sys.argv``, then exit with its status.
+    After an interrupt, further SIGINT/SIGTERM are ignored until the process ends: the
+    worker pools' exit handlers join their threads then, and a second Ctrl-C there
+    printed a traceback (or ended the process by SIGINT) after the one-line message."""
+    status = main()
+    if status in (EXIT_SIGINT, EXIT_SIGTERM):
+        _ignore_interrupts()
+    sys.exit(status)
+
+
 def main(argv=None) -> int:
     """Run ``mechopt`` with ``argv`` (default ``sys.argv[1:]``); returns the exit status."""
     import signal
@@ -131,7 +154,7 @@ def main(argv=None) -> int:
     out_before = out = None
     previous = None
     if threading.current_thread() is threading.main_thread():
-        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+        previous = (signal.getsignal(signal.SIGINT), signal.signal(signal.SIGTERM, _on_sigterm))
     try:
         try:
             args = parser.parse_args(argv)
@@ -146,6 +169,7 @@ def main(argv=None) -> int:
         print(f"mechopt: error: {msg}", file=sys.stderr)
         return EXIT_USAGE
     except (KeyboardInterrupt, _Terminated) as exc:
+        _ignore_interrupts()  # a second signal must not interrupt the clean-up
         from mechopt.run.parallel import stop_workers
 
         stop_workers()
@@ -162,8 +186,9 @@ def main(argv=None) -> int:
         return EXIT_USAGE
     finally:
         if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
+            signal.signal(signal.SIGINT, previous[0])
+            signal.signal(signal.SIGTERM, previous[1])
 
 
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    console()

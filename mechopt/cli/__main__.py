@@ -1,6 +1,4 @@
 """``python -m mechopt.cli``: the ``mechopt`` command."""
-import sys
+from mechopt.cli import console
 
-from mechopt.cli import main
-
-sys.exit(main())
+console()
