@@ -10,7 +10,7 @@ import pytest
 from mechopt.cli import main
 
 # about 6 ms per design: slow enough to be killed after its first checkpoint
-ARGS = ["le2013-relaxed", "--pop", "40", "--gen", "20", "--seed", "3", "--n-jobs", "1"]
+ARGS = ["le2013-relaxed", "--pop", "40", "--gen", "10", "--seed", "3", "--n-jobs", "1"]
 
 
 def _cli(*argv):
