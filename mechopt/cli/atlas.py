@@ -9,7 +9,6 @@ into ``DIR``; the same command again resumes from the finished chunks.
 from __future__ import annotations
 
 from mechopt.cli import _common
-from mechopt.cli._common import Parser
 
 NAME = "atlas"
 
@@ -17,7 +16,7 @@ NAME = "atlas"
 def add_parser(subparsers):
     """Register ``atlas`` and its sub-command ``five-bar``."""
     at = subparsers.add_parser(NAME, help="performance atlases over a whole design space")
-    ats = at.add_subparsers(dest="mechanism", required=True, parser_class=Parser)
+    ats = at.add_subparsers(dest="mechanism", required=True, parser_class=_common.Parser)
     fb = ats.add_parser(
         "five-bar",
         help="Liu 2006 atlases (GCI, MCI, GVI, GPI, GSI, r_MIC) over r1 + r2 + r3 = 3",
