@@ -120,7 +120,8 @@ from mechopt.core import validation as _v
 from mechopt.core.design_spec import DesignSpec
 
 __all__ = ["Task", "Requirements", "OBJECTIVES", "MECHANISMS", "PLACEMENTS", "DesignEvaluator",
-           "NoFeasibleDesign", "Sampling", "certify", "parse_task", "knee_index", "get_spec", "mechanisms"]
+           "NoFeasibleDesign", "Sampling", "certify", "feasible", "parse_task", "knee_index", "get_spec",
+           "mechanisms"]
 
 #: length units a task may be given in, and their value in metres
 UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
@@ -1281,13 +1282,19 @@ class DesignEvaluator:
 
 
 # ------------------------------------------------------------------ certification
+def feasible(g) -> bool:
+    """Every requirement holds: each of the values ``g`` (an evaluation's ``"g"`` values,
+    a row of G) is ``<= 0``; NaN fails."""
+    return bool(all(v <= 0 for v in g))
+
+
 def certify(evaluator: DesignEvaluator, v: dict, sampling: Sampling | None = None) -> dict:
     """Re-check one design with the fine sampling (:meth:`Sampling.fine`: 2048 boundary
     points, a 61 x 61 interior grid, zoom refinement); returns the evaluation with
     ``feasible`` (every ``g <= 0``) and ``tolerance`` (what the margins rest on)."""
     s = sampling or Sampling.fine()
     res = evaluator.evaluate(v, s)
-    res["feasible"] = bool(all(g <= 0 for g in res["g"].values()))
+    res["feasible"] = feasible(res["g"].values())
     task = evaluator.task
     if task.is_region:
         _, gap = task.boundary_params(s.n_boundary)

@@ -22,7 +22,7 @@ from mechopt.core import validation as _v
 from mechopt.core import indices as _ix
 from mechopt.core.numerics import golden_section_max
 from mechopt.analysis.task import (OBJECTIVES, DesignEvaluator, NoFeasibleDesign, Requirements, Sampling,
-                                   _parse_weights, certify, knee_index)
+                                   _parse_weights, certify, feasible, knee_index)
 
 __all__ = ["design", "DesignResult", "plot_design", "DESIGN_OUTPUTS"]
 
@@ -81,7 +81,7 @@ def _design_record(ev, v, res, index) -> dict:
            "objectives": dict(zip(ev.objectives, ev.objective_values(res))),
            "objective_units": ev.units(),
            "margins": dict(res["margin"]), "constraints_g": dict(res["g"]),
-           "feasible": res.get("feasible", all(g <= 0 for g in res["g"].values())),
+           "feasible": res.get("feasible", feasible(res["g"].values())),
            "values": dict(res["values"]), "tolerance": res.get("tolerance", {}),
            "mechanism": res["mechanism"], "repr": repr(res["mechanism"])}
     if "D" in v:
@@ -154,7 +154,7 @@ def _evaluated(problem, x, sampling):
 
 def _certified(problem, x) -> bool:
     """:func:`certify`'s verdict on the row ``x``: every ``g <= 0`` with its sampling."""
-    return all(g <= 0 for g in _evaluated(problem, x, Sampling.fine())[1])
+    return feasible(_evaluated(problem, x, Sampling.fine())[1])
 
 
 def _rows_eval(problem, X, j, sampling):
