@@ -48,11 +48,13 @@ def results(quick_reproduction):
 
 
 def _text_boxes(fig):
-    """Window extents of every title, axis label, legend and suptitle (drawn with Agg)."""
+    """Window extents of every title, axis label, legend and suptitle (laid out with
+    Agg: ``draw_without_rendering`` places every artist as a draw does, without
+    rasterising)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     canvas = FigureCanvasAgg(fig)
-    canvas.draw()
+    fig.draw_without_rendering()
     r = canvas.get_renderer()
     items = []
     for ax in fig.axes:
