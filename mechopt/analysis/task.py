@@ -1055,14 +1055,22 @@ class DesignEvaluator:
         return [(m[0], -m[1]), (m[2], -m[3])]
 
     @staticmethod
-    def _region_min(ctx, f, refine, vals):
-        """Minimum of ``f`` over the task: its boundary and interior searches
+    def _region_mins(ctx, F, refine, vals):
+        """Minimum over the task of each row of ``F(x, y)`` (functions evaluated by one
+        call, shape ``(m, N)``): the boundary and interior searches of every row
         (:func:`_boundary_search`, :func:`_interior_search`) run together; ``vals`` is
-        ``f`` at ``ctx["allx"], ctx["ally"]`` (the boundary samples, then the grid)."""
+        ``F`` at ``ctx["allx"], ctx["ally"]`` (the boundary samples, then the grid)."""
         nb = ctx["bx"].size
-        return min(_minimise(lambda x, y: f(x, y)[None],
-                             [_boundary_search(ctx, vals[:nb], refine), _interior_search(ctx, vals[nb:], refine)],
-                             ctx["task"]))
+        searches = []
+        for i, v in enumerate(vals):
+            searches += [_boundary_search(ctx, v[:nb], refine, i), _interior_search(ctx, v[nb:], refine, i)]
+        m = _minimise(F, searches, ctx["task"])
+        return [min(m[2 * i], m[2 * i + 1]) for i in range(len(vals))]
+
+    @classmethod
+    def _region_min(cls, ctx, f, refine, vals):
+        """Minimum of ``f`` over the task (:meth:`_region_mins` of one function)."""
+        return cls._region_mins(ctx, lambda x, y: f(x, y)[None], refine, vals[None])[0]
 
     def evaluate(self, v: dict, sampling: Sampling | None = None) -> dict:
         """Every requirement's ``g`` (<= 0 feasible), margin, objective and derived value."""
@@ -1175,20 +1183,17 @@ class DesignEvaluator:
         u_m = UNITS[self.unit]
         need_sv = any(n in names for n in ("speed", "force")) or {"speed", "force", "torque"} & set(self.objectives)
         if need_sv:
-            def neg_smax(x, y):
-                return _bad(-svals(x, y)[0], -np.inf)
+            def extremes(sv):  # -s_max and s_min, both minimised (one SVD for the two)
+                return np.stack([_bad(-sv[0], -np.inf), _bad(sv[1], 0.0)])
 
-            def smin(x, y):
-                return _bad(svals(x, y)[1], 0.0)
-
-            smax_s, smin_s = _ix.singular_values(J_s)
-            neg_smax_s, smin_s = _bad(-smax_s, -np.inf), _bad(smin_s, 0.0)
+            sample_sv = extremes(_ix.singular_values(J_s))
             if self.task.is_region:
-                smax_max = -self._region_min(ctx, neg_smax, refine, neg_smax_s)
-                smin_min = self._region_min(ctx, smin, refine, smin_s)
+                neg_smax_min, smin_min = self._region_mins(ctx, lambda x, y: extremes(svals(x, y)), refine,
+                                                           sample_sv)
+                smax_max = -neg_smax_min
             else:
-                smax_max = -float(neg_smax_s.min())
-                smin_min = float(smin_s.min())
+                smax_max = -float(sample_sv[0].min())
+                smin_min = float(sample_sv[1].min())
             # J in rad/[unit] (revolute) or 1 (prismatic); torque N m -> N [unit] for revolute
             t_factor = 1.0 / u_m if spec.angular else 1.0
             if req.actuator_speed is not None:
