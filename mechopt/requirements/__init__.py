@@ -134,10 +134,11 @@ class Requirements:
         """A copy with ``changes``."""
         return Requirements(**{**self._values, **changes})
 
-    def checked(self, spec) -> "Requirements":
-        """The requirements validated for the mechanism of design spec ``spec`` (each
-        option's check; an option of a requirement that does not apply to it, or a
-        requirement missing the options it needs, is refused with one line)."""
+    def checked(self, spec, unit="mm") -> "Requirements":
+        """The requirements validated for the mechanism of design spec ``spec`` and a task
+        in ``unit`` (each option's check, values with units converted; an option of a
+        requirement that does not apply to it, or a requirement missing the options it
+        needs, is refused with one line)."""
         kw = {}
         for name, (opt, member) in options().items():
             value = self._values[name]
@@ -146,7 +147,7 @@ class Requirements:
                 continue
             if not member.applies(spec):
                 raise ValueError(_not_applicable(member, opt, spec))
-            kw[name] = opt.check(value, spec)
+            kw[name] = opt.check(value, spec, unit)
         out = Requirements(**kw)
         for member in requirements():
             for needed in getattr(member, "needs_options", ()):
