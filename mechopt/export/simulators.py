@@ -187,6 +187,8 @@ def mjcf(tree, digest: str, home: dict) -> str:
         kp, kv = servo_gains(tree, j.kind)
         rng = f' ctrlrange="{_xyz(*j.limits)}"' if j.limits is not None else ""
         lines.append(f'    <position name="{n}" joint="{n}" kp="{_f(kp)}" kv="{_f(kv)}"{rng}/>')
-    lines += ['  </actuator>', '  <keyframe>', f'    <key name="home" qpos="{qpos}" ctrl="{ctrl}"/>',
+    lines += ['  </actuator>', '  <sensor>']
+    lines += [f'    <framepos name="{c}" objtype="site" objname="{c}"/>' for c in CLOSURE_NAMES]
+    lines += ['  </sensor>', '  <keyframe>', f'    <key name="home" qpos="{qpos}" ctrl="{ctrl}"/>',
               '  </keyframe>', '</mujoco>']
     return "\n".join(lines) + "\n"
