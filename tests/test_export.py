@@ -10,8 +10,9 @@ certification sampling, as ``mechopt design`` writes design.json), with the run.
 settings of their evaluator. That costs about 0.1 s per mechanism instead of a design
 run's 15 s.
 
-Sample sizes: Pinocchio at 1000 task points per mechanism (800 seeded uniform points
-inside the task, 200 on its boundary); MuJoCo's hold-and-settle at 100 task points per
+Sample sizes: Pinocchio's forward kinematics at 1000 task points per mechanism (800
+seeded uniform points inside the task, 200 on its boundary), its constraint projection
+at 250 (200 + 50); MuJoCo's hold-and-settle at 100 task points per
 mechanism (each a separate 0.05 s simulation from the passive joints perturbed by 0.02
 rad, run as one batch by ``mujoco.rollout``), its drive along the path once for 1 s of
 simulated time. The slow-marked test repeats the MuJoCo hold at 1000 points.
@@ -57,8 +58,9 @@ LINK_LENGTHS = {
     "bipod": lambda m: {"base": m.b},
     "gantry": lambda m: {"link1": m.l, "link2": m.l},
 }
-#: path samples of the GIF export (one frame each: fewer than drawings.MAX_FRAMES)
-GIF_SAMPLES = 12
+#: path samples of the five-bar's export, and the cap on the GIF's frames it runs with
+#: (drawings.MAX_FRAMES, 60, patched): every 3rd sample, 0, 3, 6, 9 -> 4 frames
+GIF_SAMPLES, GIF_MAX_FRAMES = 12, 5
 
 
 def write_design(folder: Path, name: str) -> Path:
@@ -79,13 +81,18 @@ def write_design(folder: Path, name: str) -> Path:
 @pytest.fixture(scope="module")
 def exported(tmp_path_factory):
     """``{name: (design.json, export folder, info)}``: each design exported once (every
-    format for the five-bar, the fast ones for the others)."""
+    format for the five-bar, the GIF's frames capped at GIF_MAX_FRAMES; the formats
+    without drawing for the others)."""
     out = {}
     for name in NAMES:
         root = tmp_path_factory.mktemp(name)
         path = write_design(root / "design", name)
-        fmts = None if name == "five-bar" else "urdf,mjcf,dxf,csv"
-        info = export(path, root / "export", fmts, samples=GIF_SAMPLES if name == "five-bar" else 200)
+        if name == "five-bar":  # every format; the GIF with at most GIF_MAX_FRAMES frames
+            with pytest.MonkeyPatch.context() as mp:
+                mp.setattr(drawings, "MAX_FRAMES", GIF_MAX_FRAMES)
+                info = export(path, root / "export", None, samples=GIF_SAMPLES)
+        else:
+            info = export(path, root / "export", "urdf,mjcf,dxf,csv", samples=200)
         out[name] = (path, root / "export", info)
     return out
 
@@ -133,17 +140,20 @@ class PinModel:
         pin.framesForwardKinematics(self.model, self.data, q)
         return self.data.oMf[self.fa].translation.copy(), self.data.oMf[self.fb].translation.copy()
 
-    def project(self, q, passive, iters=8):
+    def project(self, q, passive, iters=10, tol=1e-14):
         """Passive joints ``passive`` (indices) solved by Gauss-Newton on the constraint's
-        residual with Pinocchio's constraint Jacobian; the actuated ones kept."""
+        residual with Pinocchio's constraint Jacobian (until the residual is below ``tol``
+        [m]); the actuated ones kept."""
         m, d, c, cd = self.model, self.data, self.constraint, self.cdata
         for _ in range(iters):
             pin.computeJointJacobians(m, d, q)
             c.calc(m, d, cd)
+            r = cd.c1Mc2.translation
+            if np.linalg.norm(r) < tol:
+                break
             J = pin.getConstraintJacobian(m, d, c, cd)
-            dq = np.zeros(m.nv)
-            dq[passive] = np.linalg.lstsq(J[:, passive], cd.c1Mc2.translation, rcond=None)[0]
-            q = pin.integrate(m, q, dq)
+            q = q.copy()
+            q[passive] += np.linalg.lstsq(J[:, passive], r, rcond=None)[0]
         return q
 
 
@@ -176,12 +186,13 @@ def test_pinocchio_forward_kinematics_reaches_the_task(exported, name):
 def test_pinocchio_constraint_projection_closes_the_loop(exported, name):
     """Actuated joints from mechopt's IK alone; the passive joints solved by Pinocchio's
     RigidConstraintModel (Gauss-Newton from a guess 0.05 rad off): the loop residual
-    below 1e-9 m and the platform within 1e-9 m of the task point, at 1000 points."""
+    below 1e-9 m and the platform within 1e-9 m of the task point, at 250 points (a
+    Python loop of Pinocchio calls: 1000 points cost 1.5 s a mechanism)."""
     path, out, _ = exported[name]
     src = load(path)
     tree = src.tree()
     pm = PinModel(out / "robot.urdf")
-    x, y = task_points(src.task, seed=1)
+    x, y = task_points(src.task, 200, 50, seed=1)
     mx, my = src.spec.to_mech(src.mech, x, y)
     q1, q2, ok = src.mech.ik(mx, my)
     assert ok.all()
@@ -363,32 +374,22 @@ def test_path_csv(exported, name):
     assert np.hypot(fx - mx, fy - my).max() < 1e-9 * src.task.diameter
 
 
-def test_gif_decodes_with_one_frame_per_sample(exported):
-    """path.gif decodes (Pillow) with one frame per path sample (fewer samples than
-    MAX_FRAMES), the digest as its comment; the SVG carries the digest too."""
+def test_gif_decodes_with_the_stated_frames(exported):
+    """path.gif decodes (Pillow) with one frame per k-th path sample, k = ceil(n /
+    MAX_FRAMES) (12 samples, at most 5 frames: k = 3, samples 0, 3, 6, 9), the digest as
+    its comment; the SVG carries the digest too."""
     from PIL import Image
 
     _, out, info = exported["five-bar"]
+    assert info["frame_step"] == 3 and info["frames"] == 4
     with Image.open(out / "path.gif") as im:
-        assert im.n_frames == GIF_SAMPLES == info["frames"]
+        assert im.n_frames == len(range(0, GIF_SAMPLES, 3)) == 4
         assert im.info["comment"].decode() == f"mechopt design sha256 {info['design_sha256']}"
         for k in range(im.n_frames):
             im.seek(k)
             im.load()
+    assert drawings.frame_step(60) == 1 and drawings.frame_step(61) == 2 and drawings.frame_step(200) == 4
     assert info["design_sha256"] in (out / "mechanism.svg").read_text()
-
-
-def test_gif_subsampling(tmp_path, exported, monkeypatch):
-    """With more samples than MAX_FRAMES the GIF shows every k-th, k = ceil(n / MAX_FRAMES):
-    10 samples, at most 4 frames -> k = 3, samples 0, 3, 6, 9."""
-    from PIL import Image
-
-    monkeypatch.setattr(drawings, "MAX_FRAMES", 4)
-    path, _, _ = exported["biglide"]
-    info = export(path, tmp_path / "gif", "gif", samples=10)
-    assert info["frame_step"] == 3 and info["frames"] == 4
-    with Image.open(tmp_path / "gif" / "path.gif") as im:
-        assert im.n_frames == 4
 
 
 # ------------------------------------------------------------------ digest and names

@@ -7,13 +7,13 @@ joint-space path (CSV) and its animation (GIF), all in the design's length unit 
   diameter ``width / 3`` (layer ``HOLES``) centred on every pin, the capsule outline of
   width ``width`` (:func:`mechopt.export.inertia.link_width`) about the two farthest
   pins (layer ``OUTLINE``: two lines and two half circles) and a label (``TEXT``). The
-  hole-centre distances are the link lengths. Slider blocks and strut halves (one pin)
-  are not drawn. The header's custom property ``MECHOPT_DESIGN_SHA256`` holds the digest.
+  hole-centre distances are the link lengths. Bodies with one pin (a carriage on a
+  guide, a strut's halves) are not drawn. The header's custom property ``MECHOPT_DESIGN_SHA256`` holds the digest.
 * SVG (matplotlib): the task, the mechanism at the task's centre (each body as the
   polyline of its pins, each prismatic joint's stroke as a grey bar) and the path.
 * CSV: one row per path sample (:func:`mechopt.export.source.path_samples`): ``t`` (the
-  arc-length fraction, [0, 1)), ``q1``, ``q2`` (the actuated joints in leg order: crank
-  angles [rad] or slider/strut positions [L], from the mechanism's inverse
+  arc-length fraction, [0, 1)), ``q1``, ``q2`` (the actuated joints in leg order: motor
+  angles [rad] or linear positions [L], from the mechanism's inverse
   kinematics), ``x``, ``y`` (the platform point [L], task frame); a first line
   ``# mechopt design sha256 <digest>`` (read it with ``pandas.read_csv(path,
   comment="#")``).

@@ -4,7 +4,7 @@ Until the mass model of the dynamics work (bodies with a stated cross-section an
 density) lands, every moving body of an exported URDF or MJCF is a **uniform solid
 cylinder of mass 1 kg** along its x axis, from its joint at ``(0, 0)`` to its farthest
 pin at ``(length, 0)``, of diameter :func:`link_width`. A body whose pins all sit on
-its joint (a slider block, a strut's halves) has ``length = 0``: a disk of that
+its joint (a carriage on a guide, a strut's halves) has ``length = 0``: a disk of that
 diameter. These numbers are unit defaults, not a design's masses: they make the
 models simulate, and the kinematic checks do not depend on them. Swap
 :func:`body_inertia` for the mass model when it exists.
@@ -24,8 +24,8 @@ WIDTH_RATIO = 0.1
 
 def link_width(tree) -> float:
     """Width of every link [L]: :data:`WIDTH_RATIO` times the longest distance between
-    two pins of one body of ``tree`` (e.g. 18.4 mm for a five-bar with a 184 mm distal
-    link)."""
+    two pins of one body of ``tree`` (e.g. 18.4 mm for a mechanism whose longest link
+    is 184 mm)."""
     longest = 0.0
     for pins in tree.pins().values():
         for i, (_, a) in enumerate(pins):

@@ -12,7 +12,7 @@ mechanism's actuators (``theta1``, ``theta2`` or ``q1``, ``q2``), closure frames
   ``CONTACT_3D`` between the frames' parent joints at the frames' placements
   (``tests/test_export.py`` builds it). ``robot.yaml`` states the loop and the motors
   in the format of Gepetto's example-parallel-robots (``closed_loop``, ``type``,
-  ``name_mot``). Crank and stroke limits are the design's; passive revolute joints
+  ``name_mot``). The motors' limits are the design's (angle ranges or strokes); passive revolute joints
   are limited to ``[-pi, pi]``. Effort and velocity limits are placeholders (``1e6``:
   none stated) until the actuator limits of the dynamics work are known.
 * MJCF closes the loop with ``<equality><connect site1="closedloop1_A"

@@ -3,7 +3,7 @@ the design's digest and the path along its task.
 
 :func:`load` reads ``design.json`` and the ``run.json`` next to it (the task is in
 ``run.json``; ``design.json`` holds the variables, the working mode, the task
-placement, the strokes or crank ranges and the mechanism's ``repr``), rebuilds the
+placement, the strokes or angular joint ranges and the mechanism's ``repr``), rebuilds the
 mechanism from its design specification and checks that it is the one ``repr`` names.
 
 The digest (:func:`design_digest`) is the sha256 of ``design.json``'s canonical
@@ -90,7 +90,7 @@ class DesignSource:
 
     def tree(self):
         """The mechanism's :class:`~mechopt.core.kinematic_tree.KinematicTree` in the task
-        frame [L], with the crank limits of the design's joint ranges (the strokes are
+        frame [L], with the angular motors limited to the design's joint ranges (the strokes are
         the mechanism's own)."""
         tree = self.mech.kinematic_tree()
         ox, oy = self.spec.to_mech(self.mech, 0.0, 0.0)
