@@ -27,15 +27,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-pin = pytest.importorskip("pinocchio", reason="the export extra (pip install mechopt[export])")
-mujoco = pytest.importorskip("mujoco", reason="the export extra")
-ezdxf = pytest.importorskip("ezdxf", reason="the export extra")
+# the export extra (make installs it: pip install -e '.[export]'); not skipped when missing
+import ezdxf
+import mujoco
+import pinocchio as pin
 
-from mechopt.analysis.task import DesignEvaluator, Requirements, Task, certify  # noqa: E402
-from mechopt.cli import main  # noqa: E402
-from mechopt.export import drawings, export  # noqa: E402
-from mechopt.export.source import load, path_samples  # noqa: E402
-from mechopt.run.io import write_json  # noqa: E402
+from mechopt.analysis.task import DesignEvaluator, Requirements, Task, certify
+from mechopt.cli import main
+from mechopt.export import drawings, export
+from mechopt.export.source import load, path_samples
+from mechopt.run.io import write_json
 
 #: (mechanism, task, design variables, placement, max_length): the designs of small runs
 DESIGNS = {
@@ -520,3 +521,44 @@ def test_cli_export_writes_the_set(tmp_path, exported, capsys):
                                                 "robot.yaml"]
     info = json.loads((tmp_path / "o" / "export.json").read_text())
     assert set(info["files"]) == {"link-base.dxf", "robot.urdf", "robot.yaml"}
+
+
+# ------------------------------------------------------------------ the tree itself
+@pytest.mark.parametrize("name", NAMES)
+def test_planar_forward_kinematics_agrees_with_pinocchio(exported, name):
+    """KinematicTree.forward (what the drawings use) at 50 random, not closed, joint
+    values: every body frame and closure frame where Pinocchio puts it (1e-12 m)."""
+    path, out, _ = exported[name]
+    tree = load(path).tree().scaled(load(path).metres)
+    pm = PinModel(out / "robot.urdf")
+    rng = np.random.default_rng(4)
+    q = {j.name: rng.uniform(-3, 3, 50) if j.kind == "revolute" else rng.uniform(-0.2, 0.2, 50) for j in tree.joints}
+    pose = tree.forward(q)
+    for k in range(50):
+        qk = np.zeros(pm.model.nq)
+        for j in tree.joints:
+            qk[pm.index(j.name)] = q[j.name][k]
+        a, b = pm.frames(qk)
+        for j in tree.joints:
+            p = pm.data.oMi[pm.model.getJointId(j.name)]
+            assert np.hypot(p.translation[0] - pose[j.child][0][k], p.translation[1] - pose[j.child][1][k]) < 1e-12
+            ang = math.atan2(p.rotation[1, 0], p.rotation[0, 0])
+            assert abs(math.remainder(ang - pose[j.child][2][k], 2 * math.pi)) < 1e-12
+        for c, pt in zip(("closedloop1_A", "closedloop1_B"), (a, b)):
+            assert np.hypot(pt[0] - pose[c][0][k], pt[1] - pose[c][1][k]) < 1e-12
+
+
+def test_a_malformed_tree_is_refused():
+    """The tree's own checks: a parent that comes later, a non-unit prismatic axis,
+    closure frames not named by the convention: one-line ValueErrors."""
+    from mechopt.core.kinematic_tree import ClosureFrame, KinematicTree, TreeJoint
+
+    cl = (ClosureFrame("closedloop1_A", "a", (1.0, 0.0)), ClosureFrame("closedloop1_B", "b", (1.0, 0.0)))
+    ok = (TreeJoint("j1", "revolute", "base", "a", actuated=True), TreeJoint("j2", "revolute", "base", "b"))
+    assert KinematicTree("toy", ok, cl).actuated == ("j1",)
+    with pytest.raises(ValueError, match="not an earlier body"):
+        KinematicTree("toy", (TreeJoint("j2", "revolute", "a", "b"), TreeJoint("j1", "revolute", "base", "a")), cl)
+    with pytest.raises(ValueError, match="unit vector"):
+        KinematicTree("toy", (ok[0], TreeJoint("j2", "prismatic", "base", "b", axis=(1.0, 1.0))), cl)
+    with pytest.raises(ValueError, match="closure frames must be"):
+        KinematicTree("toy", ok, (cl[1], cl[0]))
