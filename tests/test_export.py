@@ -562,3 +562,30 @@ def test_a_malformed_tree_is_refused():
         KinematicTree("toy", (ok[0], TreeJoint("j2", "prismatic", "base", "b", axis=(1.0, 1.0))), cl)
     with pytest.raises(ValueError, match="closure frames must be"):
         KinematicTree("toy", ok, (cl[1], cl[0]))
+
+
+def test_point_task_path_is_its_points(tmp_path):
+    """A point task (a trajectory): path.csv holds its points in their order, ``t`` the
+    fraction of the polyline's length (``--samples`` ignored); a polygon task's path is
+    its boundary, through every vertex when the samples fall on them."""
+    import pandas as pd
+
+    from mechopt.workflows.design import _design_record, _json_record
+
+    pts = np.array([[-20.0, 170.0], [0.0, 180.0], [30.0, 180.0], [30.0, 200.0]])
+    for task, n in ((Task.points(pts), 7), (Task.polygon([(-30, 160), (30, 160), (0, 200)]), 12)):
+        ev = DesignEvaluator("five-bar", task, Requirements(), ("size",), max_length=250)
+        v = {**DESIGNS["five-bar"][1], "task_x": task.reference[0], "task_y": task.reference[1]}
+        folder = tmp_path / task.kind
+        folder.mkdir()
+        write_json(_json_record(_design_record(ev, v, certify(ev, v), 0)), folder / "design.json")
+        write_json({"problem": "design", "design": ev.settings()}, folder / "run.json")
+        export(folder / "design.json", folder / "out", "csv", samples=n)
+        df = pd.read_csv(folder / "out" / "path.csv", comment="#")
+        if task.kind == "points":
+            assert np.array_equal(df[["x", "y"]].to_numpy(), pts)
+            seg = np.hypot(*np.diff(pts, axis=0).T)
+            assert np.allclose(df.t, np.r_[0, np.cumsum(seg)] / seg.sum(), rtol=0, atol=1e-15)
+        else:  # perimeter 60 + 2 * 50 = 160, 12 samples: every 13.33, vertices at 0 and 60/160 = 4.5/12
+            assert len(df) == 12 and (df.x.iloc[0], df.y.iloc[0]) == (-30.0, 160.0)
+            assert np.abs(task.signed_distance(df.x, df.y)).max() < 1e-12
