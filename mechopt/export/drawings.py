@@ -10,7 +10,8 @@ joint-space path (CSV) and its animation (GIF), all in the design's length unit 
   hole-centre distances are the link lengths. Bodies with one pin (a carriage on a
   guide, a strut's halves) are not drawn. The header's custom property ``MECHOPT_DESIGN_SHA256`` holds the digest.
 * SVG (matplotlib): the task, the mechanism at the task's centre (each body as the
-  polyline of its pins, each prismatic joint's stroke as a grey bar) and the path.
+  polyline of its pins, each prismatic joint's stroke as a grey bar), the path and the
+  boundary of the reachable set (the mechanism's ``serial_clearance = 0``, dashed).
 * CSV: one row per path sample (:func:`mechopt.export.source.path_samples`): ``t`` (the
   arc-length fraction, [0, 1)), ``q1``, ``q2`` (the actuated joints in leg order: motor
   angles [rad] or linear positions [L], from the mechanism's inverse
@@ -19,8 +20,8 @@ joint-space path (CSV) and its animation (GIF), all in the design's length unit 
   comment="#")``).
 * GIF (matplotlib's ``PillowWriter``): one frame per path sample ``0, k, 2k, ...`` with
   ``k = ceil(n / MAX_FRAMES)`` (:func:`frame_step`), so at most :data:`MAX_FRAMES`
-  frames, 20 frames per second; the task, the traced path and the mechanism drawn; the
-  GIF comment holds the digest.
+  frames, 20 frames per second; the task, the reachable boundary, the traced path and
+  the mechanism drawn; the GIF comment holds the digest.
 """
 from __future__ import annotations
 
@@ -149,6 +150,20 @@ def _limits(ax, elements, tx, ty):
     ax.set_ylim(ys.min() - pad, ys.max() + pad)
 
 
+def _reach(ax, src, n=161):
+    """The reachable set's boundary (``serial_clearance = 0``, the mechanism's own
+    function, on an ``n x n`` grid over the axes), dashed grey."""
+    from matplotlib.lines import Line2D
+
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    gx, gy = np.meshgrid(np.linspace(x0, x1, n), np.linspace(y0, y1, n))
+    mx, my = src.spec.to_mech(src.mech, gx, gy)
+    clr = np.asarray(src.mech.serial_clearance(mx, my), float)
+    if np.nanmin(clr) < 0 < np.nanmax(clr):
+        ax.contour(gx, gy, clr, levels=[0.0], colors="0.4", linewidths=0.8, linestyles="--")
+    return Line2D([], [], color="0.4", lw=0.8, ls="--", label="reachable boundary")
+
+
 def draw_svg(src, tree, home_q: dict, path_xy, path, digest: str) -> None:
     """Write the SVG (module docstring) to ``path``: the mechanism at ``home_q``."""
     px, py = path_xy
@@ -158,7 +173,8 @@ def draw_svg(src, tree, home_q: dict, path_xy, path, digest: str) -> None:
     for kind, xs, ys in els:
         ax.plot(np.ravel(xs), np.ravel(ys), **_STYLE[kind])
     _limits(ax, els, px, py)
-    ax.legend(loc="lower right", fontsize=7)
+    handles, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=[*handles, _reach(ax, src)], loc="lower right", fontsize=7)
     fig.savefig(path, format="svg", bbox_inches="tight",
                 metadata={"Description": f"mechopt design sha256 {digest}"})
 
@@ -173,6 +189,7 @@ def path_frame(src, tree, q: dict, px, py):
                                         f"every {step}. sample)")
     els = pose_elements(tree, q)
     _limits(ax, els, px, py)
+    _reach(ax, src)
     lines = [ax.plot([], [], **_STYLE[kind])[0] for kind, _, _ in els]
     trace, = ax.plot([], [], color="tab:orange", lw=1)
 
