@@ -63,6 +63,7 @@ import numpy as np
 from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
 from mechopt.core.design_spec import DesignSpec
+from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
 __all__ = [
@@ -350,6 +351,33 @@ class Bipod(PlanarMechanism):
             [np.stack([x + nan, y + nan], -1), np.stack([x - self.b + nan, y + nan], -1)], -2
         )
         return A, np.stack([q1, q2], -1), ok
+
+    # --- the kinematic tree (mechopt.core.kinematic_tree; mechopt export) -----------------
+    def kinematic_tree(self):
+        """Per strut ``i`` the passive ``base<i>`` on the base at ``A_i`` (body
+        ``cylinder<i>``, x along the strut), the actuated prismatic ``q<i>`` along that x
+        axis from ``A_i`` (body ``rod<i>``, its origin at the strut's end: ``q_i`` is the
+        strut length, limited to the stroke) and the closure frame at the origin of
+        ``rod<i>``: the platform point."""
+        joints, closure = [], []
+        for i, ((ax, ay), lim) in enumerate(zip(self.base_joints, self.joint_limits), 1):
+            joints += [TreeJoint(f"base{i}", "revolute", BASE, f"cylinder{i}", (ax, ay)),
+                       TreeJoint(f"q{i}", "prismatic", f"cylinder{i}", f"rod{i}", (0.0, 0.0), (1.0, 0.0), True,
+                                 tuple(lim))]
+            closure.append(ClosureFrame(CLOSURE_NAMES[i - 1], f"rod{i}", (0.0, 0.0)))
+        return KinematicTree(self.cli_name, tuple(joints), tuple(closure))
+
+    def tree_configuration(self, x, y) -> dict:
+        """Every joint of :meth:`kinematic_tree` at ``(x, y)``: ``base<i>`` the strut's
+        angle ``atan2(y, x - x_Ai)`` [rad], ``q<i>`` its length from :meth:`ik`; NaN out
+        of reach."""
+        x, y = as_points(x, y)
+        q1, q2, ok = self.ik(x, y)
+        out = {}
+        for i, ((ax, ay), q) in enumerate(zip(self.base_joints, (q1, q2)), 1):
+            out[f"base{i}"] = np.where(ok, np.arctan2(y - ay, x - ax), np.nan)
+            out[f"q{i}"] = q
+        return out
 
     def serial_clearance(self, x, y):
         """Signed distance to the boundary of the reachable set, positive inside.

@@ -70,6 +70,7 @@ import numpy as np
 
 from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
+from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.protocol import ASSEMBLY_MODES, PlanarMechanism, as_points
 from mechopt.core.quadrature import gauss_legendre
 
@@ -260,6 +261,38 @@ class TwoSliderMechanism(PlanarMechanism):
         A = np.where(ok[..., None, None], A, np.nan)
         b = np.where(ok[..., None], b, np.nan)
         return A, b, ok
+
+    # --- the kinematic tree (mechopt.core.kinematic_tree; mechopt export) -----------------
+    def kinematic_tree(self):
+        """Per leg ``i`` the actuated prismatic joint ``q<i>`` on the base at ``(g_i, 0)``
+        along y (body ``slider<i>``, limited to the stroke), the passive ``pivot<i>`` at
+        the slider (body ``link<i>``, x along the link) and the closure frame at
+        ``(L, 0)`` of ``link<i>``: the link joint. Only with the reported point at the
+        link joint (no platform offset ``e``): a gantry platform of height ``l2 > 0`` is
+        held level by a third, parallelogram link, which this tree does not describe
+        (ValueError); ``mechopt design`` builds gantries with ``l2 = 0``."""
+        if self._e != 0:
+            raise ValueError(f"{self.cli_name} with a platform offset ({self._e!r}: l2 > 0, a parallelogram "
+                             f"leg) has no kinematic tree for export; only l2 = 0 is exported")
+        joints, closure = [], []
+        for i, (g, lim) in enumerate(zip(self._g, self._lims), 1):
+            joints += [TreeJoint(f"q{i}", "prismatic", BASE, f"slider{i}", (g, 0.0), (0.0, 1.0), True,
+                                 tuple(lim)),
+                       TreeJoint(f"pivot{i}", "revolute", f"slider{i}", f"link{i}")]
+            closure.append(ClosureFrame(CLOSURE_NAMES[i - 1], f"link{i}", (self._L, 0.0)))
+        return KinematicTree(self.cli_name, tuple(joints), tuple(closure))
+
+    def tree_configuration(self, x, y) -> dict:
+        """Every joint of :meth:`kinematic_tree` at ``(x, y)``: ``q<i>`` from :meth:`ik`,
+        ``pivot<i>`` the angle of link ``i`` from the x axis, ``atan2(y - q_i, x - g_i)``
+        [rad]; NaN out of reach."""
+        x, y = as_points(x, y)
+        q1, q2, _ = self.ik(x, y)
+        out = {}
+        for i, (g, q) in enumerate(zip(self._g, (q1, q2)), 1):
+            out[f"q{i}"] = q
+            out[f"pivot{i}"] = np.arctan2(y - self._e - q, x - g)
+        return out
 
     def _left_right(self, q1, q2):
         """``(q_left, q_right)``: the slider positions ordered by the guides' x."""

@@ -23,10 +23,12 @@ import numpy as np
 from mechopt.mechanisms.five_bar import lci as _fast_lci
 from mechopt.core import validation as _v
 from mechopt.core.design_spec import DesignSpec
+from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
 __all__ = ["FiveBar", "FiveBarDesignSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows", "legs_closure", "legs_reachable",
-           "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk", "legs_assembly_of"]
+           "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk", "legs_assembly_of", "legs_tree",
+           "legs_tree_configuration"]
 
 MODES = ("+-", "-+", "++", "--")
 _SIGN = {"+": 1.0, "-": -1.0}
@@ -172,6 +174,36 @@ def legs_assembly_of(x, y, r3, legs):
     x, y = as_points(x, y)
     cross = (b2x - b1x) * (y - b1y) - (b2y - b1y) * (x - b1x)
     return np.where(cross >= 0, "up", "down")
+
+
+def legs_tree(name, r3, legs) -> KinematicTree:
+    """The kinematic tree of a 5R (:mod:`mechopt.core.kinematic_tree`): per leg ``i`` the
+    actuated crank joint ``theta<i>`` on the base at ``A_i`` (body ``crank<i>``, its x
+    axis along the crank), the passive ``elbow<i>`` at ``(a_i, 0)`` of the crank (body
+    ``distal<i>``, x along the distal link) and the closure frame at ``(c_i, 0)`` of
+    ``distal<i>``: the platform point. Crank angles unlimited here (the design's
+    ranges are set by the exporter)."""
+    joints, closure = [], []
+    for i, (ax, (a, c, _)) in enumerate(zip((-r3, r3), legs), 1):
+        joints += [TreeJoint(f"theta{i}", "revolute", BASE, f"crank{i}", (ax, 0.0), actuated=True),
+                   TreeJoint(f"elbow{i}", "revolute", f"crank{i}", f"distal{i}", (a, 0.0))]
+        closure.append(ClosureFrame(CLOSURE_NAMES[i - 1], f"distal{i}", (c, 0.0)))
+    return KinematicTree(name, tuple(joints), tuple(closure))
+
+
+def legs_tree_configuration(x, y, r3, legs) -> dict:
+    """Joint values of :func:`legs_tree` with the platform at ``(x, y)``: ``theta<i>``
+    from :func:`legs_ik` (unwrapped), ``elbow<i>`` the angle from the crank to the distal
+    link ``B_i -> P`` [rad] in ``(-pi, pi]``, from :func:`legs_elbows`; NaN out of reach."""
+    x, y = as_points(x, y)
+    t1, t2, _ = legs_ik(x, y, r3, legs)
+    b1x, b1y, b2x, b2y, _ = legs_elbows(x, y, r3, legs)
+    out = {}
+    for i, (t, bx, by) in enumerate(((t1, b1x, b1y), (t2, b2x, b2y)), 1):
+        e = np.arctan2(y - by, x - bx) - t
+        out[f"theta{i}"] = t
+        out[f"elbow{i}"] = np.arctan2(np.sin(e), np.cos(e))
+    return out
 
 
 class FiveBarDesignSpec(DesignSpec):
@@ -342,6 +374,14 @@ class FiveBar(PlanarMechanism):
     def assembly_of(self, x, y):
         """Which FK assembly mode (``"up"``/``"down"``) a pose of this working mode is in."""
         return legs_assembly_of(x, y, self.r3, self._legs())
+
+    def kinematic_tree(self):
+        """Bodies and joints, the loop cut at the platform (:func:`legs_tree`)."""
+        return legs_tree(self.cli_name, self.r3, self._legs())
+
+    def tree_configuration(self, x, y) -> dict:
+        """Every joint of :meth:`kinematic_tree` at ``(x, y)`` (:func:`legs_tree_configuration`)."""
+        return legs_tree_configuration(x, y, self.r3, self._legs())
 
     def type2_function(self, x, y):
         """``(a1 x a2) / (|a1| |a2|)`` with ``a_i = P - B_i``: the sine of the angle
