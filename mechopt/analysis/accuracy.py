@@ -214,7 +214,9 @@ def _spec(mech):
 
 
 def _directions(m=DIRECTIONS):
-    a = np.pi * np.arange(m) / m * 2.0
+    """The first half of ``m`` directions at equal angles (the sets bounded here are
+    symmetric about the origin, ``h(-u) = h(u)``: the other half adds nothing)."""
+    a = 2.0 * np.pi * np.arange((m + 1) // 2) / m
     return np.stack([np.cos(a), np.sin(a)], -1)
 
 
@@ -249,11 +251,23 @@ def _linear_terms(mech, spec, x, y):
 
 def _support(G, A, t, c, U):
     """``h(u)`` at the directions ``U`` (M, 2): shape (..., M)."""
-    h = np.abs(np.einsum("...ck,mc->...mk", G, U)) @ t
-    if len(c):
-        v = np.einsum("...jca,mc->...mja", A, U)  # A_j^T u
-        h = h + np.sqrt((v * v).sum(-1)) @ c
+    ux, uy = U[:, 0, None], U[:, 1, None]
+    h = np.abs(G[..., None, 0, :] * ux + G[..., None, 1, :] * uy) @ t
+    for j, cj in enumerate(c):
+        if cj > 0:
+            Aj = A[..., j, :, :]
+            vx = Aj[..., None, 0, 0] * ux[:, 0] + Aj[..., None, 1, 0] * uy[:, 0]
+            vy = Aj[..., None, 0, 1] * ux[:, 0] + Aj[..., None, 1, 1] * uy[:, 0]
+            h = h + cj * np.sqrt(vx * vx + vy * vy)
     return h
+
+
+def _norm2(M):
+    """Spectral norm of 2 x 2 matrices (..., 2, 2), closed form: the largest singular
+    value ``sqrt((F + sqrt(F^2 - 4 det^2)) / 2)``, ``F`` the squared Frobenius norm."""
+    F = (M * M).sum((-2, -1))
+    det = M[..., 0, 0] * M[..., 1, 1] - M[..., 0, 1] * M[..., 1, 0]
+    return np.sqrt(0.5 * (F + np.sqrt(np.maximum(F * F - 4.0 * det * det, 0.0))))
 
 
 def pose_error(mech, model: ErrorModel, x, y, unit: str = "mm", directions: int = DIRECTIONS) -> dict:
@@ -291,7 +305,7 @@ def pose_error(mech, model: ErrorModel, x, y, unit: str = "mm", directions: int 
     U = _directions(M)
     h = _support(G, A, t, c, U)
     low = h.max(-1)
-    worst_dir = (2 * np.pi / M) * np.argmax(np.nan_to_num(h, nan=-1.0), -1)
+    worst_dir = np.arctan2(U[:, 1], U[:, 0])[np.argmax(np.nan_to_num(h, nan=-1.0), -1)]
     W1 = low / math.cos(math.pi / M)
     axes = _support(G, A, t, c, np.eye(2))
     # --- the remainder (module docstring) ---
@@ -306,7 +320,7 @@ def pose_error(mech, model: ErrorModel, x, y, unit: str = "mm", directions: int 
     B = np.abs(p["K"]) @ t + clear_leg + kk
     m_i = np.maximum(mC, mR)
     m = m_i.max(-1)
-    nu = np.linalg.norm(np.nan_to_num(p["Ninv"]), 2, axis=(-2, -1))
+    nu = _norm2(p["Ninv"])
     with np.errstate(divide="ignore", invalid="ignore"):
         kap = 0.5 / r1 + 0.5 / r2
         beta = np.hypot(B[..., 0], B[..., 1])
