@@ -43,26 +43,29 @@ dR_i/dxi_k)_i`` and 2 x 2 blocks ``A_j = N^-1 [n_i^T if leg i holds joint j]``.
   within ``pi / M`` of ``psi``, so ``max_m h(u_m) >= rho cos(pi / M)``, and
   ``W1 = max_m h(u_m) / cos(pi / M)`` is an upper bound, tight to that factor
   (``M = 64``: 1.0012).
-* The remainder ``e - e1 = N^-1 ((b - b_lin) + r)``. The centres' non-linear part is
+* The remainder. ``e - e1 = N^-1 ((b - b_lin) + r)``: the centres' non-linear part is
   bounded per leg by ``k_i`` (:meth:`~mechopt.core.error_spec.ErrorSpec.centre_curvature`:
   a crank's rotation) and the radii are affine, so ``|b - b_lin| <= |(k_1, k_2)|``.
-  With ``m_i`` a bound on ``|dC_i|`` and on ``|dR_i|`` over the box,
-  ``|r_i| <= (|e| + m_i)^2 / (2 R_i)``. Hence, with ``nu = |N^-1|_2``,
-  ``kappa = sum_i 1 / (2 R_i)``, ``m = max m_i`` and ``beta`` a bound on ``|b|``,
-  every solution satisfies ``|e| <= nu beta + nu kappa (|e| + m)^2``: with
-  ``s = |e| + m``, ``nu kappa s^2 - s + m + nu beta >= 0``, i.e. ``s <= s_-`` or
-  ``s >= s_+`` (the roots). The map ``e -> N^-1 (b + r(e))`` sends the ball
-  ``|e| <= E = s_- - m`` into itself, so a solution lies in it (Brouwer); it is the
-  pose of the nominal assembly mode, continued along the deviations ``t xi``
-  (``t`` from 0 to 1) without meeting a type-II configuration, whenever no point of
-  the ball comes within the centres' shift of the line ``C_1 C_2``:
-  ``h > E + (1 + 2 Lambda) m_C`` with ``h`` the distance of ``P`` from that line,
-  ``m_C`` the largest centre shift and ``Lambda = (R_1 + E + m_C) / (|C_2 - C_1| - 2 m_C)``
-  (a point of the moved line is ``C_1' + lambda (C_2' - C_1')``, at most
-  ``(1 + 2 |lambda|) m_C`` from the matching point of the nominal line). Then
-  ``|e - e1| <= nu (|(k_1, k_2)| + kappa (E + m)^2)``.
+  With ``m`` a bound on every ``|dC_i|`` and ``|dR_i|`` over the box (sums of the
+  columns' contributions, the clearances and ``k_i``), ``|r_i| <= (|e| + m)^2 / (2 R_i)``
+  (``|dR^2 - w^2| <= max(dR^2, w^2)``), so ``|r| <= kappa (|e| + m)^2`` with
+  ``kappa = sqrt(1/R_1^2 + 1/R_2^2) / 2``. With ``nu = |N^-1|_2`` (closed form) the map
+  ``T(e) = N^-1 (b + r(e))``, whose fixed points are the solutions, satisfies
+  ``|T(e)| <= W1 + nu |k| + nu kappa (|e| + m)^2``. With ``s = |e| + m`` and
+  ``c0 = m + W1 + nu |k|``, ``T`` maps the ball ``|e| <= E = s_- - m`` into itself,
+  ``s_- = 2 c0 / (1 + sqrt(1 - 4 nu kappa c0))`` the smaller root of
+  ``nu kappa s^2 - s + c0 = 0`` (at the root, ``W1 + nu |k| + nu kappa s_-^2 = E``), so a
+  solution lies in it (Brouwer). It is the pose of the nominal assembly mode, continued
+  along the deviations ``t xi`` (``t`` from 0 to 1; the same bound holds for each ``t``)
+  without meeting a type-II configuration, whenever no point of the ball comes within
+  the centres' shift of the line ``C_1 C_2``: ``h > E + (1 + 2 Lambda) m_C`` with ``h``
+  the distance of ``P`` from that line, ``m_C`` the largest centre shift and
+  ``Lambda = (R_1 + E + m_C) / (|C_2 - C_1| - 2 m_C)`` (a point of the moved line is
+  ``C_1' + lambda (C_2' - C_1')``, at most ``(1 + 2 |lambda|) m_C`` from the matching
+  point of the nominal line); the two circles then meet transversally all along, and
+  the continued solution cannot leave the ball (the quadratic's gap ``(s_-, s_+)``).
 
-The result, ``bound = min(W1 + remainder, E)``, is an upper bound of the position
+The result, ``bound = E = W1 + remainder``, is an upper bound of the position
 error of the perturbed mechanism for every deviation within the stated tolerances,
 in rounding-free arithmetic (its floating-point evaluation has relative errors of
 order 1e-15, negligible beside the ``1/cos(pi/M)`` margin); it is ``inf`` where the
@@ -293,7 +296,7 @@ def pose_error(mech, model: ErrorModel, x, y, unit: str = "mm", directions: int 
         ``bound`` (the upper bound of ``|e|`` over the tolerance box; inf where it cannot
         be proven, NaN where unreachable), ``linear`` (``W1``, the first-order worst
         case, an upper bound of it), ``linear_low`` (``max_m h(u_m)``, attained by the
-        first-order map), ``remainder`` (the second-order bound), ``ball`` (``E``),
+        first-order map), ``remainder`` (the second-order bound, ``bound - linear``),
         ``x``, ``y`` (the first-order worst error along each axis, exact), ``worst_dir``
         (the angle [rad] of the direction of ``linear_low``).
     """
@@ -317,18 +320,15 @@ def pose_error(mech, model: ErrorModel, x, y, unit: str = "mm", directions: int 
     clear_leg = np.array([sum(c[j] for j, (_, legs) in enumerate(spec.joints) if i in legs) for i in (0, 1)])
     mC = np.linalg.norm(p["dC"], axis=-2) @ t + clear_leg + kk
     mR = np.abs(p["dR"]) @ t
-    B = np.abs(p["K"]) @ t + clear_leg + kk
-    m_i = np.maximum(mC, mR)
-    m = m_i.max(-1)
+    m = np.maximum(mC, mR).max(-1)
     nu = _norm2(p["Ninv"])
     with np.errstate(divide="ignore", invalid="ignore"):
-        kap = 0.5 / r1 + 0.5 / r2
-        beta = np.hypot(B[..., 0], B[..., 1])
-        c0 = m + nu * beta
+        kap = 0.5 * np.sqrt(1.0 / (r1 * r1) + 1.0 / (r2 * r2))
+        c0 = m + W1 + nu * np.hypot(kk[..., 0], kk[..., 1])
         disc = 1.0 - 4.0 * nu * kap * c0
         s_minus = 2.0 * c0 / (1.0 + np.sqrt(np.where(disc >= 0, disc, np.nan)))
         E = s_minus - m
-        rem = nu * (np.hypot(kk[..., 0], kk[..., 1]) + kap * s_minus ** 2)
+        rem = E - W1
         # the guard: the ball stays away from the line C1 C2 (no type-II configuration)
         (c1x, c1y), (c2x, c2y) = p["C"]
         x_, y_ = as_points(x, y)
@@ -338,11 +338,11 @@ def pose_error(mech, model: ErrorModel, x, y, unit: str = "mm", directions: int 
         mc = mC.max(-1)
         lam = (r1 + E + mc) / (span - 2.0 * mc)
         safe = (disc >= 0) & (span > 2.0 * mc) & (h_line > E + (1.0 + 2.0 * lam) * mc)
-    bound = np.where(safe, np.minimum(W1 + rem, E), np.inf)
+    bound = np.where(safe, E, np.inf)
     ok = p["ok"]
     nan = lambda v: np.where(ok, v, np.nan)  # noqa: E731
     return dict(bound=nan(bound), linear=nan(W1), linear_low=nan(low), remainder=nan(np.where(safe, rem, np.inf)),
-                ball=nan(np.where(safe, E, np.inf)), x=nan(axes[..., 0]), y=nan(axes[..., 1]),
+                x=nan(axes[..., 0]), y=nan(axes[..., 1]),
                 worst_dir=nan(worst_dir))
 
 
