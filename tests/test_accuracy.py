@@ -314,22 +314,42 @@ def test_zero_deviation_fk_returns_the_pose():
 
 def test_library_monte_carlo_agrees_and_bound_is_inf_at_a_singularity():
     """The library's Monte Carlo (module geometry) stays under the bound and reaches the
-    test's within 0.5 %; at a type-II singularity the bound is inf, unreachable NaN."""
+    test's within 0.5 %; near a type-II singularity the bound grows and holds, on it it
+    is inf; unreachable poses give NaN."""
     mech, x, y = designs("five-bar", 1)[0]
     model = MODELS["coarse"]
     lib = monte_carlo(mech, model, x, y, 2000)
     b = pose_error(mech, model, x, y)["bound"]
     assert np.all(lib <= b)
     assert np.allclose(lib, mc_max(mech, model, x, y, 2000), rtol=5e-3)
+    # approaching a type-II singularity (x = 0.1 of a 5R with unit links): the bound grows,
+    # still holds where finite, and is inf on the locus; unreachable poses are NaN
     fb = FiveBar(1.0, 1.0, 0.5)
-    # on the type-II locus (distal links collinear): P on the circle |P - M| = r2 ...
-    th = np.linspace(0.3, 2.8, 400)
-    X, Y = 0.0 * th, 0.5 + 1.5 * th / 2.8
-    f = fb.type2_function(X, Y)
-    k = np.nanargmin(np.abs(f))
-    r = pose_error(fb, ErrorModel(encoder_counts=1024), [X[k], 5.0], [Y[k], 5.0])
-    assert abs(f[k]) < 1e-2 and (not np.isfinite(r["bound"][0]) or r["bound"][0] > 50 * r["bound"][0] * 0)
-    assert np.isnan(r["bound"][1])
+    f = lambda yy: fb.type2_function(0.1, yy)  # noqa: E731
+    ys = np.linspace(0.05, 1.9, 2000)
+    fs = f(ys)
+    k = np.flatnonzero(np.sign(fs[:-1]) * np.sign(fs[1:]) < 0)[0]
+    lo, hi = ys[k], ys[k + 1]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if np.sign(f(mid)) == np.sign(f(lo)) else (lo, mid)
+    gaps = np.r_[0.3, 0.2, 0.1, 0.07, 0.05, 0.0]
+    side = 1.0 if fb.reachable(0.1, lo - 0.05) else -1.0
+    yy = lo - side * gaps
+    model = ErrorModel(encoder_counts=4096, clearance_um=1.0)
+    b = pose_error(fb, model, np.full(yy.size, 0.1), yy)["bound"]
+    assert np.all(np.isfinite(b[:4])) and np.all(np.diff(b[:4]) > 0) and b[-1] == np.inf
+    fin = np.isfinite(b)
+    assert np.all(monte_carlo(fb, model, np.full(fin.sum(), 0.1), yy[fin], 500) <= b[fin])
+    assert np.isnan(pose_error(fb, model, 5.0, 5.0)["bound"])
+
+
+def test_every_designed_mechanism_declares_an_error_model():
+    from mechopt.mechanisms import registry
+
+    sized = {name for name, cls in registry().items() if cls.design_spec is not None}
+    assert sized == set(MECHANISMS)
+    assert all(registry()[name].error_spec is not None for name in sized)
 
 
 def test_max_error_is_the_largest_pose_bound():
