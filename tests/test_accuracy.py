@@ -382,6 +382,16 @@ def test_error_model_inputs(tmp_path):
         pose_error(Gantry(50, 120, 600, q_min=-300, l2=10), MODELS["actuators"], 0.0, 0.0)
 
 
+def test_parse_length_um():
+    assert acc.parse_length_um("20um") == 20.0
+    assert acc.parse_length_um("20 µm") == 20.0
+    assert acc.parse_length_um("0.05mm") == pytest.approx(50.0)
+    assert acc.parse_length_um("1e-5 m") == pytest.approx(10.0)
+    for bad in ("20", "20 furlong", "-3um", "nanum", "0um", "inf mm"):
+        with pytest.raises(ValueError):
+            acc.parse_length_um(bad)
+
+
 def _design_folder(tmp_path):
     """A design folder as `mechopt design` writes it (the keys the command reads)."""
     fb = FiveBar(163.70023978471295, 183.68127688729854, 1.2850765535874165, "+-")

@@ -105,7 +105,7 @@ from mechopt.core import validation as _v
 from mechopt.core.protocol import as_points
 
 __all__ = ["ErrorModel", "load_error_model", "pose_error", "max_error", "perturbed_fk", "monte_carlo",
-           "task_points", "DIRECTIONS", "UM_PER_UNIT"]
+           "task_points", "parse_length_um", "DIRECTIONS", "UM_PER_UNIT"]
 
 #: directions of the support function (the linear worst case is within 1/cos(pi/M) of exact)
 DIRECTIONS = 64
@@ -177,6 +177,25 @@ class ErrorModel:
     def clearances(self, spec, unit: str) -> np.ndarray:
         """Radial clearance [unit] of each passive joint of ``spec``."""
         return np.full(len(spec.joints), self.clearance_um / _um_per(unit))
+
+
+def parse_length_um(text) -> float:
+    """A positive length with its unit (``"20um"``, ``"20 µm"``, ``"0.05mm"``, ``"1e-5 m"``;
+    units ``um``/``µm`` and those of :data:`UM_PER_UNIT`) in micrometres, e.g. the
+    value of a ``--max-error`` option. ValueError (one line) otherwise."""
+    import re
+
+    m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-zA-Zµ]+)\s*", str(text))
+    units = {"um": 1.0, "µm": 1.0, **UM_PER_UNIT}
+    if not m or m.group(2) not in units:
+        raise ValueError(f"a length needs a number and a unit ({', '.join(units)}), e.g. 20um, got {_v.show(text)}")
+    try:
+        value = float(m.group(1))
+    except ValueError:
+        raise ValueError(f"a length needs a number and a unit, e.g. 20um, got {_v.show(text)}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"a length must be positive and finite, got {_v.show(text)}")
+    return value * units[m.group(2)]
 
 
 def _um_per(unit) -> float:
