@@ -254,7 +254,8 @@ DESIGN_JSON = {
     "feasible": ("every `g <= 0` under the fine certification", ""),
     "values": ("`type2_min` (smallest sine of the leg angle over the task), `lci_min`, `lci_mean` "
                "(over the interior grid), `size` [unit], and with their options `footprint` [unit], "
-               "`speed` [unit/s], `force` [N], `torque` [N m or N]", ""),
+               "`speed` [unit/s], `force` [N], `torque` [N m or N], `error_um` [um] (the proven worst-case "
+               "position error over the task, with `--max-error` or the `error` objective)", ""),
     "tolerance": ("what the margins rest on: `boundary_gap` [unit], `interior_step` [unit], `reach` and "
                   "`minima` (sentences); for a point task `points`", ""),
     "repr": ("the mechanism as Python (`FiveBar(r1=..., ...)`)", ""),
@@ -264,7 +265,7 @@ DESIGN_JSON = {
     "link1_angle_deg": ("gantry, biglide with `--link-angle`: `[lo, hi]` of link 1's angle", "deg"),
     "link2_angle_deg": ("the same for link 2", "deg"),
 }
-DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque")
+DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque", "error_um")
 DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points")
 DESIGN_RUN = {
     "design": ("the sizing problem: `mechanism`, `task` (`kind`, `unit`, `label`, and `vertices`, "

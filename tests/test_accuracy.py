@@ -453,3 +453,36 @@ def test_cli_accuracy(tmp_path, capsys):
     assert main(["accuracy", str(d), "--error-model", str(m)]) == 2
     assert capsys.readouterr().err.count("\n") == 1
     assert main(["accuracy", str(tmp_path), "--error-model", str(m)]) == 2
+
+
+# --------------------------------------------------------------- the design requirement
+def test_max_error_requirement_and_error_objective():
+    """``--max-error`` / ``error`` in the design evaluator: the margin is the allowed error
+    minus the largest pose bound over the evaluation's samples (computed here from the
+    samples directly), g > 0 exactly when the bound exceeds it; the objective is that
+    bound; without an error model the requirement and the objective are refused."""
+    from mechopt.analysis.design_eval import DesignEvaluator
+    from mechopt.analysis.sampling import Sampling, samples
+    from mechopt.analysis.task import Task
+    from mechopt.requirements import Requirements
+
+    task = Task.rect(100, 60, (0, 180))
+    model = {"encoder_counts": 16384, "clearance_um": 5}
+    v = {"r1": 163.7, "r2": 183.7, "r3": 1.285, "mode": "+-", "task_x": 0.0, "task_y": 180.0}
+    fb = FiveBar(163.7, 183.7, 1.285)
+    s = samples(task, Sampling())
+    want = 1e3 * acc.max_error(fb, ErrorModel(**model), s["allx"], s["ally"])
+    for need in (0.5 * want, 2.0 * want):
+        ev = DesignEvaluator("five-bar", task, Requirements(max_error=need, error_model=model), ("size", "error"))
+        res = ev.evaluate(v, Sampling())
+        assert res["margin"]["error"] == pytest.approx(need - want, rel=1e-12, abs=1e-9)
+        assert (res["g"]["error"] > 0) == (need < want)
+        assert res["objectives"]["error"] == pytest.approx(want, rel=1e-12)
+        assert res["values"]["error_um"] == pytest.approx(want, rel=1e-12)
+    with pytest.raises(ValueError, match="error_model"):
+        DesignEvaluator("five-bar", task, Requirements(max_error=20.0), ("size",))
+    with pytest.raises(ValueError, match="error_model"):
+        DesignEvaluator("five-bar", task, Requirements(), ("size", "error"))
+    assert acc.parse_error_model("encoder_counts=16384, clearance_um=5") == ErrorModel(**model)
+    with pytest.raises(ValueError, match="unknown error model key"):
+        acc.parse_error_model("encoder=16384")

@@ -105,7 +105,7 @@ from mechopt.core import validation as _v
 from mechopt.core.protocol import as_points
 
 __all__ = ["ErrorModel", "load_error_model", "pose_error", "max_error", "perturbed_fk", "monte_carlo",
-           "task_points", "parse_length_um", "DIRECTIONS", "UM_PER_UNIT"]
+           "task_points", "parse_length_um", "parse_error_model", "DIRECTIONS", "UM_PER_UNIT"]
 
 #: directions of the support function (the linear worst case is within 1/cos(pi/M) of exact)
 DIRECTIONS = 64
@@ -224,6 +224,26 @@ def load_error_model(path) -> ErrorModel:
             raise
         raise ValueError(f"unreadable error model {str(path)!r}: {' '.join(str(exc).split())}") from None
     return ErrorModel.from_dict(d)
+
+
+def parse_error_model(text) -> ErrorModel:
+    """An :class:`ErrorModel` from a command-line text: ``key=value`` pairs separated by
+    commas (``encoder_counts=16384,clearance_um=5``) or the path of a JSON/TOML file
+    (:func:`load_error_model`); an :class:`ErrorModel` or a dict passes through."""
+    if isinstance(text, ErrorModel):
+        return text
+    if isinstance(text, dict):
+        return ErrorModel.from_dict(text)
+    text = str(text)
+    if "=" in text and not Path(text).exists():
+        d = {}
+        for part in (p.strip() for p in text.split(",") if p.strip()):
+            key, eq, val = part.partition("=")
+            if not eq:
+                raise ValueError(f"an error model is key=value pairs separated by commas, got {text!r}")
+            d[key.strip()] = val.strip()
+        return ErrorModel.from_dict(d)
+    return load_error_model(text)
 
 
 def _spec(mech):
@@ -375,15 +395,13 @@ def max_error(mech, model: ErrorModel, x, y, unit: str = "mm") -> float:
 
 def task_points(task, n_boundary: int = 192, n_interior: int = 13):
     """``(x, y)`` [task unit, task frame]: the samples of one evaluation of ``mechopt
-    design`` (``n_boundary`` points along the boundary at uniform arc length, every
-    vertex included, and an ``n_interior`` x ``n_interior`` grid over the box, kept
-    inside); a point task's points."""
-    if not task.is_region:
-        return task.pts[:, 0].copy(), task.pts[:, 1].copy()
-    tb, _ = task.boundary_params(n_boundary)
-    bx, by = task.boundary_at(tb)
-    ix, iy, _ = task.grid(n_interior)
-    return np.concatenate([bx, ix]), np.concatenate([by, iy])
+    design`` (:func:`mechopt.analysis.sampling.samples`: ``n_boundary`` points along the
+    boundary at uniform arc length, every vertex included, and an ``n_interior`` x
+    ``n_interior`` grid over the box, kept inside); a point task's points."""
+    from mechopt.analysis.sampling import Sampling, samples
+
+    s = samples(task, Sampling(n_boundary, n_interior))
+    return s["allx"], s["ally"]
 
 
 def perturbed_fk(mech, q1, q2, d, delta, side):

@@ -53,13 +53,13 @@ def load_design(folder):
     checked against its recorded ``repr``), the task placed where the design put it,
     in the task frame (``spec.to_mech`` maps it to the mechanism's), the design spec and
     the ``design.json`` record."""
-    from mechopt.analysis.task import get_spec
+    from mechopt.mechanisms import design_spec
 
     folder = Path(folder)
     rec = _read_json(folder / "design.json")
     run = _read_json(folder / "run.json")
     try:
-        spec = get_spec(rec["mechanism_name"])
+        spec = design_spec(rec["mechanism_name"])
         v = dict(rec["variables"])
         mode = v.pop("mode")
         kw = {"strokes": [tuple(s) for s in rec["strokes"]]} if spec.derived_strokes else {}
