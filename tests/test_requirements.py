@@ -98,7 +98,7 @@ def test_objective_bounds_give_a_hypervolume(mechanism):
     from mechopt.problems.design import DesignProblem
 
     task = Task.rect(40, 30, (0, 120))
-    req = Requirements(actuator_speed=2.0, actuator_torque=3.0, payload=5.0)
+    req = Requirements(actuator_speed=2.0, actuator_torque=3.0, payload=5.0, error_model={"encoder_counts": 16384})
     p = DesignProblem(mechanism, task, req, tuple(req_package.objectives()), max_length=300)
     for ob in p.objectives:
         lo, hi = ob.bounds
