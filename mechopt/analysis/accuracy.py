@@ -440,15 +440,17 @@ def _errors(px, py, x, y):
 
 
 def monte_carlo(mech, model: ErrorModel, x, y, samples: int = 1000, unit: str = "mm", seed: int = 1,
-                draw: str = "vertices", worst: bool = True, chunk: int = 2_000_000):
+                draw: str = "vertices", worst: bool = True, chunk: int = 250_000):
     """The largest exact position error [unit] of ``samples`` perturbed mechanisms at
     each pose ``(x, y)`` (the mechanism's frame): deviations drawn in the tolerance box
     (``draw="vertices"``: each scalar at +/- its half width and each clearance on its
     circle, with equal odds; ``"uniform"``: uniformly in the box and the disks), each
     pose solved by :func:`perturbed_fk`. With ``worst``, the first draw at each pose is
     the vertex the first-order map predicts as the worst (the scalars at the signs of
-    ``G_k . u``, the clearances along ``A_j^T u``, ``u`` the worst direction). Returns
-    an array of the poses' shape (NaN where unreachable)."""
+    ``G_k . u``, the clearances along ``A_j^T u``, ``u`` the worst direction). At most
+    ``chunk`` draws x poses are solved at once (memory: about 30 arrays of that size).
+    Returns an array [unit] of the poses' shape (NaN where unreachable, inf where a
+    perturbed mechanism does not assemble)."""
     spec = _spec(mech)
     draw = _v.choice("draw", draw, ("vertices", "uniform"))
     n = _v.integer("samples", samples, 1)
