@@ -254,7 +254,8 @@ DESIGN_JSON = {
     "feasible": ("every `g <= 0` under the fine certification", ""),
     "values": ("`type2_min` (smallest sine of the leg angle over the task), `lci_min`, `lci_mean` "
                "(over the interior grid), `size` [unit], and with their options `footprint` [unit], "
-               "`speed` [unit/s], `force` [N], `torque` [N m or N]", ""),
+               "`speed` [unit/s], `force` [N], `torque` [N m or N], `error_um` [um] (the proven worst-case "
+               "position error over the task, with `--max-error` or the `error` objective)", ""),
     "tolerance": ("what the margins rest on: `boundary_gap` [unit], `interior_step` [unit], `reach` and "
                   "`minima` (sentences); for a point task `points`", ""),
     "repr": ("the mechanism as Python (`FiveBar(r1=..., ...)`)", ""),
@@ -264,7 +265,7 @@ DESIGN_JSON = {
     "link1_angle_deg": ("gantry, biglide with `--link-angle`: `[lo, hi]` of link 1's angle", "deg"),
     "link2_angle_deg": ("the same for link 2", "deg"),
 }
-DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque")
+DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque", "error_um")
 DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points")
 DESIGN_RUN = {
     "design": ("the sizing problem: `mechanism`, `task` (`kind`, `unit`, `label`, and `vertices`, "
@@ -711,6 +712,56 @@ def _export() -> str:
     return "\n".join(out)
 
 
+#: mechopt accuracy --json (mechopt.workflows.accuracy.ACCURACY_KEYS)
+ACCURACY = {
+    "mechanism": ("the design's mechanism (its repr)", ""),
+    "unit": ("the task's length unit", ""),
+    "poses": ("task samples evaluated (192 boundary points and the 13 x 13 grid kept inside)", "-"),
+    "bound_um": ("proven worst-case position error: the largest bound over the samples", "um"),
+    "linear_um": ("its first-order part at that sample (the linear map's worst case, an upper bound)", "um"),
+    "remainder_um": ("its second-order remainder at that sample (bound_um - linear_um)", "um"),
+    "worst_x_um": ("largest first-order worst error along x over the samples", "um"),
+    "worst_y_um": ("largest first-order worst error along y over the samples", "um"),
+    "at": ("the task point [x, y] of bound_um", "unit"),
+    "mc_max_um": ("largest error of the Monte Carlo draws (exact perturbed forward kinematics)", "um"),
+    "ratio": ("bound_um / mc_max_um (>= 1 when the bound holds)", "-"),
+    "samples": ("Monte Carlo draws per task sample (--samples)", "-"),
+    "draw": ("where the draws lie in the tolerance box: vertices or uniform (--draw)", ""),
+    "seed": ("seed of the draws (--seed)", "-"),
+    "unbounded_poses": ("samples without a proof (unreachable, or next to a type-II singularity)", "-"),
+}
+#: the keys of an error model file (mechopt.analysis.accuracy.ErrorModel)
+ERROR_MODEL = {
+    "encoder_counts": ("counts per revolution of each crank's encoder (0: exact); +/- pi/counts rad", "-"),
+    "backlash_arcmin": ("lost motion of each crank's drive, full width (+/- half of it)", "arcmin"),
+    "resolution_um": ("one count of each slider's or strut's scale (+/- half of it)", "um"),
+    "backlash_um": ("lost motion of each slider's or strut's drive (+/- half of it)", "um"),
+    "clearance_um": ("radial clearance of each passive joint (the pin's centre within it of the bore's)", "um"),
+    "link_tol_um": ("tolerance on each link length, +/-", "um"),
+    "base_tol_um": ("tolerance on each coordinate of each base joint or guide, +/-", "um"),
+}
+
+
+def _accuracy() -> str:
+    from dataclasses import fields
+
+    from mechopt.analysis.accuracy import ErrorModel
+    from mechopt.workflows.accuracy import ACCURACY_KEYS
+
+    rows = [(f"`{k}`", *_lookup(ACCURACY, k, "accuracy")) for k in ACCURACY_KEYS]
+    model = [(f"`{f.name}`", *_lookup(ERROR_MODEL, f.name, "error model")) for f in fields(ErrorModel)]
+    out = ["## `mechopt accuracy DESIGN_DIR`\n",
+           "Reads a `mechopt design` folder (`design.json`, `run.json`) and an error model "
+           "(`--error-model FILE`, JSON or TOML, the keys below, each 0 when left out), prints the proven "
+           "worst-case position error over the design's task samples, the Monte Carlo maximum and their "
+           "ratio, and writes the error map `error_map.png` into `DESIGN_DIR` (or `--figure PATH`): the "
+           "bound over the task, colour bar in um. With `--json` it prints one JSON object:\n",
+           _table(["key", "meaning", "unit"], [(k, m, _unit(u)) for k, m, u in rows]),
+           "The error model file:\n",
+           _table(["key", "meaning", "unit"], [(k, m, _unit(u)) for k, m, u in model])]
+    return "\n".join(out)
+
+
 def _atlas() -> str:
     from mechopt.run.atlas import DEFAULT_INDICES, design_grid, index_columns
 
@@ -773,7 +824,8 @@ def _reproduce() -> str:
 
 def render() -> str:
     problems = _problem_columns()
-    parts = [_conventions(), _evaluate(), _optimize(problems), _sweep(problems), _design(), _export(), _atlas(),
+    parts = [_conventions(), _evaluate(), _optimize(problems), _sweep(problems), _design(), _export(), _accuracy(),
+             _atlas(),
              _reproduce()]
     text = "\n".join(p.rstrip("\n") + "\n" for p in parts)
     while "\n\n\n" in text:

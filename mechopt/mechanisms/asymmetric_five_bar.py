@@ -94,6 +94,7 @@ class AsymmetricFiveBar(PlanarMechanism):
     joint_names = ("theta1", "theta2")
     angular_joints = True
     design_spec = AsymmetricFiveBarDesignSpec
+    error_spec = _fb.FiveBarErrorSpec
     #: the keys of :meth:`summary`, in order
     summary_keys = ("workspace_area", "mean_lci", "mean_tqi", "quadrature")
     #: the area scales as ``D^2``, the means of indices not at all

@@ -64,11 +64,13 @@ from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
 from mechopt.core.design_spec import DesignSpec
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
+from mechopt.core.error_spec import ErrorSpec
 from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
 __all__ = [
     "Bipod",
     "BipodDesignSpec",
+    "BipodErrorSpec",
     "BRANCHES",
     "ASSEMBLY_MODES",
     "GTQI_METHODS",
@@ -183,6 +185,33 @@ class BipodDesignSpec(DesignSpec):
         return [[bases[0], (px, py)], [bases[1], (px, py)]], bases
 
 
+class BipodErrorSpec(ErrorSpec):
+    """The perturbable geometry of the Bipod (:mod:`mechopt.core.error_spec`): leg ``i``
+    holds ``P`` on the circle of centre the base joint ``A_i`` and radius the strut
+    length ``q_i``. Deviations: the strut coordinates ``q1``, ``q2`` (actuator) and
+    the struts' length offsets ``s1``, ``s2`` (the strut's length at a given reading:
+    link) [L]; the base joints' coordinates ``A1x, A1y, A2x, A2y`` [L]. Passive joints
+    with clearance: the base joints ``A1``, ``A2`` (leg ``i``'s centre moves) and the
+    platform joint ``P`` (the pin on strut 2 is the tool point; strut 1's bore moves
+    leg 1's centre). Every centre and radius is affine in the deviations."""
+
+    scalars = (("q1", "actuator"), ("q2", "actuator"), ("s1", "link"), ("s2", "link"),
+               ("A1x", "base"), ("A1y", "base"), ("A2x", "base"), ("A2y", "base"))
+    joints = (("A1", (0,)), ("A2", (1,)), ("P", (0,)))
+
+    def circles(self, mech, q1, q2, d):
+        g = lambda k: d.get(k, 0.0)  # noqa: E731
+        return (g("A1x") + 0.0 * q1, g("A1y") + 0.0 * q1, q1 + g("q1") + g("s1"),
+                mech.b + g("A2x") + 0.0 * q2, g("A2y") + 0.0 * q2, q2 + g("q2") + g("s2"))
+
+    def circle_jacobian(self, mech, q1, q2):
+        q1, _ = np.broadcast_arrays(np.asarray(q1, float), np.asarray(q2, float))
+        D = np.zeros(q1.shape + (6, 8))
+        D[..., 2, 0] = D[..., 5, 1] = D[..., 2, 2] = D[..., 5, 3] = 1.0  # radii: q_i, s_i
+        D[..., 0, 4] = D[..., 1, 5] = D[..., 3, 6] = D[..., 4, 7] = 1.0  # centres: A_i
+        return D
+
+
 class Bipod(PlanarMechanism):
     """Bipod (RPRPR) ``Bipod(b, q1_min, q1_max, q2_min=None, q2_max=None, branch="up")``.
 
@@ -203,6 +232,7 @@ class Bipod(PlanarMechanism):
 
     cli_name = "bipod"
     design_spec = BipodDesignSpec
+    error_spec = BipodErrorSpec
     cli_help = "Bipod RPRPR (Stan 2008): exact workspace area and global TQI"
     parameters = (
         Parameter("b", "length", "L", "base distance [L]"),
