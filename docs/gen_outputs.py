@@ -266,7 +266,7 @@ DESIGN_JSON = {
     "link2_angle_deg": ("the same for link 2", "deg"),
 }
 DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque", "error_um")
-DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points")
+DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points", "path_gap")
 DESIGN_RUN = {
     "design": ("the sizing problem: `mechanism`, `task` (`kind`, `unit`, `label`, and `vertices`, "
                "`center`/`radius` or `points`), `requirements` (angles in rad), `objectives`, `mode`, "

@@ -40,8 +40,9 @@ def add_parser(subparsers):
     ds.add_argument("--mechanisms", default=None, metavar="NAME,...",
                     help="with mechanism any: the mechanisms to compare (default: all)")
     ds.add_argument("--task", required=True,
-                    help="rect:W,H@X,Y | circle:R@X,Y | polygon:x1,y1;x2,y2;... | points:FILE.csv; "
-                         "lengths [unit] of --unit, in the base frame (base midpoint at the origin, "
+                    help="rect:W,H@X,Y | circle:R@X,Y | polygon:x1,y1;x2,y2;... | points:FILE.csv (the "
+                         "points alone) | path:FILE.csv (the polyline through the points, every point of "
+                         "it); lengths [unit] of --unit, in the base frame (base midpoint at the origin, "
                          "y away from the base)")
     ds.add_argument("--unit", default="mm",
                     help="length unit of the task and of every length: mm, cm, m or in (default mm)")

@@ -790,7 +790,7 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
     gx, gy = np.meshgrid(np.linspace(X0 - pad, X1 + pad, n), np.linspace(Y0 - pad, Y1 + pad, n))
     mx, my = spec.to_mech(mech, gx, gy)
     f = mech.type2_function(mx, my)
-    rx, ry = task.reference if task.is_region else (task.pts[:, 0].mean(), task.pts[:, 1].mean())
+    rx, ry = task.reference if task.is_region else task.pts[0]
     s0 = Singular.sign(ev.context(v))  # the assembly mode the design was evaluated in
     lci = _ix.lci(mech.jacobian(mx, my))
     good = (np.sign(f) == s0) & (lci >= (gamma if gamma is not None else np.inf))
@@ -809,7 +809,7 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
     clr = mech.serial_clearance(mx, my)
     ax.contour(gx, gy, clr, levels=[0.0], colors="0.4", linewidths=0.8, linestyles="--")
     ox, oy = task.outline()
-    if task.is_region:
+    if task.is_region or task.is_path:
         ax.plot(ox, oy, color="tab:blue", lw=2)
     else:
         ax.plot(ox, oy, ".", color="tab:blue", ms=3)
