@@ -650,6 +650,12 @@ def _design() -> str:
            "`front.png` and `design.png` (the chosen mechanism at the task's centre with the task, its "
            "good-conditioning workspace, the type-II locus, the reachable boundary and the crank "
            "ranges). Lengths are in `--unit` (`unit` below).\n",
+           "`mechopt design any` (every mechanism, or `--mechanisms`) writes `front.csv` (the merged front: "
+           "a `mechanism` column first, then the columns below of each row's mechanism, empty where that "
+           "mechanism has none), `fronts.csv` (every mechanism's certified front, same columns), "
+           "`design.json` (the chosen design, its `mechanism_name`), `run.json` (`mechanisms`, `skipped` "
+           "with each reason, `objectives`, `front_size`, `per_mechanism` with each run's run.json, "
+           "`chosen`, `wall_time_s`), `front.png` (the fronts coloured by mechanism) and `design.png`.\n",
            "### `front.csv`\n",
            "One row per certified Pareto design: the mechanism's lengths, `D` (with `--shape`), "
            "`mode`, `task_x`, `task_y`, one column per objective, `margin_<requirement>` per "
