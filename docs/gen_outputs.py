@@ -279,6 +279,13 @@ DESIGN_RUN = {
                ""),
     "stage_times_s": ("wall time of each stage of the command: `optimisation`, `polish`, `certification`, "
                       "`files` (figures drawn); `wall_time_s` is their sum", "s"),
+    "no_design": ("without a feasible design: the message (the requirement missed most, by how much in its "
+                  "unit); the folder then holds run.json, history.csv, population.csv (the final population, "
+                  "least violating first, with its g_* columns) and front.png", ""),
+    "violations": ("without a feasible design: the least-violating design's normalised violation per "
+                   "requirement", ""),
+    "fails": ("without a feasible design: how many designs of the final population fail each requirement",
+              "-"),
 }
 DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
                    "max_length", "shape", "unit", "kind", "label", "vertices", "center", "radius", "points",
