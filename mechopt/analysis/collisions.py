@@ -200,15 +200,16 @@ class Zone:
             cx, cy = self.center
             return point_segment_distance(cx, cy, x0, y0, x1, y1) - self.radius
         v = self.vertices
-        edges = list(zip(v, np.roll(v, -1, 0)))
-        d = np.inf  # the axis's distance to the boundary
-        for (vx, vy), (wx, wy) in edges:
-            d = np.minimum(d, segment_distance(x0, y0, x1, y1, vx, vy, wx, wy))
+        x0, y0, x1, y1 = np.broadcast_arrays(*(np.asarray(c, float) for c in (x0, y0, x1, y1)))
+        # the edges along a new first axis, broadcast against the segments
+        shape = (len(v),) + (1,) * x0.ndim
+        vx, vy = v[:, 0].reshape(shape), v[:, 1].reshape(shape)
+        w = np.roll(v, -1, 0)
+        wx, wy = w[:, 0].reshape(shape), w[:, 1].reshape(shape)
+        d = segment_distance(x0, y0, x1, y1, vx, vy, wx, wy).min(axis=0)  # the axis to the boundary
         deepest, entered = 0.0, False
         for px, py in ((x0, y0), (x1, y1)):
-            e = np.inf  # this end's distance to the boundary
-            for (vx, vy), (wx, wy) in edges:
-                e = np.minimum(e, point_segment_distance(px, py, vx, vy, wx, wy))
+            e = np.sqrt(_point_segment_sq(px, py, vx, vy, wx, wy).min(axis=0))  # this end to the boundary
             inside = _inside(v, px, py)
             deepest = np.maximum(deepest, np.where(inside, e, 0.0))
             entered = entered | inside
@@ -376,8 +377,10 @@ class Collisions:
     def keep_out(self, x, y, zone: Zone, bodies=None):
         """The margin [L] of each body to ``zone`` (:meth:`Zone.margin` minus half its
         width): shape ``(n_bodies, n_poses)``, rows as :meth:`zone_bodies`."""
-        b = bodies if bodies is not None else self.bodies(x, y)
-        return np.stack([zone.margin(k.x0, k.y0, k.x1, k.y1) - 0.5 * k.width for k in self._zone_bodies(b, zone)])
+        b = self._zone_bodies(bodies if bodies is not None else self.bodies(x, y), zone)
+        ends = [np.stack([getattr(k, c) for k in b]) for c in ("x0", "y0", "x1", "y1")]  # (bodies, poses)
+        half = 0.5 * np.array([k.width for k in b]).reshape((-1,) + (1,) * (ends[0].ndim - 1))
+        return zone.margin(*ends) - half
 
     def _zone_bodies(self, bodies, zone):
         return [k for k in bodies if not (zone.spares_tool and k.kind in TOOL_KINDS)]
