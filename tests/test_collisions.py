@@ -26,7 +26,8 @@ from hypothesis import strategies as st
 
 from mechopt.analysis.collisions import (Collisions, Zone, covering_radius, lipschitz_bound, parse_zone,
                                          point_segment_distance, segment_distance, task_samples)
-from mechopt.analysis.task import Task, get_spec
+from mechopt.analysis.task import Task
+from mechopt.mechanisms import design_spec as get_spec
 from mechopt.core.bodies import Shapes
 from mechopt.mechanisms.gantry import wu2008_gantry
 

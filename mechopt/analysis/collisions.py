@@ -82,7 +82,7 @@ from mechopt.core import validation as _v
 from mechopt.core.bodies import GROUND, TOOL_KINDS, Shapes
 
 __all__ = ["segment_distance", "point_segment_distance", "Zone", "parse_zone", "Collisions",
-           "covering_radius", "task_samples", "lipschitz_bound", "ZONE_KINDS"]
+           "covering_radius", "covering_radius_of", "task_samples", "lipschitz_bound", "ZONE_KINDS"]
 
 #: the kinds of keep-out zone
 ZONE_KINDS = ("polygon", "disc", "above", "below")
@@ -517,12 +517,23 @@ def covering_radius(task, n_boundary: int = 192, n_interior: int = 13) -> float:
         raise ValueError(f"n_interior must be at least 2, got {n_interior!r}")
     tb, gap = task.boundary_params(n_boundary)
     x0, x1, y0, y1 = task.bbox
-    h = math.hypot(x1 - x0, y1 - y0) / (n_interior - 1) / 2.0  # the cell's half diagonal
+    return covering_radius_of(task, gap, tb.size, max(x1 - x0, y1 - y0) / (n_interior - 1))
+
+
+def covering_radius_of(task, gap, n_boundary, step) -> float:
+    """:func:`covering_radius` from the samples' figures: the largest boundary ``gap``
+    [L], the number of boundary samples and the interior grid's ``step`` [L] (the larger
+    cell side, :meth:`mechopt.analysis.task.Task.grid`); 0 for a point task."""
+    if not task.is_region:
+        return 0.0
+    x0, x1, y0, y1 = task.bbox
+    # the cell's half diagonal: sides (x1 - x0) / (n - 1) and (y1 - y0) / (n - 1), the larger = step
+    half_diagonal = 0.5 * step * math.hypot(x1 - x0, y1 - y0) / max(x1 - x0, y1 - y0)
     kappa = 1.0
-    if task.kind == "circle":
-        a = math.pi / tb.size
+    if task.kind == "circle":  # the arc between two samples over its chord
+        a = math.pi / n_boundary
         kappa = a / math.sin(a)
-    return h + kappa * 0.5 * gap
+    return half_diagonal + kappa * 0.5 * gap
 
 
 def task_samples(task, n_boundary: int = 192, n_interior: int = 13):

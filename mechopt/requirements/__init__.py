@@ -22,6 +22,11 @@ lengths         lengths (bipod struts, always)
 speed           speed (``--min-speed``, ``--actuator-speed``)  speed
 force           force (``--min-force``, ``--actuator-torque``)  force
 torque          (``--payload``)                            torque
+collisions      clearance (``--min-clearance``),           clearance
+                joint_angle (``--min-joint-angle``),
+                keep_out (``--keep-out``),
+                base (``--min-base``,
+                ``--motor-diameter``)
 size            size, footprint
 ==============  =========================================  ====================================
 
@@ -38,7 +43,8 @@ __all__ = ["MODULES", "Requirements", "registry", "requirements", "objectives", 
 
 #: the member modules, in the order of the constraint columns (``g_<name>``, ``margin_<name>``)
 MODULES = tuple(f"mechopt.requirements.{m}" for m in (
-    "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque", "size"))
+    "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque",
+    "collisions", "size"))
 
 
 def registry() -> tuple:
