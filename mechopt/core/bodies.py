@@ -141,5 +141,5 @@ class Body:
             raise ValueError(f"body kind must be one of {', '.join(map(repr, KINDS))}, got {kind!r}")
         pts = [np.asarray(v, dtype=float) for v in (*start, *end)]
         shape = np.broadcast_shapes(*(p.shape for p in pts), *(() if shape is None else (shape,)))
-        x0, y0, x1, y1 = (np.broadcast_to(p, shape) for p in pts)
+        x0, y0, x1, y1 = (p if p.shape == shape else np.broadcast_to(p, shape) for p in pts)
         return cls(name, kind, tuple(joints), tuple(ends), x0, y0, x1, y1, shapes.width(name, kind))

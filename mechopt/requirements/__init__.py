@@ -22,12 +22,12 @@ lengths         lengths (bipod struts, always)
 speed           speed (``--min-speed``, ``--actuator-speed``)  speed
 force           force (``--min-force``, ``--actuator-torque``)  force
 torque          (``--payload``)                            torque
+size                                                       size, footprint
 collisions      clearance (``--min-clearance``),           clearance
                 joint_angle (``--min-joint-angle``),
                 keep_out (``--keep-out``),
                 base (``--min-base``,
                 ``--motor-diameter``)
-size            size, footprint
 ==============  =========================================  ====================================
 
 :class:`Requirements` holds the values of every declared option (a requirement is
@@ -43,8 +43,8 @@ __all__ = ["MODULES", "Requirements", "registry", "requirements", "objectives", 
 
 #: the member modules, in the order of the constraint columns (``g_<name>``, ``margin_<name>``)
 MODULES = tuple(f"mechopt.requirements.{m}" for m in (
-    "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque",
-    "collisions", "size"))
+    "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque", "size",
+    "collisions"))
 
 
 def registry() -> tuple:

@@ -40,7 +40,8 @@ from mechopt.core import validation as _v
 from mechopt.core.bodies import Shapes
 from mechopt.requirements.base import Objective, Option, Requirement
 
-__all__ = ["Clearance", "JointAngle", "KeepOut", "Base", "ClearanceObjective", "shapes_of", "MEMBERS"]
+__all__ = ["Clearance", "JointAngle", "KeepOut", "Base", "ClearanceObjective", "shapes_of", "collisions",
+           "clearance_min", "joint_angle_min", "keep_out_min", "MEMBERS"]
 
 #: a design whose sampled margin is below ``-SCREEN * D`` is not refined (far from feasible)
 SCREEN = 0.05
@@ -91,13 +92,20 @@ def _radius(ctx) -> float:
     return _c.covering_radius_of(ctx.task, s["gap"], s["tb"].size, s["step"])
 
 
+def _at_samples(ctx, key, rows):
+    """``rows(x, y)`` at the evaluation's samples, computed once (the screen and the
+    minimum share them)."""
+    s = ctx.samples
+    return ctx.memo(key + "_samples", lambda: rows(s["allx"], s["ally"]))
+
+
 def _minimum(ctx, key, rows, rates):
     """``(refined minimum, certified bound)`` over the task of the smallest row of
     ``rows(x, y)`` (shape ``(m, N)``), ``rates(x, y, radius)`` their Lipschitz bounds."""
     def compute():
         s = ctx.samples
         x, y = s["allx"], s["ally"]
-        vals = rows(x, y)
+        vals = _at_samples(ctx, key, rows)
         if vals.size == 0:
             return math.inf, math.inf
         bound = _c.lipschitz_bound(vals, rates(x, y, _radius(ctx)), _radius(ctx))
@@ -105,7 +113,7 @@ def _minimum(ctx, key, rows, rates):
         def low(px, py):
             return bad_to(np.min(rows(px, py), axis=0), -ctx.diameter)[None]
 
-        sampled = low(x, y)
+        sampled = bad_to(np.min(vals, axis=0), -ctx.diameter)[None]  # low(x, y)
         m = ctx.region_mins(low, sampled)[0] if ctx.is_region else float(sampled.min())
         return float(m), min(bound, float(m))
     return ctx.memo(key, compute)
@@ -149,9 +157,7 @@ class Clearance(Requirement):
         return f"clearance >= {req.min_clearance} {unit} between links"
 
     def screen(self, ctx) -> bool:
-        col = collisions(ctx)
-        s = ctx.samples
-        c = col.clearance(s["allx"], s["ally"])
+        c = _at_samples(ctx, "clearance_min", collisions(ctx).pair_clearances)
         return float(np.nanmin(c, initial=math.inf)) >= ctx.req.min_clearance - SCREEN * ctx.diameter
 
     def evaluate(self, ctx):
