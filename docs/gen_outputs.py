@@ -277,10 +277,12 @@ DESIGN_RUN = {
     "certification": ("the fine sampling: `n_boundary`, `n_interior`, `refine`", ""),
     "chosen": ("`index` (row of `front.csv`) and `by` (`knee` or the `--pick` weights) of design.json",
                ""),
+    "stage_times_s": ("wall time of each stage of the command: `optimisation`, `polish`, `certification`, "
+                      "`files` (figures drawn); `wall_time_s` is their sum", "s"),
 }
 DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
                    "max_length", "shape", "unit", "kind", "label", "vertices", "center", "radius", "points",
-                   "n_boundary", "n_interior", "refine", "by")
+                   "n_boundary", "n_interior", "refine", "by", "optimisation", "polish", "certification", "files")
 EXPORT_FILES = {
     "robot.urdf": ("`urdf`: the mechanism as a tree (URDF, lengths in m), cut open at the platform joint; the "
                    "closure frames `closedloop1_A` (leg 1, the platform point) and `closedloop1_B` (leg 2) are "
