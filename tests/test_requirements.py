@@ -71,7 +71,7 @@ def test_every_member_declares_the_protocol():
     names = [m.name for m in members if isinstance(m, Requirement)]
     assert len(names) == len(set(names)) and names[:2] == ["reach", "singular"]
     assert set(req_package.objectives()) == {"size", "footprint", "min-lci", "mean-lci", "speed", "force", "torque",
-                                             "error"}
+                                             "error", "clearance"}
     options = req_package.options()  # raises on an option declared twice
     assert "min_lci" in options and "singularity_margin" in options
     spec = mechanism_package.design_spec("five-bar")

@@ -21,6 +21,8 @@ line read the registry alone: a new requirement is one new module added to
 - ``torque``: objective torque (``--payload``)
 - ``accuracy``: requirement error (``--max-error``); objective error
 - ``size``: objectives size, footprint
+- ``collisions``: requirements clearance (``--min-clearance``), joint_angle (``--min-joint-angle``),
+  keep_out (``--keep-out``), base (``--min-base``, ``--motor-diameter``); objective clearance
 
 :class:`Requirements` holds the values of every declared option (a requirement is
 off while its first option is None).
@@ -36,7 +38,7 @@ __all__ = ["MODULES", "Requirements", "registry", "requirements", "objectives", 
 #: the member modules, in the order of the constraint columns (``g_<name>``, ``margin_<name>``)
 MODULES = tuple(f"mechopt.requirements.{m}" for m in (
     "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque", "accuracy",
-    "size"))
+    "size", "collisions"))
 
 
 def registry() -> tuple:
