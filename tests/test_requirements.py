@@ -181,3 +181,14 @@ def test_torque_without_force_capacity_is_undefined_and_infeasible():
     J = fb.jacobian(x.ravel(), y.ravel())
     smin = np.linalg.svd(J, compute_uv=False)[:, -1].min()  # rad/mm
     assert ok["objectives"]["torque"] == pytest.approx(10.0 / (smin * 1e3), rel=1e-4)
+
+
+def test_bipod_footprint_counts_its_base_joints_at_half_the_base():
+    """The bipod's base joints sit at x = -+b/2: with a wide base they are the farthest
+    joints (the footprint once put one at x = -b, twice too far)."""
+    ev = DesignEvaluator("bipod", Task.circle(5, (0, 80)), Requirements(), ("size", "footprint"), max_length=400)
+    res = ev.evaluate(dict(b=300.0, mode="up", task_x=0.0, task_y=80.0))
+    assert res["objectives"]["footprint"] == pytest.approx(150.0, rel=1e-12)
+    narrow = ev.evaluate(dict(b=20.0, mode="up", task_x=0.0, task_y=80.0))
+    far = max(np.hypot(5 * np.cos(t), 80 + 5 * np.sin(t)) for t in np.linspace(0, 2 * np.pi, 20001))
+    assert narrow["objectives"]["footprint"] == pytest.approx(far, rel=1e-6)  # the task's top, 85 mm
