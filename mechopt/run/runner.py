@@ -564,10 +564,15 @@ def resume(out, n_jobs: int | None = None, client=None, progress: bool = True, p
     """
     from mechopt.run import checkpoint as _ck
 
+    from mechopt.run import keys as _keys
+
     n_jobs = _n_jobs(n_jobs)
     out = Path(out)
     where = f"--resume {str(out)!r}"
+    _keys.load_key(create=True)  # an unsafe key is refused before anything is read
     manifest = _io.read_manifest(out)
+    if manifest is not None and not _io.authentic(manifest):
+        manifest = None  # vouches for nothing: the authenticated checkpoint decides
     path = out / CHECKPOINT
     if not os.path.lexists(path):
         if manifest is not None and manifest["status"] == "complete":
@@ -629,10 +634,8 @@ def _manifest_for(out: Path, where: str, manifest, header: dict) -> dict:
         if manifest["status"] == "complete":
             raise ValueError(f"{where}: this run is complete (its result is front.csv); nothing to resume")
         return manifest
-    import json
-
     try:
-        done = json.loads((out / "run.json").read_text())
+        done = _io.read_json(out / "run.json")
     except (OSError, ValueError):
         done = None
     if isinstance(done, dict) and done.get("problem") not in (None, header.get("problem")):
@@ -640,7 +643,7 @@ def _manifest_for(out: Path, where: str, manifest, header: dict) -> dict:
                          f"{done.get('problem')}; remove the one you do not want")
     manifest = {"kind": "optimize", "key": header.get("key") or {}, "status": "running",
                 "run_id": header.get("run_id") or os.urandom(16).hex(), "owned": [CHECKPOINT]}
-    _io.write_json(manifest, out / MANIFEST)
+    _io.write_manifest(manifest, out)
     return manifest
 
 
@@ -759,7 +762,7 @@ def _drive(algo, state, n_jobs, client, out, progress, plot, manifest=None) -> R
                 from mechopt.run.plotting import plot_front
 
                 _io.save_figure(plot_front(problem, front, history, population, info), stage / "front.png")
-        if (out / CHECKPOINT).exists():
+        if os.path.isfile(out / CHECKPOINT) and not os.path.islink(out / CHECKPOINT):
             (out / CHECKPOINT).unlink()  # the run is complete: nothing to resume
     return RunResult(front, history, info, population, least)
 
