@@ -228,17 +228,23 @@ class _ChunkStore:
     """
 
     def __init__(self, folder, settings: dict, warn=None):
-        import json
+        import os
+        import stat
 
         from mechopt.run import io as _io
 
         self.folder, self.settings = folder, settings
         self.warn = warn if warn is not None else (lambda msg: None)
-        folder.mkdir(parents=True, exist_ok=True)
+        try:  # its own folder, never a link planted to write elsewhere
+            folder.mkdir()
+        except FileExistsError:
+            if not stat.S_ISDIR(os.lstat(folder).st_mode):
+                raise ValueError(f"{str(folder)!r} is not a folder of atlas chunks (a link or a file); "
+                                 f"remove it") from None
         meta = folder / "settings.json"
-        if meta.exists():
+        if os.path.lexists(meta):
             try:
-                old = json.loads(meta.read_text())
+                old = _io.read_json(meta)
             except (OSError, ValueError):
                 old = None
             if old != settings:
@@ -264,13 +270,17 @@ class _ChunkStore:
     def load(self, i, designs, n_cols):
         """The saved values of chunk ``i`` (the designs ``designs``, an ``(n, 3)`` array),
         or None when there is none or it fails a check (then it is recomputed)."""
+        import io
         import json
+
+        from mechopt.run import io as _io
 
         path = self.path(i)
         if not path.exists():
             return None
         try:
-            with np.load(path, allow_pickle=False) as z:
+            data = _io.read_bytes(path, 1 << 30, path.name)  # a regular file, not a FIFO or a giant
+            with np.load(io.BytesIO(data), allow_pickle=False) as z:
                 values = z["values"]
                 header = json.loads(str(z["header"][()]))
         except Exception as exc:  # noqa: BLE001 - any corruption: zip, json, keys, dtype
