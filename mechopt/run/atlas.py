@@ -361,10 +361,9 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
     grid = design_grid(step)
     n = len(grid)
     if client is not None:
-        try:
-            workers = max(1, sum(client.nthreads().values()))
-        except Exception:  # pragma: no cover - very old clients
-            workers = 2
+        from mechopt.run.parallel import cluster_threads
+
+        workers = cluster_threads(client)
     else:
         workers = int(_v.finite_number("n_jobs", n_jobs))
         if workers < 1 or workers != n_jobs:
@@ -692,7 +691,9 @@ def _run_atlas(out, run, step, groups, cols, quadrature, mode, n_jobs, dask, das
         raise
     finally:
         if client is not None:
-            client.close()
+            from mechopt.run.parallel import close_client
+
+            close_client(client)
     with _io.output_set(out, run) as stage:
         _write_atlas(stage, table, groups, cols, cond, where, quadrature, figures, t0, t_compute, step,
                      mode, dask, n_jobs, local=local, triangulation=tri)

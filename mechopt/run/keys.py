@@ -64,6 +64,8 @@ def load_key(create: bool) -> bytes | None:
     except FileNotFoundError:
         return _create(path) if create else None
     except OSError as exc:
+        if exc.errno == errno.ENOTDIR:  # its folder cannot exist: no key
+            return _create(path) if create else None
         if exc.errno == errno.ELOOP:
             raise _refuse(path, "is a symbolic link") from None
         raise _refuse(path, f"is unreadable ({exc.strerror})") from None

@@ -858,13 +858,17 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | Non
         raise ValueError(f"weights must be a sequence of numbers in [0, 1], got {_v.show(weights)}") from None
     if not weights or not all(0.0 <= w <= 1.0 for w in weights):
         raise ValueError(f"weights must be numbers in [0, 1], got {_v.show(weights)}")
+    if len(weights) > _v.MAX_WEIGHTS:
+        raise ValueError(f"a sweep takes at most {_v.MAX_WEIGHTS} weights, got {len(weights)}")
     _check_sizes(problem.default_pop if pop is None else pop, problem.default_gen if gen is None else gen)
     _v.integer("seed", seed, 0)
     _n_jobs(n_jobs)
     run_kw = dict(tol=tol, crossover_prob=crossover_prob, mutation_prob=mutation_prob,
                   crossover_eta=crossover_eta, mutation_eta=mutation_eta)
     make_algorithm("nsga2", 2, 2, **{k: v for k, v in run_kw.items() if k != "tol"})  # checks them
-    _termination(problem, None, gen, tol)
+    term = _termination(problem, None, gen, tol)
+    _check_sweep_budget(problem, len(weights) + 1, problem.default_pop if pop is None else pop,
+                        _max_gen(term))
     if out is None:
         return _sweep(problem, weights, pop, gen, seed, n_jobs, client, None, progress, run_kw, None)
     out = _io.prepare_out_dir(out)
@@ -872,6 +876,29 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | Non
            "pop": pop, "gen": gen, "seed": seed, **run_kw}
     with _io.run_in(out, "sweep", key, RUN_OUTPUTS, overwrite) as manifest:
         return _sweep(problem, weights, pop, gen, seed, n_jobs, client, out, progress, run_kw, manifest)
+
+
+def _check_sweep_budget(problem, n_runs: int, pop: int, max_gen: int | None):
+    """The sweep's ``n_runs`` runs (the NSGA-II front and one per weight) budgeted as a
+    whole (:mod:`mechopt.run.budget`): refused if together they cannot fit in memory or
+    would take longer than 30 days; a line printed if above an hour."""
+    import sys
+
+    from mechopt.run import budget
+
+    if max_gen is None:
+        return None
+    one = budget.estimate(problem, int(pop), int(pop), int(max_gen))
+    total = budget.Estimate(one.memory_bytes, one.seconds * n_runs, one.evaluations * n_runs,
+                            one.seconds_per_evaluation)
+    try:
+        line = budget.check(total)
+    except ValueError as exc:
+        raise ValueError(f"the sweep ({n_runs} runs): {exc}") from None
+    if line:
+        line = f"{line} (the whole sweep: {n_runs} runs)"
+        print(line, file=sys.stderr)
+    return line
 
 
 def _sweep(problem, weights, pop, gen, seed, n_jobs, client, out, progress, run_kw, manifest):
