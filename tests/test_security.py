@@ -39,7 +39,7 @@ RUN_OUTPUTS = ("front.csv", "history.csv", "run.json", "front.png", "sweep.csv",
 def own_key(tmp_path, monkeypatch):
     """Every test with its own key folder (the user's is never read or made)."""
     monkeypatch.setenv("MECHOPT_CONFIG_DIR", str(tmp_path / "config"))
-    monkeypatch.delenv(_io.TAG_ENV, raising=False)
+    monkeypatch.delenv("MECHOPT_RUN_TAG", raising=False)
     return tmp_path / "config" / "checkpoint.key"
 
 
@@ -94,7 +94,7 @@ def _crafted(folder: Path, victim: Path, form: str) -> dict:
     return {"owned absolute": {**base, "owned": [str(victim)]},
             "owned relative": {**base, "owned": [rel]},
             "files relative": {**base, "files": {rel: _sha(victim.read_bytes())}},
-            "owned string": {**base, "owned": "front.csv"},
+            "owned string": {**base, "owned": str(victim)},  # taken character by character
             "files absolute": {**base, "files": {str(victim): _sha(victim.read_bytes())}},
             }[form]
 
@@ -104,14 +104,14 @@ def _crafted(folder: Path, victim: Path, form: str) -> dict:
 def test_1_a_crafted_manifest_deletes_nothing_outside_the_folder(tmp_path, sentinel, form):
     out = tmp_path / "o"
     out.mkdir()
-    (out / "front.csv").write_text("the user's own file\n")
+    (out / "notes.txt").write_text("the user's own file\n")
     (out / "manifest.json").write_text(json.dumps(_crafted(out, sentinel[0], form)))
     try:  # reproduce passes overwrite=True to its own runs: the worst case
         _io.claim_out(out, "optimize", {"seed": 1}, RUN_OUTPUTS, overwrite=True)
     except ValueError as exc:
         assert "\n" not in str(exc)
     assert _intact(sentinel)
-    assert (out / "front.csv").read_text() == "the user's own file\n"
+    assert (out / "notes.txt").read_text() == "the user's own file\n"
 
 
 def test_1_a_manifest_naming_a_users_file_by_its_sha256_does_not_remove_it(tmp_path):
@@ -285,7 +285,7 @@ def test_4_a_failed_run_never_removes_a_parent_folder_another_run_writes_into(tm
 def test_4_a_failed_run_removes_the_empty_folders_it_made(tmp_path, capsys):
     assert main(["optimize", "wu2008", "--pop", "1", "--out", str(tmp_path / "n1" / "n2")]) == 2
     _one_error_line(capsys)
-    assert list(tmp_path.iterdir()) == [tmp_path / "config"] or not (tmp_path / "n1").exists()
+    assert not (tmp_path / "n1").exists()
 
 
 # ---------------------------------------------------------------- 5. the race
@@ -512,7 +512,7 @@ def test_13_one_line_where_a_traceback_was(tmp_path, capsys, case):
         (out / "manifest.json").write_text(json.dumps({**manifest, "owned": {"a": 1}}))
     elif case == "key not a dict":
         (out / "manifest.json").write_text(json.dumps({**manifest, "key": [1]}))
-    status = main([*RUN, "--out", str(out)])
+    status = main([*RUN, "--out", str(out), "--overwrite"])
     if case == "27-digit pid":  # a lock nobody holds: taken over
         assert status == 0 and (out / "front.csv").is_file()
     else:
