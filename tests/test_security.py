@@ -634,3 +634,16 @@ def test_17_five_bar_lci_of_nan_is_nan():
     assert np.isnan(got[1]) and got[2] == 0.0 and got[3] == 0.0  # beyond reach stays 0
     # the finite point as the generic index of the Jacobian (an independent path)
     assert got[0] == pytest.approx(float(indices.lci(m.jacobian(0.0, 1.5))), abs=1e-12)
+
+
+def test_4_a_failed_run_leaves_the_empty_folders_of_a_run_started_inside_its_new_folder(tmp_path):
+    """The folder this run made now holds another run (its lock): that run's empty
+    staging folder, about to be written, is not removed from under it."""
+    start = len(_io.created_folders())
+    top = _io.prepare_out_dir(tmp_path / "new" / "b")
+    inner = top / "other"
+    (inner / ".staging-abc-1").mkdir(parents=True)
+    (inner / _io.LOCK_NAME).write_text("1 host 0 abc\n")
+    (top / "empty").mkdir()
+    _io.remove_created(start)
+    assert (inner / ".staging-abc-1").is_dir() and not (top / "empty").exists()

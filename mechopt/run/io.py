@@ -287,20 +287,26 @@ def prepare_out_dir(path) -> Path:
 
 def remove_created(since: int = 0) -> list:
     """Remove the folders this process created (those after the first ``since`` of
-    :func:`created_folders`) if they are empty, and the empty folders inside them;
-    a folder holding anything (another run's files, finished results) stays. Links are
-    not followed. Returns the folders removed."""
+    :func:`created_folders`) if they are empty, and the empty folders inside them
+    (e.g. a paper's folder a worker made); a folder holding anything (another run's
+    files, finished results) stays, and nothing below a folder holding a run's lock
+    (:data:`LOCK_NAME`: a run started there meanwhile may be about to write into its
+    empty folders) is touched. Links are not followed. Returns the folders removed."""
     removed = []
     for top in reversed(_CREATED[since:]):
         if not os.path.isdir(top) or os.path.islink(top):
             continue
-        for here, dirs, _files in os.walk(top, topdown=False, followlinks=False):
-            for d in dirs:
-                p = os.path.join(here, d)
-                if not os.path.islink(p):
-                    with contextlib.suppress(OSError):
-                        os.rmdir(p)
-                        removed.append(p)
+        empty_candidates = []
+        for here, dirs, files in os.walk(top, followlinks=False):
+            if LOCK_NAME in files:
+                dirs[:] = []
+                continue
+            dirs[:] = [d for d in dirs if not os.path.islink(os.path.join(here, d))]
+            empty_candidates += [os.path.join(here, d) for d in dirs]
+        for p in reversed(empty_candidates):  # innermost first
+            with contextlib.suppress(OSError):
+                os.rmdir(p)
+                removed.append(p)
         with contextlib.suppress(OSError):
             os.rmdir(top)
             removed.append(top)
