@@ -30,6 +30,7 @@ import os
 import pickle
 from pathlib import Path
 
+from mechopt.core.reading import open_regular
 from mechopt.run import io as _io
 from mechopt.run import keys as _keys
 
@@ -77,7 +78,7 @@ def read_header(path) -> dict:
 def _read(path, payload: bool = True):
     """``(header, payload bytes or None)``, authenticated as the module docstring says."""
     try:
-        fd, size = _io._open_regular(path, "it", MAX_PAYLOAD + _MAX_HEADER + 200)
+        fd, size = open_regular(path, "it", MAX_PAYLOAD + _MAX_HEADER + 200)
     except FileNotFoundError:
         raise UnreadableCheckpoint("missing") from None
     except ValueError as exc:

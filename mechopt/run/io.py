@@ -37,6 +37,9 @@ import time
 import uuid
 from pathlib import Path
 
+# bounded reads live in the core layer (user inputs, such as a task's points, are read there too)
+from mechopt.core.reading import read_bytes
+
 __all__ = ["atomic_path", "write_text", "write_csv", "write_json", "save_figure", "prepare_out_dir",
            "out_lock", "sweep_temporaries", "LOCK_NAME", "MANIFEST", "read_manifest", "claim_out",
            "output_set", "own", "run_in", "sha256_file", "differences", "read_bytes", "read_json",
@@ -137,88 +140,6 @@ def save_figure(fig, path, dpi: int = 120) -> Path:
 
 
 # ------------------------------------------------------------ bounded reads
-def _open_regular(path, what: str, limit: int):
-    """``(fd, size)`` of ``path`` opened for reading if it is a regular file (not a
-    link, FIFO, device or folder) of at most ``limit`` bytes; FileNotFoundError passes,
-    anything else is a one-line ValueError. Opening never blocks (O_NONBLOCK: a FIFO
-    without a writer does not hang the open)."""
-    flags = os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
-    try:
-        fd = os.open(path, flags)
-    except FileNotFoundError:
-        raise
-    except OSError as exc:
-        if exc.errno == errno.ELOOP:
-            raise ValueError(f"{what} is a symbolic link; mechopt reads only regular files") from None
-        raise ValueError(f"{what} is unreadable ({exc.strerror or type(exc).__name__})") from None
-    try:
-        st = os.fstat(fd)
-        if stat.S_ISDIR(st.st_mode):
-            raise ValueError(f"{what} is a folder, not a file")
-        if not stat.S_ISREG(st.st_mode):
-            raise ValueError(f"{what} is not a regular file (a FIFO, a device or a socket); not read")
-        if st.st_size > limit:
-            raise ValueError(f"{what} is larger than {limit:,} bytes ({st.st_size:,}); not read")
-    except BaseException:
-        os.close(fd)
-        raise
-    return fd, st.st_size
-
-
-def _inside(path, root) -> bool:
-    """``path`` (its folder resolved, links followed) lies inside ``root`` (resolved)."""
-    base = os.path.realpath(root)
-    here = os.path.realpath(os.path.dirname(os.path.abspath(path)))
-    return here == base or here.startswith(base.rstrip(os.sep) + os.sep)
-
-
-def read_bytes(path, limit: int, what: str | None = None, root=None) -> bytes:
-    """The bytes of ``path`` if it is a regular file of at most ``limit`` bytes.
-
-    Parameters
-    ----------
-    path : path
-        The file; a symbolic link, FIFO, device, socket or folder is refused.
-    limit : int
-        The largest size read [bytes] (checked before reading, and while reading).
-    what : str, optional
-        How the one-line message names the file (default: the path, quoted).
-    root : path, optional
-        A folder the file must lie in (its folder resolved): a file reached through a
-        linked folder that leads outside is refused.
-
-    Returns
-    -------
-    bytes
-
-    Raises
-    ------
-    FileNotFoundError
-        If there is no such file.
-    ValueError
-        One line, for anything else that is not a small regular file.
-    """
-    what = what or repr(str(path))
-    if root is not None and not _inside(path, root):
-        raise ValueError(f"{what} lies outside {str(root)!r} (through a link); not read")
-    fd, _ = _open_regular(path, what, limit)
-    try:
-        parts, n = [], 0
-        while True:
-            block = os.read(fd, min(1 << 20, limit + 1 - n))
-            if not block:
-                break
-            parts.append(block)
-            n += len(block)
-            if n > limit:
-                raise ValueError(f"{what} is larger than {limit:,} bytes; not read")
-    except OSError as exc:
-        raise ValueError(f"{what} is unreadable ({exc.strerror or type(exc).__name__})") from None
-    finally:
-        os.close(fd)
-    return b"".join(parts)
-
-
 def read_json(path, what: str | None = None, limit: int = MAX_JSON_BYTES, root=None):
     """The JSON value of a regular file (:func:`read_bytes`); anything unreadable or not
     JSON (bad UTF-8, nesting too deep, a number too large) is a one-line ValueError;
