@@ -179,7 +179,7 @@ def prepare_out_dir(path) -> Path:
     except FileNotFoundError:
         st = None
     except OSError as exc:
-        raise ValueError(f"--out {text!r} cannot be used: {exc.strerror or type(exc).__name__}") from None
+        raise ValueError(f"--out {text!r} is not writable: {exc.strerror or type(exc).__name__}") from None
     if st is not None and not stat.S_ISDIR(st.st_mode):
         raise ValueError(f"--out must be a folder, got the file {text!r}")
     made = []
