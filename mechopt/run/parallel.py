@@ -49,6 +49,10 @@ def _worker_facts() -> dict:
     return {"mechopt": __version__, "kernel": kernel_path()}
 
 
+class _NoAnswer(ValueError):
+    """A Dask call that did not return in time (:func:`_within`)."""
+
+
 def _within(seconds: float, what: str, func, *args, **kw):
     """``func(*args, **kw)`` if it returns within ``seconds``, else a one-line ValueError:
     a Dask endpoint that accepts a connection and never answers would block a
@@ -66,7 +70,7 @@ def _within(seconds: float, what: str, func, *args, **kw):
     t.start()
     t.join(seconds)
     if t.is_alive():
-        raise ValueError(f"{what}: no answer within {seconds:g} s")
+        raise _NoAnswer(f"{what}: no answer within {seconds:g} s")
     if "error" in box:
         raise box["error"]
     return box["value"]
@@ -90,20 +94,30 @@ def cluster_threads(client) -> int:
     return max(1, sum(_within(seconds, "the Dask scheduler", client.nthreads).values()))
 
 
+#: the longest wait for the workers to import mechopt and report their version and
+#: kernel path (:func:`check_cluster`) [s]: at least this, or 6 times the timeout (an
+#: import on a loaded machine takes far longer than a scheduler's answer)
+FACTS_MIN_S = 60.0
+
+
 def check_cluster(client, timeout: float = 10.0) -> dict:
     """Before the first chunk: the cluster has workers, and each imports the same
-    mechopt version and kernel path as this process. ValueError (one line) otherwise,
-    within ``timeout`` seconds. Returns the common facts."""
-    return _within(2 * timeout, "the Dask cluster", _check_cluster, client, timeout)
+    mechopt version and kernel path as this process. ValueError (one line) otherwise:
+    no worker within ``timeout`` seconds, or no facts from the workers within
+    ``max(FACTS_MIN_S, 6 timeout)`` seconds. Returns the common facts."""
+    seconds = max(FACTS_MIN_S, 6.0 * timeout)
+    return _within(timeout + seconds + 1.0, "the Dask cluster", _check_cluster, client, timeout, seconds)
 
 
-def _check_cluster(client, timeout):
+def _check_cluster(client, timeout, seconds):
     try:
-        client.wait_for_workers(1, timeout=timeout)
+        _within(timeout + 1.0, "the Dask cluster", client.wait_for_workers, 1, timeout=timeout)
     except Exception:  # noqa: BLE001 - distributed raises its own TimeoutError types
         raise ValueError(f"the Dask cluster has no workers after {timeout:g} s") from None
     try:
-        facts = client.run(_worker_facts)
+        facts = _within(seconds, "the Dask workers", client.run, _worker_facts)
+    except _NoAnswer:
+        raise
     except Exception as exc:  # noqa: BLE001 - e.g. ModuleNotFoundError on a worker
         raise ValueError(f"a Dask worker cannot run mechopt: {type(exc).__name__}: "
                          f"{str(exc).splitlines()[0] if str(exc) else ''}".rstrip(": ")) from None
@@ -143,14 +157,12 @@ def connect(address: str, timeout: float = 10.0):
     try:
         client = _within(timeout + 1.0, f"cannot reach the Dask scheduler at {address!r}", Client, address,
                          timeout=timeout)
-    except ValueError as exc:
-        if str(exc).startswith("cannot reach"):
-            raise
+    except _NoAnswer:
+        raise
+    except ValueError as exc:  # a malformed address
         raise ValueError(f"bad Dask scheduler address {address!r}: {exc}") from None
     except (OSError, TimeoutError) as exc:
         raise ValueError(f"cannot reach the Dask scheduler at {address!r}: {type(exc).__name__}") from None
-    except ValueError as exc:  # a malformed address
-        raise ValueError(f"bad Dask scheduler address {address!r}: {exc}") from None
     except Exception as exc:  # noqa: BLE001 - e.g. an AssertionError inside distributed
         raise ValueError(f"cannot reach the Dask scheduler at {address!r}: "
                          f"{type(exc).__name__} {exc}") from None
