@@ -502,6 +502,13 @@ class FiveBar(PlanarMechanism):
         intersection and the closed-form 2x2 LCI in one pass, numba-compiled when
         numba is importable). Same values as the generic
         ``indices.lci(self.jacobian(x, y))`` to rounding (tested to 1e-12).
+
+        A NaN coordinate is not a point: its LCI is NaN (not 0, which would read as
+        "unreachable"). A finite or infinite coordinate beyond reach gives 0.
         """
-        x, y = as_points(x, y)
-        return _fast_lci.five_bar_lci(x, y, self.r1, self.r2, self.r3, self._s1, self._s2)
+        px, py = as_points(x, y)
+        out = _fast_lci.five_bar_lci(px, py, self.r1, self.r2, self.r3, self._s1, self._s2)
+        nan = np.isnan(np.asarray(x, dtype=float)) | np.isnan(np.asarray(y, dtype=float))
+        if np.any(nan):
+            out = np.where(np.broadcast_to(nan, np.shape(out)), np.nan, out)
+        return out
