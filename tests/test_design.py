@@ -188,7 +188,7 @@ BAD_TASKS = [
     ("circle:nan@0,100", "task circle size must be finite"),
     ("circle:0@0,100", "task radius must be a positive"),
     ("rect:100,60@0,2000", "no five-bar with links <= 250 mm reaches beyond 500 mm"),
-    ("ellipse:3,4", "--task kind must be rect, circle, polygon or points"),
+    ("ellipse:3,4", "--task kind must be rect, circle, polygon, points or path"),
     ("points:/nonexistent.csv", "cannot read"),
 ]
 

@@ -33,7 +33,7 @@ __all__ = [
     "step",
     "stroke",
     "weights",
-    "MAX_WEIGHTS",
+    "MAX_WEIGHTS", "POINTS_MAX", "POINTS_FILE_BYTES", "POLYGON_VERTICES_MAX",
     "ROUNDING",
     "RESOLUTION",
     "STEP_FLOOR",
@@ -221,6 +221,15 @@ def step(name: str, value, upper: float) -> float:
 
 #: most weights of one sweep (each is a full optimisation run)
 MAX_WEIGHTS = 10_001
+
+#: the most points a ``points:``/``path:`` task file may hold, and its largest size [bytes]
+#: (200 000 lines of two numbers; the design's samples are a few thousand points)
+POINTS_MAX = 200_000
+POINTS_FILE_BYTES = 16 * 1024 * 1024
+
+#: the most vertices of a polygon task (the simplicity test is vectorised over pairs of
+#: edges: 5000 vertices are 12.5 million pairs, about a second)
+POLYGON_VERTICES_MAX = 5_000
 
 
 def weights(text: str):
