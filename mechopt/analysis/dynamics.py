@@ -40,7 +40,10 @@ from mechopt.core import bodies as _b
 from mechopt.core import validation as _v
 
 __all__ = ["STANDARD_GRAVITY", "MassModel", "mass_model", "load_mass_model", "inverse_dynamics",
-           "energies", "parse_gravity"]
+           "energies", "parse_gravity", "motion_efforts", "MOTION_COLUMNS", "peak_torque", "rms_torque"]
+
+#: the columns of :func:`motion_efforts`'s table (``_i`` for each actuator 1, 2)
+MOTION_COLUMNS = ("t", "x", "y", "q_i", "qd_i", "qdd_i", "tau_i", "power_i")
 
 #: standard gravity [m/s^2]
 STANDARD_GRAVITY = 9.80665
@@ -259,3 +262,76 @@ def energies(mech, motion, model: MassModel, gravity=None, length_unit: float = 
     """``(T, V)`` [J] along the motion (:func:`inverse_dynamics`'s)."""
     out = inverse_dynamics(mech, motion, model, gravity, length_unit)
     return out["T"], out["V"]
+
+
+def _check_reach(mech, motion, to_mech=None):
+    x, y = np.asarray(motion["x"], float), np.asarray(motion["y"], float)
+    mx, my = (x, y) if to_mech is None else to_mech(x, y)
+    ok = mech.reachable(mx, my)
+    if not np.all(ok):
+        k = int(np.argmin(ok))
+        t = motion.get("t")
+        when = f" at t = {float(t[k]):.4g} s" if t is not None else ""
+        raise ValueError(f"the motion leaves the reachable workspace{when}, at (x, y) = "
+                         f"({float(x[k]):.6g}, {float(y[k]):.6g})")
+    return mx, my
+
+
+def motion_efforts(mech, motion, model: MassModel, gravity=None, length_unit: float = 1.0,
+                   to_mech=None):
+    """Per-actuator position, rate, acceleration, effort and power along a timed motion,
+    and their extremes.
+
+    Parameters
+    ----------
+    mech, model, gravity, length_unit
+        As for :func:`inverse_dynamics`.
+    motion : dict
+        :func:`mechopt.core.motion.timed_motion`'s: ``t`` [s], ``x, y`` [L] and their
+        derivatives, in the task frame when ``to_mech`` is given.
+    to_mech : callable, optional
+        ``(x, y) -> (x, y)``: task-frame points in the mechanism's frame (a translation,
+        e.g. a design spec's ``to_mech``).
+
+    Returns
+    -------
+    (table, summary)
+        ``table``: ``{column: array}`` with the columns of :data:`MOTION_COLUMNS`
+        (``q`` in rad or m, ``tau`` in N m or N, ``power`` in W); ``summary``: per
+        actuator ``q_min, q_max, qd_peak, qdd_peak, tau_peak, tau_rms`` (root mean square
+        over the cycle, trapezoidal rule in time) and ``power_peak``, as lists of two, and
+        ``moving_mass`` [kg]. ValueError (one line) when a pose of the motion is out of
+        reach.
+    """
+    mx, my = _check_reach(mech, motion, to_mech)
+    m = dict(motion, x=mx, y=my)
+    out = inverse_dynamics(mech, m, model, gravity, length_unit)
+    t = np.asarray(motion["t"], float)
+    table = {"t": t, "x": np.asarray(motion["x"], float), "y": np.asarray(motion["y"], float)}
+    for key in ("q", "qd", "qdd", "tau", "power"):
+        for i in (0, 1):
+            table[f"{key}_{i + 1}"] = out[key][..., i]
+    T = t[-1] - t[0]
+    rms = np.sqrt(np.trapezoid(out["tau"] ** 2, t, axis=0) / T) if T > 0 else np.abs(out["tau"][0])
+    summary = {"q_min": np.min(out["q"], 0).tolist(), "q_max": np.max(out["q"], 0).tolist(),
+               "qd_peak": np.max(np.abs(out["qd"]), 0).tolist(),
+               "qdd_peak": np.max(np.abs(out["qdd"]), 0).tolist(),
+               "tau_peak": np.max(np.abs(out["tau"]), 0).tolist(), "tau_rms": rms.tolist(),
+               "power_peak": np.max(np.abs(out["power"]), 0).tolist(),
+               "moving_mass": model.moving_mass, "cycle_time": float(T)}
+    return table, summary
+
+
+def peak_torque(mech, motion, model: MassModel, gravity=None, length_unit: float = 1.0):
+    """``(2,)`` array: the largest ``|tau_i|`` [N m or N] of each actuator along the motion
+    (:func:`inverse_dynamics`; no reach check: NaN where a pose is out of reach)."""
+    tau = inverse_dynamics(mech, motion, model, gravity, length_unit)["tau"]
+    return np.max(np.abs(tau), axis=0)
+
+
+def rms_torque(mech, motion, model: MassModel, gravity=None, length_unit: float = 1.0):
+    """``(2,)`` array: the root mean square of ``tau_i`` over the motion's time [N m or N]
+    (trapezoidal rule on the samples ``motion["t"]``)."""
+    tau = inverse_dynamics(mech, motion, model, gravity, length_unit)["tau"]
+    t = np.asarray(motion["t"], float)
+    return np.sqrt(np.trapezoid(tau ** 2, t, axis=0) / (t[-1] - t[0]))
