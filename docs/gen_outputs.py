@@ -175,19 +175,6 @@ CONSTRAINTS = {
     "design": {},
 }
 #: requirements of ``mechopt design``: (meaning of margin_<name> / g_<name>, unit of the margin)
-REQUIREMENTS = {
-    "reach": ("the whole task reachable in one working mode: certified clearance (sampled minimum "
-              "minus half the boundary gap)", "unit"),
-    "singular": ("no type-II singularity over the task: smallest sine of the angle between the legs "
-                 "minus the singularity margin", "-"),
-    "lci": ("`--min-lci`: minimum LCI over the task minus the required level", "-"),
-    "joints": ("`--joint-limits`: smallest distance of the crank ranges to their limits", "rad"),
-    "link_angle": ("`--link-angle`: smallest distance of the link angles to their limits", "rad"),
-    "stroke": ("`--max-stroke`: the limit minus the longest stroke", "unit"),
-    "lengths": ("bipod: `--max-length` minus the longest strut at full extension", "unit"),
-    "speed": ("`--min-speed`: guaranteed speed minus the required one (Liu eq. 10)", "unit/s"),
-    "force": ("`--min-force`: guaranteed force minus the required one (Liu eq. 13)", "N"),
-}
 HISTORY = {
     "generation": ("generation number, from 1", "-"),
     "evaluations": ("designs evaluated so far", "-"),
@@ -490,8 +477,12 @@ def _constraint_meaning(fam, c) -> str:
                 if f"{q}{'_min' if op == '>' else '_max'}" == c:
                     form = f"({t:g} - {q}) / {t:g}" if op == ">" else f"({q} - {t:g}) / {t:g}"
                     return f"constraint `{q} {op} {t:g}` (Liu 2006 sec. 3.1), relative: {form}"
-    if fam == "design" and c in REQUIREMENTS:
-        return f"constraint, normalised: {REQUIREMENTS[c][0]}"
+    if fam == "design":
+        from mechopt import requirements as _req
+
+        texts = {r.name: r.margin_text for r in _req.requirements()}
+        if c in texts:
+            return f"constraint, normalised: {texts[c]}"
     raise MissingGlossary(f"docs/gen_outputs.py: no meaning for constraint {c!r} of family {fam!r}")
 
 
@@ -580,17 +571,17 @@ def _sweep(problems) -> str:
 
 
 def _design() -> str:
-    from mechopt.analysis.task import MECHANISMS, OBJECTIVES, Requirements, get_spec
+    from mechopt import mechanisms as _mechanisms
+    from mechopt import requirements as _req
 
-    req_all = Requirements(min_lci=0.5, joint_limits=(0, 1), link_angle=(0, 1), max_stroke=1, min_speed=1,
-                           min_force=1, actuator_speed=1, actuator_torque=1, payload=1)
+    requirements = {r.name: r for r in _req.requirements()}
     names = []
     rows = []
-    for m in MECHANISMS:
-        spec = get_spec(m)
-        for n in req_all.names(spec):
-            if n not in names:
-                names.append(n)
+    for m in _mechanisms.designed():
+        spec = _mechanisms.design_spec(m)
+        for r in requirements.values():
+            if r.applies(spec) and r.name not in names:
+                names.append(r.name)
         if spec.angular:
             derived = [f"theta{i}_{e}_deg" for i in (1, 2) for e in ("min", "max")]
         else:
@@ -598,8 +589,6 @@ def _design() -> str:
         if spec.link_angles is not None:
             derived += [f"link{i}_angle_{e}_deg" for i in (1, 2) for e in ("min", "max")]
         rows.append((f"`{m}`", _codes(spec.lengths), _codes(spec.modes), _codes(derived)))
-    for n in names:
-        _lookup(REQUIREMENTS, n, "mechopt design requirement")
     out = ["## `mechopt design MECHANISM`\n",
            "Sizes a mechanism for a task region. It writes into `--out`, all at once when the run "
            "succeeds: `front.csv`, `design.json`, `run.json`, `history.csv` (as for `optimize`), "
@@ -627,14 +616,15 @@ def _design() -> str:
            ]),
            "Objectives (`--objectives`, each a column of its name):\n",
            _table(["objective", "sense", "meaning", "unit"],
-                  [(f"`{k}`", "max" if s < 0 else "min", d, u.format(L="unit", T="N m or N"))
-                   for k, (s, u, d) in OBJECTIVES.items()]),
+                  [(f"`{k}`", "max" if ob.sense < 0 else "min", ob.description, ob.unit.format(L="unit", T="N m or N"))
+                   for k, ob in _req.objectives().items()]),
            "Requirements: `margin_<name>` in `front.csv` and `margins` in `design.json` (natural units, "
            "> 0 satisfied), `g_<name>` of the search and `constraints_g` (normalised: lengths by the "
            "task diameter, angles by pi, LCI by its level, speed and force by their required values; "
            "<= 0 satisfied):\n",
            _table(["requirement", "margin", "unit of the margin"],
-                  [(f"`{n}` (`margin_{n}`, `g_{n}`)", REQUIREMENTS[n][0], REQUIREMENTS[n][1]) for n in names]),
+                  [(f"`{n}` (`margin_{n}`, `g_{n}`)", requirements[n].margin_text,
+                    requirements[n].margin_unit.format(L="unit")) for n in names]),
            "### `design.json`\n",
            "The chosen design (the knee of the front, or `--pick`), certified:\n",
            _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in DESIGN_JSON.items()]),

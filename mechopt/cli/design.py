@@ -3,7 +3,8 @@ mechanism for a task region.
 
 Reads the task (:func:`mechopt.analysis.task.parse_task`, lengths in ``--unit``: mm, cm,
 m or in) and the requirements over the whole task
-(:class:`mechopt.analysis.task.Requirements`; angles given in deg, passed on in rad),
+(:class:`mechopt.requirements.Requirements`: one option per declared
+:class:`~mechopt.requirements.base.Option`; angles given in deg, passed on in rad),
 then runs :func:`mechopt.workflows.design.design`, which writes ``front.csv``,
 ``design.json`` (the chosen design: the knee, or the ``--pick`` weights), ``run.json``,
 ``history.csv``, ``front.png`` and ``design.png`` into ``DIR``. Prints one line: the
@@ -21,17 +22,18 @@ NAME = "design"
 
 
 def add_parser(subparsers):
-    """Register ``design``."""
-    from mechopt.analysis import task as _task
+    """Register ``design``: its requirement options and objectives come from the
+    declarations of :mod:`mechopt.requirements`, its mechanisms and modes from their
+    design specs (one module each)."""
+    from mechopt import mechanisms as _mechanisms
+    from mechopt import requirements as _req
 
-    # the mechanisms and their modes come from their design specs (one module each)
-    names = _task.mechanisms()
-    specs = {n: _task.get_spec(n) for n in names}
+    names = _mechanisms.designed()
+    specs = {n: _mechanisms.design_spec(n) for n in names}
     by_modes = {}
     for n, spec in specs.items():
         by_modes.setdefault(spec.modes, []).append(n)
     modes_text = "; ".join(f"{', '.join(ns)}: {', '.join(m)}" for m, ns in by_modes.items())
-    with_angles = ", ".join(n for n, spec in specs.items() if spec.link_angles is not None)
     ds = subparsers.add_parser(NAME, help="size a mechanism for a task region (requirements over the whole task)")
     ds.add_argument("mechanism", help=f"{', '.join(names[:-1])} or {names[-1]}")
     ds.add_argument("--task", required=True,
@@ -40,26 +42,21 @@ def add_parser(subparsers):
                          "y away from the base)")
     ds.add_argument("--unit", default="mm",
                     help="length unit of the task and of every length: mm, cm, m or in (default mm)")
-    ds.add_argument("--min-lci", type=float, default=None,
-                    help="LCI >= this everywhere on the task (dimensionless, in (0, 1))")
+    for opt, member in _req.options().values():
+        if opt.cli:
+            where = [n for n, spec in specs.items() if member.applies(spec)]
+            scope = "" if len(where) == len(names) else f" ({', '.join(where)})"
+            ds.add_argument(opt.flag, dest=f"req_{opt.name}", default=None, metavar=opt.metavar,
+                            help=opt.help + scope)
     ds.add_argument("--mode", default=None, help=f"working mode ({modes_text}) or any")
     ds.add_argument("--place", default="fixed", help="fixed (default), free-y or free: task placement")
     ds.add_argument("--objectives", default="size,min-lci",
-                    help="comma list of size, footprint, min-lci, mean-lci, speed, force, torque")
+                    help=f"comma list of {', '.join(_req.objectives())}")
     ds.add_argument("--max-length", type=float, default=None, help="longest link [unit] (default 4 x task extent)")
     ds.add_argument("--min-length", type=float, default=None, help="shortest link [unit]")
-    ds.add_argument("--joint-limits", default=None, metavar="LO,HI[,LO2,HI2]", help="crank angle limits [deg]")
-    ds.add_argument("--link-angle", default=None, metavar="LO,HI",
-                    help=f"|link angle from the slider axis| limits [deg] ({with_angles}; Wu: 15,75)")
-    ds.add_argument("--max-stroke", type=float, default=None, help="longest actuator stroke [unit] (sliders)")
     ds.add_argument("--shape", default=None, metavar="R1,R2,R3",
                     help="fix the link ratios (non-dimensional, one per length of the mechanism); the "
                          "design variable is the scale D [unit] (Liu 2006 sec. 3.2.3)")
-    ds.add_argument("--actuator-speed", type=float, default=None, help="actuator speed limit [rad/s or unit/s]")
-    ds.add_argument("--actuator-torque", type=float, default=None, help="actuator torque limit [N m or N]")
-    ds.add_argument("--min-speed", type=float, default=None, help="guaranteed speed in every direction [unit/s]")
-    ds.add_argument("--min-force", type=float, default=None, help="guaranteed force in every direction [N]")
-    ds.add_argument("--payload", type=float, default=None, help="payload force [N] for the torque objective")
     ds.add_argument("--pick", default=None, metavar="NAME=W,...",
                     help="choose design.json by weights of the normalised objectives (default: the knee)")
     ds.add_argument("--algorithm", default=None,
@@ -93,24 +90,17 @@ def run(args) -> int:
     """Parse the task and the requirements, run the design, print its one-line summary."""
     from pathlib import Path
 
+    from mechopt import mechanisms as _mechanisms
+    from mechopt import requirements as _req
     from mechopt.analysis import task as _task
     from mechopt.workflows.design import design
 
     task = _task.parse_task(args.task, unit=args.unit)
-    jl = None
-    if args.joint_limits is not None:
-        vals = [math.radians(v) for v in _numbers(args.joint_limits, "--joint-limits (deg)", (2, 4))]
-        # two values: the same limits for both cranks
-        jl = (vals[:2], vals[2:] if len(vals) == 4 else vals[:2])
-    la = None
-    if args.link_angle is not None:
-        la = tuple(math.radians(v) for v in _numbers(args.link_angle, "--link-angle (deg)", (2,)))
-    counts = tuple(sorted({len(_task.get_spec(n).lengths) for n in _task.mechanisms()}))
+    counts = tuple(sorted({len(_mechanisms.design_spec(n).lengths) for n in _mechanisms.designed()}))
     shape = _numbers(args.shape, "--shape", counts) if args.shape is not None else None
-    req = _task.Requirements(min_lci=args.min_lci, joint_limits=jl, link_angle=la, max_stroke=args.max_stroke,
-                             min_speed=args.min_speed, min_force=args.min_force,
-                             actuator_speed=args.actuator_speed, actuator_torque=args.actuator_torque,
-                             payload=args.payload)
+    req = _req.Requirements(**{name: opt.parse(getattr(args, f"req_{name}"))
+                               for name, (opt, _) in _req.options().items()
+                               if opt.cli and getattr(args, f"req_{name}") is not None})
     objectives = tuple(o.strip() for o in args.objectives.split(",") if o.strip())
     with _common.dask_client(args) as client:
         res = design(args.mechanism, task, req, objectives, mode=args.mode, place=args.place,

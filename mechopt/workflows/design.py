@@ -1,11 +1,11 @@
 """Size a mechanism for a task: the optimisation, its certification and its files.
 
-:func:`design` states the problem of :mod:`mechopt.analysis.task` (a
-:class:`~mechopt.analysis.task.Task`, :class:`~mechopt.analysis.task.Requirements`
-and objectives from :data:`~mechopt.analysis.task.OBJECTIVES`) as
+:func:`design` states the problem of :mod:`mechopt.analysis.design_eval` (a
+:class:`~mechopt.analysis.task.Task`, :class:`~mechopt.requirements.Requirements`
+and objectives from :func:`mechopt.requirements.objectives`) as
 :class:`mechopt.problems.design.DesignProblem`, runs it through
 :func:`mechopt.run.runner.optimize`, polishes the front, certifies every front design
-with a finer sampling (:func:`~mechopt.analysis.task.certify`) and returns a
+with a finer sampling (:func:`~mechopt.analysis.design_eval.certify`) and returns a
 :class:`DesignResult` (front as a DataFrame, :meth:`DesignResult.pick`,
 :meth:`DesignResult.knee`); with ``out`` it writes :data:`DESIGN_OUTPUTS`.
 """
@@ -21,8 +21,9 @@ import pandas as pd
 from mechopt.core import validation as _v
 from mechopt.core import indices as _ix
 from mechopt.core.numerics import golden_section_max
-from mechopt.analysis.task import (OBJECTIVES, DesignEvaluator, NoFeasibleDesign, Requirements, Sampling,
-                                   _parse_weights, certify, feasible, knee_index)
+from mechopt.analysis.design_eval import DesignEvaluator, NoFeasibleDesign, certify, feasible, knee_index, parse_weights
+from mechopt.analysis.sampling import Sampling
+from mechopt.requirements import Requirements
 
 __all__ = ["design", "DesignResult", "plot_design", "DESIGN_OUTPUTS"]
 
@@ -41,7 +42,7 @@ class DesignResult:
 
     def _F(self):
         ev = self.evaluator
-        return np.column_stack([OBJECTIVES[o][0] * self.front[o].to_numpy(float) for o in ev.objectives])
+        return np.column_stack([sense * self.front[o].to_numpy(float) for o, sense in ev.senses().items()])
 
     def knee(self) -> int:
         return knee_index(self._F())
@@ -54,7 +55,7 @@ class DesignResult:
         if weights is None:
             i = self.knee()
         else:
-            w = _parse_weights(weights, self.evaluator.objectives)
+            w = parse_weights(weights, self.evaluator.objectives)
             F = self._F()
             lo, hi = F.min(0), F.max(0)
             Z = (F - lo) / np.where(hi > lo, hi - lo, 1.0)
@@ -86,15 +87,7 @@ def _design_record(ev, v, res, index) -> dict:
            "mechanism": res["mechanism"], "repr": repr(res["mechanism"])}
     if "D" in v:
         rec["variables"]["D"] = v["D"]
-    d = res["derived"]
-    if "joint_ranges" in d:
-        rec["joint_ranges_deg"] = [[math.degrees(a), math.degrees(b)] for a, b in d["joint_ranges"]]
-    if "strokes" in d:
-        rec["strokes"] = [list(s) for s in d["strokes"]]
-        rec["stroke"] = d["stroke"]
-    for leg in (1, 2):
-        if f"link_angle{leg}" in d:
-            rec[f"link{leg}_angle_deg"] = [math.degrees(a) for a in d[f"link_angle{leg}"]]
+    rec.update(ev.record(res["derived"]))
     return rec
 
 
@@ -162,7 +155,7 @@ def _rows_eval(problem, X, j, sampling):
     evaluated with ``sampling`` (the polish uses the certification's, so what it accepts
     is feasible by :func:`certify`, not only by the search's coarser sampling)."""
     ev = problem.evaluator
-    sense = OBJECTIVES[ev.objectives[j]][0]
+    sense = ev.senses()[ev.objectives[j]]
     X = np.atleast_2d(np.asarray(X, float))
     f = np.empty(len(X))
     G = np.empty((len(X), len(problem.constr_names)))
@@ -603,7 +596,7 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
            algorithm=None, pop=None, gen=None, seed=1, n_jobs=1, client=None, out=None,
            progress=False, polish=True, pick=None, checkpoint_every=None, plot=True,
            overwrite=False) -> DesignResult:
-    """Size ``mechanism`` (one of :func:`mechopt.analysis.task.mechanisms`) for ``task``.
+    """Size ``mechanism`` (one of :func:`mechopt.analysis.design_eval.mechanisms`) for ``task``.
 
     Builds :class:`mechopt.problems.design.DesignProblem`, runs it with
     :func:`mechopt.run.runner.optimize` (seeded; ``n_jobs``/``client`` as there), polishes
@@ -633,7 +626,7 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
                        max_length=max_length, shape=shape)
     ev = problem.evaluator
     if pick is not None:
-        _parse_weights(pick, ev.objectives)
+        parse_weights(pick, ev.objectives)
     if checkpoint_every is not None:
         raise ValueError("design runs are not checkpointed; run mechopt.run.runner.optimize on the "
                          "registered 'design' problem to checkpoint one")
@@ -679,7 +672,7 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
         kept.append(ev.objective_values(res))
     if not rows:
         raise _no_design(problem, run, certified=True)
-    F = np.array(kept) * np.array([OBJECTIVES[o][0] for o in ev.objectives])
+    F = np.array(kept) * np.array(list(ev.senses().values()))
     nd = _non_dominated(F)
     front = pd.DataFrame([rows[i] for i in nd])
     keys = list(ev.objectives)

@@ -1,0 +1,83 @@
+"""Singular: no type-II singularity over the task (always required).
+
+``s0 * type2_function`` (the sine of the angle between the legs, ``s0`` its sign at
+the task's reference point: the centre of its box, or the mean of a point task's
+points) stays above ``singularity_margin``. ``T`` is connected, so one sign means one
+connected singularity-free piece, one assembly mode. The minimum over the task is
+located on the samples and refined (:mod:`mechopt.analysis.sampling`). Implied by
+``LCI >= gamma > 0``.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from mechopt.core import validation as _v
+from mechopt.analysis.sampling import bad_to
+from mechopt.requirements.base import Option, Requirement
+
+__all__ = ["Singular", "MEMBERS"]
+
+#: a design whose sampled type-II minimum is below ``-SCREEN`` is not refined
+SCREEN = 0.05
+
+
+def _margin_check(value, spec):
+    m = _v.finite_number("singularity_margin", value)
+    if not 0 <= m < 1:
+        raise ValueError(f"singularity_margin must lie in [0, 1), got {m!r}")
+    return m
+
+
+class Singular(Requirement):
+    name = "singular"
+    always = True
+    options = (Option("singularity_margin", "smallest |sine of the angle between the legs| allowed",
+                      check=_margin_check, default=1e-3, cli=False),)
+    needs = ("points", "type2")
+    margin_text = ("no type-II singularity over the task: smallest sine of the angle between the legs "
+                   "minus the singularity margin")
+    certificate = ("boundary and interior critical points located on the samples and refined by zooming "
+                   "(mechopt.analysis.sampling)")
+
+    def describe(self, req, unit) -> str:
+        return "no type-II singularity over the task (one assembly mode)"
+
+    @staticmethod
+    def sign(ctx) -> float:
+        """``s0``: the sign of the type-II function at the task's reference point (or of
+        the median of its samples when that is 0)."""
+        def compute():
+            s = ctx.samples
+            rx, ry = ctx.task.reference if ctx.is_region else (s["allx"].mean(), s["ally"].mean())
+            s0 = np.sign(ctx.mech.type2_function(*ctx.to_mech(np.float64(rx), np.float64(ry))))
+            if not s0:
+                f_all = ctx.type2_raw
+                med = np.nanmedian(f_all) if np.any(np.isfinite(f_all)) else 1.0
+                s0 = np.sign(med) or 1.0
+            return s0
+        return ctx.memo("type2_sign", compute)
+
+    def samples(self, ctx):
+        """``s0 * type2_function`` at the samples (-1 where unreachable)."""
+        return ctx.memo("type2_samples", lambda: bad_to(self.sign(ctx) * ctx.type2_raw, -1.0))
+
+    def minimum(self, ctx) -> float:
+        """The minimum of ``s0 * type2_function`` over the task."""
+        def compute():
+            s0 = self.sign(ctx)
+            return ctx.region_min(lambda x, y: bad_to(s0 * ctx.mech.type2_function(*ctx.to_mech(x, y)), -1.0),
+                                  self.samples(ctx))
+        return ctx.memo("type2_min", compute)
+
+    def screen(self, ctx) -> bool:
+        return float(self.samples(ctx).min()) > -SCREEN
+
+    def evaluate(self, ctx):
+        t2, m = self.minimum(ctx), ctx.req.singularity_margin
+        return t2 - m, (m - t2 if t2 < m else -(t2 - m))
+
+    def report(self, ctx) -> dict:
+        return {"type2_min": self.minimum(ctx)}
+
+
+MEMBERS = (Singular(),)
