@@ -147,3 +147,53 @@ def test_motion_command_bad_input(tmp_path, capsys, args, match):
     lines = err.strip().splitlines()
     assert len(lines) == 1 and match in lines[0], err
     assert not (d / "motion.csv").exists()
+
+
+def test_motion_outputs_are_documented(tmp_path, capsys):
+    """Every column of motion.csv and key of motion.json / bodies.json is on docs/outputs.md."""
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "outputs.md").read_text()
+    d = _design_dir(tmp_path / "d")
+    assert _cli(capsys, "motion", str(d), "--samples", "11")[0] == 0
+    names = set(next(csv.reader(open(d / "motion.csv"))))
+
+    def keys(v):
+        if isinstance(v, dict):
+            return set(v) | set().union(*(keys(x) for x in v.values()))
+        if isinstance(v, list):
+            return set().union(set(), *(keys(x) for x in v))
+        return set()
+    names |= keys(json.load(open(d / "motion.json"))) | keys(json.load(open(d / "bodies.json")))
+    missing = sorted(n for n in names if f"`{n}`" not in page)
+    assert not missing, missing
+
+
+@pytest.mark.parametrize("limit", [1.0, 5.0])
+def test_torque_requirements_and_objectives_of_mechopt_design(limit):
+    """--max-torque/--max-rms-torque with --cycle-time: the margins and objectives are the
+    extremes of the inverse dynamics along the task's pick-and-place cycle."""
+    from mechopt.analysis.design_eval import DesignEvaluator
+    from mechopt.analysis.task import Task
+    from mechopt.requirements import Requirements
+    from mechopt.requirements.motion import SAMPLES
+
+    task = Task.rect(300, 200, (0, 250))
+    req = Requirements(max_torque=limit, max_rms_torque=limit, cycle_time=0.5)
+    ev = DesignEvaluator("five-bar", task, req, ("size", "peak-torque", "rms-torque", "moving-mass"),
+                         max_length=600)
+    v = dict(r1=200.0, r2=300.0, r3=80.0, mode="+-", task_x=0.0, task_y=250.0)
+    res = ev.evaluate(v)
+    fb = FiveBar(200.0, 300.0, 80.0)
+    model = mass_model(fb, length_unit=1e-3)
+    m = mo.timed_motion(mo.pick_and_place_path((-150, 150, 150, 350)), 0.5, "cycloidal", SAMPLES)
+    _, s = motion_efforts(fb, m, model, length_unit=1e-3)
+    peak, rms = max(s["tau_peak"]), max(s["tau_rms"])
+    assert res["margin"]["peak_torque"] == pytest.approx(limit - peak, rel=1e-12)
+    assert res["margin"]["rms_torque"] == pytest.approx(limit - rms, rel=1e-12)
+    assert (res["g"]["peak_torque"] > 0) == (peak > limit)
+    obj = dict(zip(ev.objectives, ev.objective_values(res)))
+    assert obj["peak-torque"] == pytest.approx(peak) and obj["rms-torque"] == pytest.approx(rms)
+    assert obj["moving-mass"] == pytest.approx(model.moving_mass)
+    # the moving mass of the law: four tubes of 0.3888 kg/m and the 0.2 kg payload
+    assert model.moving_mass == pytest.approx(2700 * 1.44e-4 * 2 * 0.5 + 0.2, rel=1e-12)

@@ -23,6 +23,9 @@ speed           speed (``--min-speed``, ``--actuator-speed``)  speed
 force           force (``--min-force``, ``--actuator-torque``)  force
 torque          (``--payload``)                            torque
 size            size, footprint
+motion          peak_torque (``--max-torque``,             peak-torque, rms-torque, moving-mass
+                ``--cycle-time``), rms_torque
+                (``--max-rms-torque``)
 ==============  =========================================  ====================================
 
 :class:`Requirements` holds the values of every declared option (a requirement is
@@ -38,7 +41,8 @@ __all__ = ["MODULES", "Requirements", "registry", "requirements", "objectives", 
 
 #: the member modules, in the order of the constraint columns (``g_<name>``, ``margin_<name>``)
 MODULES = tuple(f"mechopt.requirements.{m}" for m in (
-    "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque", "size"))
+    "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque", "size",
+    "motion"))
 
 
 def registry() -> tuple:
