@@ -197,3 +197,13 @@ def test_torque_requirements_and_objectives_of_mechopt_design(limit):
     assert obj["moving-mass"] == pytest.approx(model.moving_mass)
     # the moving mass of the law: four tubes of 0.3888 kg/m and the 0.2 kg payload
     assert model.moving_mass == pytest.approx(2700 * 1.44e-4 * 2 * 0.5 + 0.2, rel=1e-12)
+
+
+def test_pick_and_place_cycle_shrinks_into_a_circle_task():
+    inside = lambda x, y: np.hypot(x, y - 200.0) <= 100.0  # noqa: E731
+    path = mo.pick_and_place_path((-100.0, 100.0, 100.0, 300.0), inside)
+    corners = np.array([p.p0 for p in path] + [path[-1].p1])
+    assert np.all(inside(corners[:, 0], corners[:, 1]))
+    # the largest of the 0.95^k steps: one step more would leave the circle
+    half = corners[2, 0]
+    assert not np.all(inside(np.array([half / 0.95]), np.array([200.0 + 12.5 / 152.5 * half / 0.95])))

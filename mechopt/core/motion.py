@@ -210,22 +210,27 @@ def read_path_csv(path):
     return pts
 
 
-def pick_and_place_path(box, unit_mm: float = 1.0):
+def pick_and_place_path(box, contains=None):
     """The standard pick-and-place cycle (:data:`PICK_AND_PLACE_MM`: 25 up, 305 across,
     25 down) scaled to the task box ``(xmin, xmax, ymin, ymax)`` [L]: the across move
     spans the box's width (scale ``s = width / 305 mm``), the lift is ``25 s`` along +y,
     centred on the box's middle height; three straight pieces, each from rest to rest.
-    ``unit_mm`` (mm per [L]) only serves the check that the lift fits the box."""
+    With ``contains(x, y) -> bool array`` (a task region's test), the cycle is shrunk
+    about the box's centre by ``0.95^k`` (the smallest ``k <= 40``) until its four corners
+    lie in the region (a circle's or a polygon's bounding box is larger than it)."""
     xmin, xmax, ymin, ymax = _v.finite_numbers("box", box, 4, "(xmin, xmax, ymin, ymax)")
     if not (xmax > xmin and ymax >= ymin):
         raise ValueError(f"box must have xmin < xmax and ymin <= ymax, got {box!r}")
     up, across, _ = PICK_AND_PLACE_MM
-    s = (xmax - xmin) / across
-    lift = up * s
-    y0 = 0.5 * (ymin + ymax) - 0.5 * lift
-    a, b = (xmin, y0), (xmin, y0 + lift)
-    c, d = (xmax, y0 + lift), (xmax, y0)
-    return [_Segment(a, b), _Segment(b, c), _Segment(c, d)]
+    cx, cy = 0.5 * (xmin + xmax), 0.5 * (ymin + ymax)
+    for k in range(41):
+        half = 0.5 * (xmax - xmin) * 0.95 ** k
+        lift = up * 2.0 * half / across
+        x0, x1, y0 = cx - half, cx + half, cy - 0.5 * lift
+        corners = np.array([(x0, y0), (x0, y0 + lift), (x1, y0 + lift), (x1, y0)])
+        if contains is None or np.all(contains(corners[:, 0], corners[:, 1])):
+            break
+    return [_Segment(corners[i], corners[i + 1]) for i in range(3)]
 
 
 def timed_motion(path, cycle_time, kind: str = "cycloidal", n: int = 401, **shape):

@@ -9,24 +9,22 @@ Each module declares its members on the protocol of :mod:`mechopt.requirements.b
 line read the registry alone: a new requirement is one new module added to
 :data:`MODULES` (or, in a test, to a monkeypatched copy of it).
 
-==============  =========================================  ====================================
-module          requirement (option)                       objectives
-==============  =========================================  ====================================
+==============  ================================================  ====================================
+module          requirement (option)                              objectives
+==============  ================================================  ====================================
 reach           reach (always)
 singular        singular (always; ``singularity_margin``)
-lci             lci (``--min-lci``)                        min-lci, mean-lci
+lci             lci (``--min-lci``)                               min-lci, mean-lci
 joints          joints (``--joint-limits``, cranks)
 link_angle      link_angle (``--link-angle``)
 stroke          stroke (``--max-stroke``, sliders)
 lengths         lengths (bipod struts, always)
-speed           speed (``--min-speed``, ``--actuator-speed``)  speed
-force           force (``--min-force``, ``--actuator-torque``)  force
-torque          (``--payload``)                            torque
+speed           speed (``--min-speed``, ``--actuator-speed``)     speed
+force           force (``--min-force``, ``--actuator-torque``)    force
+torque          (``--payload``)                                   torque
 size            size, footprint
-motion          peak_torque (``--max-torque``,             peak-torque, rms-torque, moving-mass
-                ``--cycle-time``), rms_torque
-                (``--max-rms-torque``)
-==============  =========================================  ====================================
+motion          peak_torque, rms_torque                           peak-torque, rms-torque, moving-mass
+==============  ================================================  ====================================
 
 :class:`Requirements` holds the values of every declared option (a requirement is
 off while its first option is None).

@@ -45,16 +45,7 @@ def _cycle(task):
     """The pick-and-place path inside ``task`` (module docstring)."""
     from mechopt.core import motion as mo
 
-    x0, x1, y0, y1 = task.bbox
-    cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
-    for k in range(40):
-        f = 0.95 ** k
-        box = (cx + f * (x0 - cx), cx + f * (x1 - cx), cy + f * (y0 - cy), cy + f * (y1 - cy))
-        path = mo.pick_and_place_path(box)
-        pts = np.array([p.p0 for p in path] + [path[-1].p1])
-        if not task.is_region or np.all(task.contains(pts[:, 0], pts[:, 1])):
-            return path
-    return path
+    return mo.pick_and_place_path(task.bbox, task.contains if task.is_region else None)
 
 
 def cycle_efforts(ctx) -> dict:
@@ -93,6 +84,7 @@ def _cycle_time(value, spec):
 
 class _EffortLimit(Requirement):
     key = ""
+    label = ""
     needs_options = ("cycle_time",)
     needs = ("points",)
     margin_unit = "N m or N"
@@ -103,6 +95,9 @@ class _EffortLimit(Requirement):
         limit = getattr(ctx.req, self.options[0].name)
         worst = float(np.max(cycle_efforts(ctx)[self.key]))
         return limit - worst, (worst - limit) / limit
+
+    def describe(self, req, unit) -> str:
+        return f"{self.label} effort <= {getattr(req, self.options[0].name)} along the {req.cycle_time} s cycle"
 
     def report(self, ctx) -> dict:
         if not ctx.has("cycle_efforts") or ctx.req.cycle_time is None:
@@ -119,20 +114,16 @@ class MaxTorque(_EffortLimit):
                                     "and objectives)", check=_cycle_time),
                Option("motion_gravity", "gravity of the dynamics: down (default, -y), off or GX,GY [m/s^2]",
                       check=lambda v, spec: _gravity(v), parse=_gravity, metavar="G"))
+    label = "peak"
     margin_text = "`--max-torque`: limit minus the largest peak effort of the two actuators along the cycle"
-
-    def describe(self, req, unit) -> str:
-        return f"peak effort <= {req.max_torque} along the {req.cycle_time} s cycle"
 
 
 class MaxRmsTorque(_EffortLimit):
     name = "rms_torque"
     key = "rms"
     options = (Option("max_rms_torque", "RMS actuator effort over the pick-and-place cycle [N m or N]"),)
+    label = "RMS"
     margin_text = "`--max-rms-torque`: limit minus the largest RMS effort of the two actuators"
-
-    def describe(self, req, unit) -> str:
-        return f"RMS effort <= {req.max_rms_torque} over the {req.cycle_time} s cycle"
 
 
 class PeakTorqueObjective(Objective):

@@ -37,23 +37,26 @@ def _read_json(path):
         raise ValueError(f"{str(path)!r} is not a readable JSON file: {getattr(e, 'strerror', None) or e}") from None
 
 
-def _task_box(task: dict, placement: dict):
-    """The task's bounding box ``(xmin, xmax, ymin, ymax)`` at its placement [unit]."""
-    if task.get("kind") == "circle":
-        (cx, cy), r = task["center"], task["radius"]
-        box = (cx - r, cx + r, cy - r, cy + r)
-    else:
-        p = np.asarray(task.get("vertices") or task.get("points"), float)
-        box = (p[:, 0].min(), p[:, 0].max(), p[:, 1].min(), p[:, 1].max())
-    dx = placement["task_x"] - 0.5 * (box[0] + box[1])
-    dy = placement["task_y"] - 0.5 * (box[2] + box[3])
-    return (box[0] + dx, box[1] + dx, box[2] + dy, box[3] + dy)
+def _task(task: dict, placement: dict, unit: str):
+    """The task of ``run.json`` (:class:`mechopt.analysis.task.Task`) at its placement."""
+    from mechopt.analysis.task import Task
+
+    try:
+        if task["kind"] == "circle":
+            t = Task.circle(task["radius"], task["center"], unit)
+        elif task["kind"] == "points":
+            t = Task.points(task["points"], unit)
+        else:
+            t = Task.polygon(task["vertices"], unit)
+    except (KeyError, TypeError):
+        raise ValueError("run.json's design.task is not a task (kind, vertices, center/radius or points)") from None
+    return t.moved_to(placement["task_x"], placement["task_y"])
 
 
 def load_design(folder):
-    """``(spec, mech, unit, length_unit, box)`` of the design in ``folder``: its design
+    """``(spec, mech, unit, length_unit, task)`` of the design in ``folder``: its design
     specification, the mechanism, the length unit's name and metres per unit, and the
-    placed task's bounding box [unit]."""
+    placed task (:class:`mechopt.analysis.task.Task`, None without run.json)."""
     from mechopt.analysis.task import UNITS
     from mechopt.mechanisms import registry
 
@@ -75,16 +78,16 @@ def load_design(folder):
     strokes = rec.get("strokes")
     mech = spec.build(variables, variables["mode"], strokes=strokes)
     task = (info.get("design") or {}).get("task")
-    box = _task_box(task, placement) if task else None
-    return spec, mech, unit, UNITS[unit], box
+    return spec, mech, unit, UNITS[unit], (_task(task, placement, unit) if task else None)
 
 
-def design_motion(path, box, cycle_time, profile="cycloidal", samples=401, **shape):
-    """The timed motion [unit] of a ``--path`` (:data:`PATH_KINDS`) for the task ``box``."""
+def design_motion(path, task, cycle_time, profile="cycloidal", samples=401, **shape):
+    """The timed motion [unit] of a ``--path`` (:data:`PATH_KINDS`) for the placed ``task``
+    (the pick-and-place cycle within it, as the ``--max-torque`` requirement runs it)."""
     if path == "pick-place":
-        if box is None:
-            raise ValueError("the pick-and-place cycle needs the task (run.json of the design)")
-        pieces = _mo.pick_and_place_path(box)
+        if task is None or not task.is_region:
+            raise ValueError("the pick-and-place cycle needs a task region (run.json of the design)")
+        pieces = _mo.pick_and_place_path(task.bbox, task.contains)
     elif isinstance(path, str) and path.startswith("segment:"):
         v = [float(s) for s in path[len("segment:"):].split(",")] if path[8:] else []
         if len(v) != 4:
@@ -152,11 +155,11 @@ def run_motion(folder, out=None, path="pick-place", profile="cycloidal", cycle_t
     from mechopt.run import io
 
     _v.choice("profile", profile, _mo.PROFILES)
-    spec, mech, unit, length_unit, box = load_design(folder)
+    spec, mech, unit, length_unit, task = load_design(folder)
     shape = {} if profile == "cycloidal" else {"accel_fraction": accel_fraction}
     if profile == "s-curve":
         shape["jerk_fraction"] = jerk_fraction
-    motion = design_motion(path, box, cycle_time, profile, samples, **shape)
+    motion = design_motion(path, task, cycle_time, profile, samples, **shape)
     model = (_dyn.load_mass_model(mech, masses, length_unit) if masses is not None
              else _dyn.mass_model(mech, length_unit=length_unit))
     grav = _dyn.parse_gravity(gravity, model.g)
