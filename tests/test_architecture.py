@@ -27,7 +27,7 @@ LAYERS = {
     "mechopt.analysis": 2, "mechopt.requirements": 2,
     "mechopt.run": 3,
     "mechopt.problems": 4,
-    "mechopt.workflows": 5, "mechopt.experiments": 5,
+    "mechopt.workflows": 5, "mechopt.experiments": 5, "mechopt.export": 5,
     "mechopt.cli": 6,
 }
 LAYER_NAMES = {0: "core", 1: "mechanisms", 2: "analysis/requirements", 3: "run", 4: "problems",

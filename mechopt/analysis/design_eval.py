@@ -62,7 +62,7 @@ from mechopt.core.design_spec import DesignSpec
 from mechopt.requirements import Requirements
 
 __all__ = ["DesignEvaluator", "NoFeasibleDesign", "certify", "feasible", "knee_index",
-           "parse_weights", "get_spec", "mechanisms"]
+           "parse_weights", "parse_pick", "pick_index", "get_spec", "mechanisms"]
 
 #: placements whose samples a :class:`DesignEvaluator` keeps (:meth:`DesignEvaluator._samples_at`)
 _CONTEXTS_KEPT = 8
@@ -97,7 +97,7 @@ class DesignEvaluator:
             raise ValueError(f"task must be a mechopt.analysis.task.Task, got {type(task).__name__}")
         self.task = task
         self.unit = task.unit
-        self.req = (requirements or Requirements()).checked(self.spec)
+        self.req = (requirements or Requirements()).checked(self.spec, self.unit)
         objectives = (objectives,) if isinstance(objectives, str) else tuple(objectives)
         known = _req.objectives()
         if not objectives:
@@ -113,6 +113,8 @@ class DesignEvaluator:
                     raise ValueError(f"objective {ob} needs {needed} ({flag})")
         #: the active requirements and the chosen objectives (members of mechopt.requirements)
         self.active = tuple(r for r in _req.requirements() if r.active(self.req, self.spec))
+        for r in self.active:
+            r.precheck(self.req, self.spec, self.unit)
         self._members = _req.registry()
         self._objectives = tuple(known[ob] for ob in objectives)
         self.objectives = objectives
@@ -492,3 +494,44 @@ def parse_weights(weights, objectives):
     if not out or not any(out.values()):
         raise ValueError("--pick needs at least one positive weight")
     return out
+
+
+#: how :meth:`mechopt.workflows.design.DesignResult.pick` scalarises the weights
+PICK_METHODS = ("sum", "asf", "pseudo")
+
+
+def parse_pick(text, objectives) -> tuple:
+    """``(method, {objective: weight})`` from ``"size=1,min-lci=2"`` (a weighted sum),
+    ``"asf:size=1,min-lci=2"`` or ``"pseudo:..."`` (or a mapping: a weighted sum)."""
+    method = "sum"
+    if isinstance(text, str) and ":" in text:
+        method, _, text = text.partition(":")
+        method = _v.choice("--pick method", method.strip(), PICK_METHODS)
+    return method, parse_weights(text, objectives)
+
+
+def pick_index(F, objectives, weights=None) -> int:
+    """The row of a front ``F`` (minimisation form, columns in ``objectives`` order) chosen
+    by ``weights`` (:func:`parse_pick`; None: :func:`knee_index`). The objectives are
+    normalised to [0, 1] over the front (``Z``); a weighted sum minimises ``Z w``; ASF
+    (pymoo's achievement scalarizing function) minimises ``max_i Z_i / w_i``, which
+    reaches designs on non-convex parts of a front that no weighted sum does; pseudo
+    takes the design whose pseudo-weights are nearest ``w`` (pymoo's PseudoWeights,
+    Deb 2001)."""
+    F = np.asarray(F, float)
+    if weights is None:
+        return knee_index(F)
+    method, w = parse_pick(weights, objectives)
+    lo, hi = F.min(0), F.max(0)
+    Z = (F - lo) / np.where(hi > lo, hi - lo, 1.0)
+    wv = np.array([w.get(o, 0.0) for o in objectives])
+    if method == "asf":
+        from pymoo.decomposition.asf import ASF
+
+        # a zero weight does not count its objective (a tiny weight: a huge ratio would)
+        return int(np.argmin(ASF().do(Z, np.where(wv > 0, wv / wv.sum(), 1e300))))
+    if method == "pseudo":
+        from pymoo.mcdm.pseudo_weights import PseudoWeights
+
+        return int(PseudoWeights(wv / wv.sum()).do(F))
+    return int(np.argmin(Z @ wv))

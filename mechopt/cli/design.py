@@ -49,16 +49,24 @@ def add_parser(subparsers):
             ds.add_argument(opt.flag, dest=f"req_{opt.name}", default=None, metavar=opt.metavar,
                             help=opt.help + scope)
     ds.add_argument("--mode", default=None, help=f"working mode ({modes_text}) or any")
-    ds.add_argument("--place", default="fixed", help="fixed (default), free-y or free: task placement")
+    ds.add_argument("--place", default="fixed",
+                    help="where the task sits: fixed (default: as given by --task), free-y (the search "
+                         "also moves it along y, away from the base) or free (in x and y); the placed "
+                         "centre is printed and in front.csv (task_x, task_y)")
     ds.add_argument("--objectives", default="size,min-lci",
                     help=f"comma list of {', '.join(_req.objectives())}")
-    ds.add_argument("--max-length", type=float, default=None, help="longest link [unit] (default 4 x task extent)")
-    ds.add_argument("--min-length", type=float, default=None, help="shortest link [unit]")
+    ds.add_argument("--max-length", type=float, default=None,
+                    help="longest link [unit] (default 4 x the larger of the task's diameter and its "
+                         "farthest box coordinate from the base midpoint, |x| or |y|)")
+    ds.add_argument("--min-length", type=float, default=None,
+                    help="shortest link [unit] (default --max-length / 1000)")
     ds.add_argument("--shape", default=None, metavar="R1,R2,R3",
                     help="fix the link ratios (non-dimensional, one per length of the mechanism); the "
                          "design variable is the scale D [unit] (Liu 2006 sec. 3.2.3)")
-    ds.add_argument("--pick", default=None, metavar="NAME=W,...",
-                    help="choose design.json by weights of the normalised objectives (default: the knee)")
+    ds.add_argument("--pick", default=None, metavar="[asf:|pseudo:]NAME=W,...",
+                    help="choose design.json by weights of the objectives normalised over the front: a "
+                         "weighted sum, or with asf: the achievement scalarizing function (reaches "
+                         "non-convex parts of a front), pseudo: the nearest pseudo-weights (default: the knee)")
     ds.add_argument("--algorithm", default=None,
                     help="ga, de, nsga2, nsga2-mnn or nsga3 (default: ga for one objective, else nsga2)")
     ds.add_argument("--pop", type=int, default=None, help="population size (default 40)")
@@ -66,7 +74,9 @@ def add_parser(subparsers):
     ds.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
     ds.add_argument("--overwrite", action="store_true",
                     help="replace another run that --out holds (only the files that run wrote)")
-    ds.add_argument("--n-jobs", type=int, default=2, help="joblib worker processes (default 2)")
+    ds.add_argument("--n-jobs", type=int, default=None,
+                    help="joblib worker processes (default: auto, as optimize: 1 if a generation "
+                         "evaluates in under 0.2 s, else 2; the front does not depend on it)")
     _common.add_dask_options(ds)
     ds.add_argument("--no-polish", action="store_true",
                     help="skip the local polish of each objective's best design (SLSQP, COBYLA and a "
@@ -87,7 +97,10 @@ def _numbers(text, what, n_allowed) -> list:
 
 
 def run(args) -> int:
-    """Parse the task and the requirements, run the design, print its one-line summary."""
+    """Parse the task and the requirements, run the design, print its one-line summary:
+    the chosen design, where the task was placed, and the command's wall time with its
+    stages (optimisation, polish, certification, files)."""
+    import time
     from pathlib import Path
 
     from mechopt import mechanisms as _mechanisms
@@ -95,12 +108,14 @@ def run(args) -> int:
     from mechopt.analysis import task as _task
     from mechopt.workflows.design import design
 
+    started = time.perf_counter()
     task = _task.parse_task(args.task, unit=args.unit)
     counts = tuple(sorted({len(_mechanisms.design_spec(n).lengths) for n in _mechanisms.designed()}))
     shape = _numbers(args.shape, "--shape", counts) if args.shape is not None else None
     req = _req.Requirements(**{name: opt.parse(getattr(args, f"req_{name}"))
                                for name, (opt, _) in _req.options().items()
                                if opt.cli and getattr(args, f"req_{name}") is not None})
+    _echo_requirements(req, _mechanisms.design_spec(args.mechanism), task)
     objectives = tuple(o.strip() for o in args.objectives.split(",") if o.strip())
     with _common.dask_client(args) as client:
         res = design(args.mechanism, task, req, objectives, mode=args.mode, place=args.place,
@@ -111,7 +126,38 @@ def run(args) -> int:
     chosen = json.loads((Path(args.out) / "design.json").read_text())
     obj = ", ".join(f"{k} {v:.5g} {chosen['objective_units'][k]}".rstrip(" -")
                     for k, v in chosen["objectives"].items())
+    place = chosen["task_placement"]
+    stages = ", ".join(f"{k} {v:.1f}" for k, v in res.info["stage_times_s"].items())
     print(f"{len(res.front)} certified designs on the front; chosen ({res.info['chosen']['by']}): "
-          f"{chosen['repr']}; {obj}; wrote {args.out}/front.csv, design.json, run.json, design.png "
-          f"({res.info['wall_time_s']:.1f} s)")
+          f"{chosen['repr']}; {obj}; task centre at ({place['task_x']:.6g}, {place['task_y']:.6g}) "
+          f"{chosen['unit']}; wrote {args.out}/front.csv, design.json, run.json, design.png "
+          f"({time.perf_counter() - started:.1f} s: {stages})")
     return 0
+
+
+def _echo_requirements(req, spec, task):
+    """One line on stderr: every option given with a unit, in the unit it is used in (a
+    bare number is in the task's unit); a warning for a speed or length 100 times below
+    the task's scale (``--min-speed 0.5`` meant as m/s but read as mm/s)."""
+    import sys
+
+    from mechopt import requirements as _req
+    from mechopt.core import units as _u
+
+    checked = req.checked(spec, task.unit)
+    parts, warnings = [], []
+    for name, (opt, _) in _req.options().items():
+        given, value = getattr(req, name), getattr(checked, name)
+        if opt.kind is None or given is None:
+            continue
+        unit = _u.base_unit(opt.kind, task.unit, spec.angular)
+        parts.append(f"{name} {value:.6g} {unit}" + (f" (given {given})" if getattr(given, "unit", "") else ""))
+        scale = task.diameter  # [unit]: a task's size, or its size per second
+        if opt.kind in ("length", "speed") and value < scale / 100:
+            warnings.append(f"mechopt: warning: {opt.flag} {value:g} {unit} is over 100 times below the task's "
+                            f"size ({scale:g} {task.unit}); give a unit if another was meant (e.g. "
+                            f"{given}m{'/s' if opt.kind == 'speed' else ''})")
+    if parts:
+        print(f"mechopt design: {', '.join(parts)}", file=sys.stderr)
+    for w in warnings:
+        print(w, file=sys.stderr)

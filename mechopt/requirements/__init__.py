@@ -22,6 +22,7 @@ lengths         lengths (bipod struts, always)
 speed           speed (``--min-speed``, ``--actuator-speed``)     speed
 force           force (``--min-force``, ``--actuator-torque``)    force
 torque          (``--payload``)                                   torque
+accuracy        error (``--max-error``)                           error
 size            size, footprint
 motion          peak_torque, rms_torque                           peak-torque, rms-torque, moving-mass
 ==============  ================================================  ====================================
@@ -39,8 +40,8 @@ __all__ = ["MODULES", "Requirements", "registry", "requirements", "objectives", 
 
 #: the member modules, in the order of the constraint columns (``g_<name>``, ``margin_<name>``)
 MODULES = tuple(f"mechopt.requirements.{m}" for m in (
-    "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque", "size",
-    "motion"))
+    "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque", "accuracy",
+    "size", "motion"))
 
 
 def registry() -> tuple:
@@ -136,10 +137,11 @@ class Requirements:
         """A copy with ``changes``."""
         return Requirements(**{**self._values, **changes})
 
-    def checked(self, spec) -> "Requirements":
-        """The requirements validated for the mechanism of design spec ``spec`` (each
-        option's check; an option of a requirement that does not apply to it, or a
-        requirement missing the options it needs, is refused with one line)."""
+    def checked(self, spec, unit="mm") -> "Requirements":
+        """The requirements validated for the mechanism of design spec ``spec`` and a task
+        in ``unit`` (each option's check, values with units converted; an option of a
+        requirement that does not apply to it, or a requirement missing the options it
+        needs, is refused with one line)."""
         kw = {}
         for name, (opt, member) in options().items():
             value = self._values[name]
@@ -148,7 +150,7 @@ class Requirements:
                 continue
             if not member.applies(spec):
                 raise ValueError(_not_applicable(member, opt, spec))
-            kw[name] = opt.check(value, spec)
+            kw[name] = opt.check(value, spec, unit)
         out = Requirements(**kw)
         for member in requirements():
             for needed in getattr(member, "needs_options", ()):

@@ -54,10 +54,17 @@ class Option:
         The value when the option is not given (None switches it off).
     cli : bool
         False for a Python-only parameter (no command-line option).
+    kind : str, optional
+        The kind of quantity (``"length"``, ``"speed"``, ``"force"``, ``"effort"``,
+        ``"rate"``: :func:`mechopt.core.units.base_unit`): the value may then carry a
+        unit (``0.5m/s``, ``2Nm``; a :class:`mechopt.core.units.Quantity` or such a
+        string in Python), converted to the option's unit when checked; a bare
+        number is in that unit.
     """
 
-    def __init__(self, name, help, check=None, parse=None, metavar=None, default=None, cli=True):
+    def __init__(self, name, help, check=None, parse=None, metavar=None, default=None, cli=True, kind=None):
         self.name, self.help, self.metavar, self.default, self.cli = name, help, metavar, default, cli
+        self.kind = kind
         self._check, self._parse = check, parse
 
     @property
@@ -65,20 +72,29 @@ class Option:
         """The command-line option (``--min-lci``)."""
         return "--" + self.name.replace("_", "-")
 
-    def check(self, value, spec):
-        """The validated value (see the class docstring)."""
-        if self._check is not None:
-            return self._check(value, spec)
+    def check(self, value, spec, unit="mm"):
+        """The validated value (see the class docstring) for a task in ``unit``."""
+        from mechopt.core import units as _u
         from mechopt.core import validation as _v
 
+        if self.kind is not None:
+            if isinstance(value, str):
+                value = _u.parse(value, self.name)
+            value = _u.to_base(value, self.kind, unit, spec.angular, self.name)
+        if self._check is not None:
+            return self._check(value, spec)
         return _v.positive_length(self.name, value)
 
     def parse(self, text):
-        """The Python value of the option's command-line ``text``."""
-        if self._parse is not None:
-            return self._parse(text)
+        """The Python value of the option's command-line ``text`` (a
+        :class:`mechopt.core.units.Quantity` for an option with a ``kind``)."""
+        from mechopt.core import units as _u
         from mechopt.core import validation as _v
 
+        if self._parse is not None:
+            return self._parse(text)
+        if self.kind is not None:
+            return _u.parse(text, self.flag)
         return _v.finite_number(self.flag, text)
 
     def __repr__(self):
@@ -136,6 +152,10 @@ class Requirement(Member):
     def describe(self, req, unit) -> str:
         """The requirement in words, with its values (for messages)."""
         return self.name
+
+    def precheck(self, req, spec, unit) -> None:
+        """Refuse, before any run, requirements no geometry can meet (a necessary
+        condition; raise ValueError with one line giving the reason). Default none."""
 
     def screen(self, ctx) -> bool:
         """Whether the design is feasible or nearly so by this requirement on the samples

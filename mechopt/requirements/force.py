@@ -31,8 +31,8 @@ def force(ctx) -> float:
 
 class MinForce(Requirement):
     name = "force"
-    options = (Option("min_force", "guaranteed force in every direction [N]"),
-               Option("actuator_torque", "actuator torque limit [N m or N]"))
+    options = (Option("min_force", "guaranteed force in every direction [N, or with a unit: 2kN]", kind="force"),
+               Option("actuator_torque", "actuator torque limit [N m or N, or with a unit: 2Nm, 500Nmm]", kind="effort"))
     needs_options = ("actuator_torque",)
     needs = ("points", "singular_values")
     margin_text = "`--min-force`: guaranteed force minus the required one (Liu eq. 13)"
@@ -42,6 +42,25 @@ class MinForce(Requirement):
 
     def describe(self, req, unit) -> str:
         return f"guaranteed force >= {req.min_force} N"
+
+    def precheck(self, req, spec, unit) -> None:
+        """Speed and force together: for every ``J``, ``v f = w t s_min(J) / s_max(J) <= w t``
+        (Liu 2006 eq. 10 and 13; in SI for cranks: ``v`` in m/s, ``t`` in N m, ``w`` in
+        rad/s), so ``min_speed x min_force`` above the actuators' ``w x t`` is met by no
+        geometry."""
+        if req.min_speed is None or req.min_force is None:
+            return
+        u_m = UNITS[unit] if spec.angular else 1.0  # [m/L]: the speed in m/s for cranks
+        need, have = req.min_speed * u_m * req.min_force, req.actuator_speed * req.actuator_torque
+        if need > have:
+            w_unit, t_unit = ("rad/s", "N m") if spec.angular else (f"{unit}/s", "N")
+            p_unit = "W" if spec.angular else f"N {unit}/s"
+            raise ValueError(
+                f"no {spec.name} meets --min-speed {req.min_speed:g} {unit}/s and --min-force {req.min_force:g} N "
+                f"together: speed x force = {need:.4g} {p_unit} exceeds the actuators' {req.actuator_speed:g} "
+                f"{w_unit} x {req.actuator_torque:g} {t_unit} = {have:.4g} {p_unit} (for every geometry "
+                f"speed x force <= w t s_min/s_max <= w t, Liu 2006 eq. 10, 13); relax one or choose "
+                f"stronger or faster actuators")
 
     def evaluate(self, ctx):
         need, f = ctx.req.min_force, force(ctx)

@@ -2,12 +2,15 @@
 
 ``s0 * type2_function`` (the sine of the angle between the legs, ``s0`` its sign at
 the task's reference point: the centre of its box, or the mean of a point task's
-points) stays above ``singularity_margin``. ``T`` is connected, so one sign means one
+points; where that point is out of reach or singular, the sign at the reachable
+sample farthest from the type-II locus) stays above ``singularity_margin``. ``T`` is connected, so one sign means one
 connected singularity-free piece, one assembly mode. The minimum over the task is
 located on the samples and refined (:mod:`mechopt.analysis.sampling`). Implied by
 ``LCI >= gamma > 0``.
 """
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -44,17 +47,19 @@ class Singular(Requirement):
 
     @staticmethod
     def sign(ctx) -> float:
-        """``s0``: the sign of the type-II function at the task's reference point (or of
-        the median of its samples when that is 0)."""
+        """``s0``: the sign of the type-II function at the task's reference point; where
+        that is out of reach (NaN) or singular (0), at the reachable sample with the
+        largest ``|type2_function|`` (the assembly mode of a reachable task point: a task
+        whose samples all share one sign gets that sign whatever its reference point);
+        +1 when no sample is reachable."""
         def compute():
             s = ctx.samples
             rx, ry = ctx.task.reference if ctx.is_region else (s["allx"].mean(), s["ally"].mean())
-            s0 = np.sign(ctx.mech.type2_function(*ctx.to_mech(np.float64(rx), np.float64(ry))))
-            if not s0:
-                f_all = ctx.type2_raw
-                med = np.nanmedian(f_all) if np.any(np.isfinite(f_all)) else 1.0
-                s0 = np.sign(med) or 1.0
-            return s0
+            s0 = float(np.sign(ctx.mech.type2_function(*ctx.to_mech(np.float64(rx), np.float64(ry)))))
+            if not (math.isfinite(s0) and s0):
+                f = ctx.type2_raw[np.isfinite(ctx.type2_raw)]
+                s0 = float(np.sign(f[np.argmax(np.abs(f))])) if f.size else 1.0
+            return s0 or 1.0
         return ctx.memo("type2_sign", compute)
 
     def samples(self, ctx):

@@ -9,7 +9,7 @@ import numpy as np
 
 from mechopt.requirements.base import Objective
 
-__all__ = ["SizeObjective", "FootprintObjective", "MEMBERS"]
+__all__ = ["SizeObjective", "FootprintObjective", "size", "footprint", "MEMBERS"]
 
 
 def size(ctx) -> float:

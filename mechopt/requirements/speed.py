@@ -48,8 +48,8 @@ def speed(ctx) -> float:
 
 class MinSpeed(Requirement):
     name = "speed"
-    options = (Option("min_speed", "guaranteed speed in every direction [unit/s]"),
-               Option("actuator_speed", "actuator speed limit [rad/s or unit/s]"))
+    options = (Option("min_speed", "guaranteed speed in every direction [unit/s, or with a unit: 0.5m/s]", kind="speed"),
+               Option("actuator_speed", "actuator speed limit [rad/s or unit/s, or with a unit: 30rpm, 0.5m/s]", kind="rate"))
     needs_options = ("actuator_speed",)
     needs = ("points", "singular_values")
     margin_text = "`--min-speed`: guaranteed speed minus the required one (Liu eq. 10)"

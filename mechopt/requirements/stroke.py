@@ -15,8 +15,8 @@ __all__ = ["Stroke", "MEMBERS"]
 
 class Stroke(Requirement):
     name = "stroke"
-    options = (Option("max_stroke", "longest actuator stroke [unit] (sliders)",
-                      check=lambda v, spec: _v.positive_length("max_stroke", v)),)
+    options = (Option("max_stroke", "longest actuator stroke [unit, or with a unit: 0.2m] (sliders)",
+                      check=lambda v, spec: _v.positive_length("max_stroke", v), kind="length"),)
     needs = ("strokes",)
     instead = "joint_limits"
     margin_text = "`--max-stroke`: the limit minus the longest stroke"

@@ -30,7 +30,7 @@ class TorqueObjective(Objective):
     sense = 1
     unit = "{T}"
     description = "actuator torque (force) to hold the payload in the worst direction"
-    options = (Option("payload", "payload force [N] for the torque objective"),)
+    options = (Option("payload", "payload force [N] for the torque objective", kind="force"),)
     requires = ("payload",)
     needs = ("points", "singular_values")
 

@@ -46,10 +46,11 @@ def _label(ob):
     return f"{ob.name} [{ob.unit}] ({'max' if ob.sense < 0 else 'min'})"
 
 
-def plot_front(problem, front, history, population=None, info=None) -> Figure:
+def plot_front(problem, front, history, population=None, info=None, chosen=None) -> Figure:
     """The front of a 2-3 objective run (pairs of objectives for more), or the
     best-so-far curve of a single-objective run; with an empty front (no feasible
-    design) and the final ``population``, :func:`plot_population` instead."""
+    design) and the final ``population``, :func:`plot_population` instead. ``chosen``
+    (a row index of ``front``) is marked and labelled."""
     obs = problem.objectives
     if len(front) == 0 and population is not None:
         n_eval = (info or {}).get("evaluations")
@@ -68,6 +69,10 @@ def plot_front(problem, front, history, population=None, info=None) -> Figure:
     for k, (i, j) in enumerate(pairs):
         ax = fig.add_subplot((len(pairs) + 2) // 3, min(len(pairs), 3), k + 1)
         ax.scatter(front[obs[i].name], front[obs[j].name], s=14)
+        if chosen is not None:
+            ax.scatter([front[obs[i].name].iloc[chosen]], [front[obs[j].name].iloc[chosen]], s=90,
+                       facecolors="none", edgecolors="C3", linewidths=1.5, label="chosen design")
+            ax.legend(fontsize=7)
         ax.set_xlabel(_label(obs[i]))
         ax.set_ylabel(_label(obs[j]))
     fig.suptitle(f"{problem.name}: {len(front)} non-dominated designs")
