@@ -306,7 +306,7 @@ BODIES_JSON = {
                "`inertia_com_kg_m2` (about the centre of mass, normal to the plane), `length_m`, `joints` "
                "(the joints it connects)", "kg, m, kg m^2"),
 }
-DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points")
+DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points", "path_gap")
 DESIGN_RUN = {
     "design": ("the sizing problem: `mechanism`, `task` (`kind`, `unit`, `label`, and `vertices`, "
                "`center`/`radius` or `points`), `requirements` (angles in rad), `objectives`, `mode`, "
@@ -317,10 +317,19 @@ DESIGN_RUN = {
     "certification": ("the fine sampling: `n_boundary`, `n_interior`, `refine`", ""),
     "chosen": ("`index` (row of `front.csv`) and `by` (`knee` or the `--pick` weights) of design.json",
                ""),
+    "stage_times_s": ("wall time of each stage of the command: `optimisation`, `polish`, `certification`, "
+                      "`files` (figures drawn); `wall_time_s` is their sum", "s"),
+    "no_design": ("without a feasible design: the message (the requirement missed most, by how much in its "
+                  "unit); the folder then holds run.json, history.csv, population.csv (the final population, "
+                  "least violating first, with its g_* columns) and front.png", ""),
+    "violations": ("without a feasible design: the least-violating design's normalised violation per "
+                   "requirement", ""),
+    "fails": ("without a feasible design: how many designs of the final population fail each requirement",
+              "-"),
 }
 DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
                    "max_length", "shape", "unit", "kind", "label", "vertices", "center", "radius", "points",
-                   "n_boundary", "n_interior", "refine", "by")
+                   "n_boundary", "n_interior", "refine", "by", "optimisation", "polish", "certification", "files")
 EXPORT_FILES = {
     "robot.urdf": ("`urdf`: the mechanism as a tree (URDF, lengths in m), cut open at the platform joint; the "
                    "closure frames `closedloop1_A` (leg 1, the platform point) and `closedloop1_B` (leg 2) are "
@@ -688,6 +697,12 @@ def _design() -> str:
            "`front.png` and `design.png` (the chosen mechanism at the task's centre with the task, its "
            "good-conditioning workspace, the type-II locus, the reachable boundary and the crank "
            "ranges). Lengths are in `--unit` (`unit` below).\n",
+           "`mechopt design any` (every mechanism, or `--mechanisms`) writes `front.csv` (the merged front: "
+           "a `mechanism` column first, then the columns below of each row's mechanism, empty where that "
+           "mechanism has none), `fronts.csv` (every mechanism's certified front, same columns), "
+           "`design.json` (the chosen design, its `mechanism_name`), `run.json` (`mechanisms`, `skipped` "
+           "with each reason, `objectives`, `front_size`, `per_mechanism` with each run's run.json, "
+           "`chosen`, `wall_time_s`), `front.png` (the fronts coloured by mechanism) and `design.png`.\n",
            "### `front.csv`\n",
            "One row per certified Pareto design: the mechanism's lengths, `D` (with `--shape`), "
            "`mode`, `task_x`, `task_y`, one column per objective, `margin_<requirement>` per "

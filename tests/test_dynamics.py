@@ -18,7 +18,7 @@ import sympy as sp
 
 from mechopt import Biglide, Bipod, FiveBar
 from mechopt.analysis.dynamics import inverse_dynamics, mass_model
-from mechopt.core.bodies import MassLaw
+from mechopt.core.rigid_bodies import MassLaw
 from mechopt.mechanisms.asymmetric_five_bar import AsymmetricFiveBar
 from mechopt.mechanisms.gantry import Gantry
 

@@ -71,7 +71,7 @@ def test_every_member_declares_the_protocol():
     names = [m.name for m in members if isinstance(m, Requirement)]
     assert len(names) == len(set(names)) and names[:2] == ["reach", "singular"]
     assert set(req_package.objectives()) == {"size", "footprint", "min-lci", "mean-lci", "speed", "force", "torque",
-                                             "error", "peak-torque", "rms-torque", "moving-mass"}
+                                             "error", "clearance", "peak-torque", "rms-torque", "moving-mass"}
     options = req_package.options()  # raises on an option declared twice
     assert "min_lci" in options and "singularity_margin" in options
     spec = mechanism_package.design_spec("five-bar")
@@ -151,10 +151,11 @@ def test_a_requirement_in_one_file_is_used_everywhere(toy_registry, tmp_path, ca
     assert res["margin"]["centre"] == pytest.approx(-50.0) and not res["feasible"]
     never = [a if a != "210" else "100" for a in argv[:-1]] + [str(tmp_path / "never")]
     capsys.readouterr()
-    assert main(never) == 2
-    last = capsys.readouterr().err.strip().splitlines()[-1]  # after the progress lines
-    assert last.startswith("mechopt: error: no design satisfies the task's centre within 100.0 mm of the base")
-    assert not (tmp_path / "never" / "front.csv").exists()
+    assert main(never) == 0  # no feasible design is a result
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert last.startswith("no design satisfies the task's centre within 100.0 mm of the base")
+    assert "misses it by 50 mm" in last  # the centre is 150 mm away: exactly 50 mm too far
+    assert not (tmp_path / "never" / "front.csv").exists() and (tmp_path / "never" / "population.csv").exists()
 
 
 def test_the_toy_is_gone_without_the_registry():

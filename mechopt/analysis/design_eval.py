@@ -445,8 +445,16 @@ def certify(evaluator: DesignEvaluator, v: dict, sampling: Sampling | None = Non
             "minima": "boundary and interior critical points located on the samples, refined to "
                       "boundary_gap/2048 (boundary) and interior_step/64 (interior)",
         }
+    elif task.is_path:
+        _, gap = task.boundary_params(s.n_boundary)
+        res["tolerance"] = {
+            "path_gap": gap,
+            **{r.name: r.certificate + " (along the path: sample gap path_gap)" for r in evaluator.active if r.proven},
+            "minima": "critical points along the path located on the samples, refined to path_gap/2048",
+        }
     else:
-        res["tolerance"] = {"points": "exact at the task's points"}
+        res["tolerance"] = {"points": "exact at the task's points, and only there (path:FILE.csv covers "
+                                      "the polyline through them)"}
     return res
 
 

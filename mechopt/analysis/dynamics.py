@@ -2,7 +2,7 @@
 
 Generalised coordinates: the platform point ``p = (x, y)``. Each mechanism declares its
 bodies and their frames along a motion in its own module (``bodies()`` and
-``body_frames()``, :mod:`mechopt.core.bodies`); the mass model
+``body_frames()``, :mod:`mechopt.core.rigid_bodies`); the mass model
 (:func:`mass_model`) gives each body its mass ``m``, centre of mass ``c`` and central
 inertia ``I``. For a body, ``c_dot = Jc(p) p_dot`` and ``omega = Jw(p) p_dot``, so the
 kinetic energy is ``T = 1/2 p_dot^T M(p) p_dot`` with
@@ -36,7 +36,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from mechopt.core import bodies as _b
+from mechopt.core import rigid_bodies as _b
 from mechopt.core import validation as _v
 
 __all__ = ["STANDARD_GRAVITY", "MassModel", "mass_model", "load_mass_model", "inverse_dynamics",
@@ -51,7 +51,7 @@ STANDARD_GRAVITY = 9.80665
 
 @dataclass(frozen=True)
 class MassModel:
-    """The bodies of a mechanism with their masses (:class:`mechopt.core.bodies.Body`, SI),
+    """The bodies of a mechanism with their masses (:class:`mechopt.core.rigid_bodies.RigidBody`, SI),
     the reflected rotor inertia of each actuator ``I_r N^2`` [kg m^2 or kg] and the
     gravity magnitude [m/s^2] the model was stated with; ``source`` says where the numbers
     come from (``"law"``, ``"wu2008-table2"``, plus ``"+user"`` for given bodies)."""
@@ -96,7 +96,7 @@ def mass_model(mech, law=None, bodies=None, length_unit: float = 1.0) -> MassMod
     mech : PlanarMechanism
         A mechanism with ``bodies()`` (lengths in [L]).
     law : MassLaw or dict, optional
-        The law (:class:`mechopt.core.bodies.MassLaw`; its defaults when None). A
+        The law (:class:`mechopt.core.rigid_bodies.MassLaw`; its defaults when None). A
         mechanism with ``default_masses`` (the gantry: Wu 2008 Table 2) uses those when
         neither ``law`` nor ``bodies`` is given.
     bodies : dict, optional
@@ -119,7 +119,7 @@ def mass_model(mech, law=None, bodies=None, length_unit: float = 1.0) -> MassMod
     if law is None and hasattr(mech, "default_masses"):
         table = mech.default_masses(unit)
         g = table.pop("g", g)
-        out = [_b.Body(s.name, s.kind, m, (com, 0.0), I, s.length * unit, s.joints)
+        out = [_b.RigidBody(s.name, s.kind, m, (com, 0.0), I, s.length * unit, s.joints)
                for s in specs for m, com, I in [table[s.name]]]
         source, law_used = "wu2008-table2", None
     else:
@@ -152,7 +152,7 @@ def mass_model(mech, law=None, bodies=None, length_unit: float = 1.0) -> MassMod
 
 def load_mass_model(mech, path, length_unit: float = 1.0) -> MassModel:
     """:func:`mass_model` from a JSON file ``{"law": {...}, "bodies": {...}}`` (both
-    optional; the keys of :class:`~mechopt.core.bodies.MassLaw` and of ``bodies``)."""
+    optional; the keys of :class:`~mechopt.core.rigid_bodies.MassLaw` and of ``bodies``)."""
     try:
         with open(path, encoding="utf-8") as fh:
             d = json.load(fh)

@@ -3,8 +3,9 @@ minimum over it.
 
 Samples (:func:`samples`): ``n_boundary`` points along the task's boundary ``dT`` at
 uniform arc length (every polygon vertex included; largest gap ``h_b``) and an
-``n_interior`` x ``n_interior`` grid over its box, kept inside ``T``; a point task's
-samples are its points.
+``n_interior`` x ``n_interior`` grid over its box, kept inside ``T``; a path's samples
+run along the polyline in the same way (every way-point included), with no interior;
+a point task's samples are its points.
 
 Minima (:func:`region_mins`): the minimum of a continuous function over ``T`` is
 attained on ``dT`` or at an interior critical point: both are located on the samples
@@ -63,6 +64,10 @@ def samples(task, s: Sampling) -> dict:
         tb, gap = task.boundary_params(s.n_boundary)
         bx, by = task.boundary_at(tb)
         ix, iy, step = task.grid(s.n_interior)
+    elif task.is_path:  # along the polyline, as a boundary; no interior
+        tb, gap = task.boundary_params(s.n_boundary)
+        bx, by = task.boundary_at(tb)
+        ix, iy, step = np.zeros(0), np.zeros(0), 0.0
     else:
         tb, gap = np.zeros(0), 0.0
         bx, by = task.pts[:, 0].copy(), task.pts[:, 1].copy()

@@ -152,15 +152,33 @@ class Task:
 
     @classmethod
     def points(cls, array, unit="mm"):
-        """A finite set of poses (a trajectory's way-points or a point cloud)."""
+        """A finite set of poses (a point cloud, or way-points checked at the points
+        only: :meth:`path` for the polyline through them)."""
         p = _as_xy("task points", array, 1)
         return cls("points", pts=p, unit=_v.choice("unit", unit, tuple(UNITS)),
                    label=f"{len(p)} points [{unit}]")
 
+    @classmethod
+    def path(cls, array, unit="mm"):
+        """The polyline through ``array``'s points, in order (a trajectory): every point of
+        every segment is covered, not only the way-points. Repeated consecutive points
+        are dropped; at least two distinct points."""
+        p = _as_xy("task path", array, 2)
+        p = p[np.r_[True, np.any(np.diff(p, axis=0) != 0, axis=1)]]
+        if len(p) < 2:
+            raise ValueError("task path needs at least 2 distinct points")
+        return cls("path", pts=p, unit=_v.choice("unit", unit, tuple(UNITS)),
+                   label=f"path of {len(p)} points [{unit}]")
+
     # --- geometry --------------------------------------------------------------------
     @property
     def is_region(self) -> bool:
-        return self.kind != "points"
+        return self.kind not in ("points", "path")
+
+    @property
+    def is_path(self) -> bool:
+        """An open polyline (:meth:`path`): sampled along its length like a boundary."""
+        return self.kind == "path"
 
     @property
     def bbox(self):
@@ -191,7 +209,7 @@ class Task:
     def area(self) -> float:
         if self.kind == "circle":
             return math.pi * self.radius ** 2
-        if self.kind == "points":
+        if not self.is_region:
             return 0.0
         v = self.vertices
         return 0.5 * abs(float(np.sum(v[:, 0] * np.roll(v[:, 1], -1) - np.roll(v[:, 0], -1) * v[:, 1])))
@@ -202,6 +220,8 @@ class Task:
             return 2 * math.pi * self.radius
         if self.kind == "points":
             return 0.0
+        if self.is_path:  # its length
+            return float(np.hypot(*np.diff(self.pts, axis=0).T).sum())
         return float(np.hypot(*(np.roll(self.vertices, -1, 0) - self.vertices).T).sum())
 
     def moved_to(self, x, y) -> "Task":
@@ -212,16 +232,17 @@ class Task:
             return self
         if self.kind == "circle":
             return replace(self, center=(self.center[0] + d[0], self.center[1] + d[1]))
-        if self.kind == "points":
+        if not self.is_region:
             return replace(self, pts=self.pts + d)
         return replace(self, vertices=self.vertices + d)
 
     def outline(self):
-        """Closed outline ``(x, y)`` for plots (the points themselves for a point task)."""
+        """Closed outline ``(x, y)`` for plots (the points themselves for a point task,
+        the polyline for a path)."""
         if self.kind == "circle":
             t = np.linspace(0, 2 * np.pi, 361)
             return self.center[0] + self.radius * np.cos(t), self.center[1] + self.radius * np.sin(t)
-        if self.kind == "points":
+        if not self.is_region:
             return self.pts[:, 0], self.pts[:, 1]
         v = np.vstack([self.vertices, self.vertices[:1]])
         return v[:, 0], v[:, 1]
@@ -231,9 +252,10 @@ class Task:
         """The polygon's edges, computed once (the design evaluation asks for them at
         every boundary sample): ``(vx, vy, wy, ex, ey, L2, L, cum)`` with ``(vx, vy)``
         the vertices, ``wy`` the next vertex's y, ``(ex, ey) = w - v``, ``L2 = |e|^2``,
-        ``L = |e|`` and ``cum`` the arc-length fractions of the vertices (``cum[-1] = 1``)."""
-        v = self.vertices
-        w = np.roll(v, -1, 0)
+        ``L = |e|`` and ``cum`` the arc-length fractions of the vertices (``cum[-1] = 1``).
+        A path's edges join its consecutive points (no closing edge)."""
+        v = self.pts[:-1] if self.is_path else self.vertices
+        w = self.pts[1:] if self.is_path else np.roll(v, -1, 0)
         e = w - v
         ex, ey = e[:, 0].copy(), e[:, 1].copy()
         L = np.hypot(ex, ey)
@@ -241,8 +263,9 @@ class Task:
                 np.r_[0.0, np.cumsum(L)] / L.sum())
 
     def boundary_at(self, t):
-        """Point at arc-length fraction ``t`` (mod 1) of the boundary, counter-clockwise."""
-        t = np.mod(np.asarray(t, float), 1.0)
+        """Point at arc-length fraction ``t`` (mod 1) of the boundary, counter-clockwise;
+        of a path, from its first point (``t`` clipped to [0, 1]: it has two ends)."""
+        t = np.clip(np.asarray(t, float), 0.0, 1.0) if self.is_path else np.mod(np.asarray(t, float), 1.0)
         if self.kind == "circle":
             a = 2 * np.pi * t
             return self.center[0] + self.radius * np.cos(a), self.center[1] + self.radius * np.sin(a)
@@ -258,8 +281,7 @@ class Task:
         if self.kind == "circle":
             t = np.arange(n) / n
             return t, 2 * self.radius * math.sin(math.pi / n)
-        v = self.vertices
-        L = np.hypot(*(np.roll(v, -1, 0) - v).T)
+        L = self._edges[6]
         total = L.sum()
         cum = np.r_[0.0, np.cumsum(L)] / total
         ts, gap = [], 0.0
@@ -267,6 +289,8 @@ class Task:
             m = max(1, int(math.ceil(n * li / total)))
             ts.append(cum[i] + (cum[i + 1] - cum[i]) * np.arange(m) / m)
             gap = max(gap, li / m)
+        if self.is_path:  # its last point too (a polygon's is its first)
+            ts.append(np.ones(1))
         return np.concatenate(ts), gap
 
     def contains(self, x, y):
@@ -274,7 +298,7 @@ class Task:
         x, y = np.asarray(x, float), np.asarray(y, float)
         if self.kind == "circle":
             return np.hypot(x - self.center[0], y - self.center[1]) <= self.radius * (1 + _v.ROUNDING)
-        if self.kind == "points":
+        if not self.is_region:
             return np.zeros(np.broadcast(x, y).shape, bool)
         return self.signed_distance(x, y) >= -_v.ROUNDING * self.diameter
 
@@ -283,8 +307,8 @@ class Task:
         x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
         if self.kind == "circle":
             return self.radius - np.hypot(x - self.center[0], y - self.center[1])
-        if self.kind == "points":
-            raise ValueError("a point task has no inside")
+        if not self.is_region:
+            raise ValueError(f"a {self.kind} task has no inside")
         vx, vy, wy, ex, ey, L2, _, _ = self._edges
         px, py = x[..., None], y[..., None]
         dx, dy = px - vx, py - vy
@@ -298,18 +322,37 @@ class Task:
 
     def grid(self, n):
         """``n x n`` grid over the bounding box (edges included), kept inside: ``(x, y, step)``."""
-        if self.kind == "points":
+        if not self.is_region:
             return self.pts[:, 0].copy(), self.pts[:, 1].copy(), 0.0
         x0, x1, y0, y1 = self.bbox
         gx, gy = np.meshgrid(np.linspace(x0, x1, n), np.linspace(y0, y1, n))
         keep = self.contains(gx, gy)
         return gx[keep], gy[keep], max(x1 - x0, y1 - y0) / (n - 1)
 
+    @classmethod
+    def from_dict(cls, d: dict) -> "Task":
+        """The task of :meth:`to_dict` (run.json's ``design.task``), checked by its
+        constructors (a rectangle keeps its vertices as written)."""
+        kind, unit = d.get("kind"), d.get("unit", "mm")
+        try:
+            if kind == "rect":
+                v = _as_xy("task vertices", d["vertices"], 4)
+                return cls("rect", vertices=v, unit=_v.choice("unit", unit, tuple(UNITS)), label=str(d.get("label", "")))
+            if kind == "circle":
+                return cls.circle(d["radius"], tuple(d["center"]), unit)
+            if kind == "polygon":
+                return cls.polygon(d["vertices"], unit)
+            if kind in ("points", "path"):
+                return getattr(cls, kind)(d["points"], unit)
+        except (KeyError, TypeError) as exc:
+            raise ValueError(f"the task ({kind}) lacks {exc}") from None
+        raise ValueError(f"the task's kind must be rect, circle, polygon, points or path, got {kind!r}")
+
     def to_dict(self) -> dict:
         d = {"kind": self.kind, "unit": self.unit, "label": self.label}
         if self.kind == "circle":
             d.update(center=list(self.center), radius=self.radius)
-        elif self.kind == "points":
+        elif not self.is_region:
             d["points"] = self.pts.tolist()
         else:
             d["vertices"] = self.vertices.tolist()
@@ -328,11 +371,12 @@ def _floats(text, what):
 
 def parse_task(text: str, unit: str = "mm") -> Task:
     """A task from the CLI syntax: ``rect:W,H@X,Y``, ``circle:R@X,Y``,
-    ``polygon:x1,y1;x2,y2;...`` or ``points:FILE.csv`` (two columns x, y; a header
-    line is skipped). ``@X,Y`` (the centre) defaults to the origin."""
+    ``polygon:x1,y1;x2,y2;...``, ``points:FILE.csv`` (two columns x, y; a header line is
+    skipped: the points alone) or ``path:FILE.csv`` (the same file: the polyline through
+    the points, in order). ``@X,Y`` (the centre) defaults to the origin."""
     if not isinstance(text, str) or ":" not in text:
-        raise ValueError(f"--task must be rect:W,H@X,Y, circle:R@X,Y, polygon:x1,y1;x2,y2;... or "
-                         f"points:FILE.csv, got {_v.show(text)}")
+        raise ValueError(f"--task must be rect:W,H@X,Y, circle:R@X,Y, polygon:x1,y1;x2,y2;..., "
+                         f"points:FILE.csv or path:FILE.csv, got {_v.show(text)}")
     kind, _, body = text.partition(":")
     kind = kind.strip().lower()
     if kind in ("rect", "circle"):
@@ -355,7 +399,7 @@ def parse_task(text: str, unit: str = "mm") -> Task:
         if any(len(p) != 2 for p in pts):
             raise ValueError(f"--task polygon vertices must be x,y pairs separated by ';', got {body!r}")
         return Task.polygon(pts, unit)
-    if kind == "points":
+    if kind in ("points", "path"):
         path = Path(body.strip())
         try:
             raw = path.read_text()
@@ -374,5 +418,5 @@ def parse_task(text: str, unit: str = "mm") -> Task:
                     raise ValueError(f"--task points: line {k + 1} of {str(path)!r} is not x,y: {line!r}") from None
         if not rows:
             raise ValueError(f"--task points: {str(path)!r} holds no x,y rows")
-        return Task.points(rows, unit)
-    raise ValueError(f"--task kind must be rect, circle, polygon or points, got {kind!r}")
+        return Task.points(rows, unit) if kind == "points" else Task.path(rows, unit)
+    raise ValueError(f"--task kind must be rect, circle, polygon, points or path, got {kind!r}")

@@ -35,10 +35,14 @@ def add_parser(subparsers):
         by_modes.setdefault(spec.modes, []).append(n)
     modes_text = "; ".join(f"{', '.join(ns)}: {', '.join(m)}" for m, ns in by_modes.items())
     ds = subparsers.add_parser(NAME, help="size a mechanism for a task region (requirements over the whole task)")
-    ds.add_argument("mechanism", help=f"{', '.join(names[:-1])} or {names[-1]}")
+    ds.add_argument("mechanism", help=f"{', '.join(names)}, or any: every mechanism (or those of "
+                                      f"--mechanisms), their fronts merged into one")
+    ds.add_argument("--mechanisms", default=None, metavar="NAME,...",
+                    help="with mechanism any: the mechanisms to compare (default: all)")
     ds.add_argument("--task", required=True,
-                    help="rect:W,H@X,Y | circle:R@X,Y | polygon:x1,y1;x2,y2;... | points:FILE.csv; "
-                         "lengths [unit] of --unit, in the base frame (base midpoint at the origin, "
+                    help="rect:W,H@X,Y | circle:R@X,Y | polygon:x1,y1;x2,y2;... | points:FILE.csv (the "
+                         "points alone) | path:FILE.csv (the polyline through the points, every point of "
+                         "it); lengths [unit] of --unit, in the base frame (base midpoint at the origin, "
                          "y away from the base)")
     ds.add_argument("--unit", default="mm",
                     help="length unit of the task and of every length: mm, cm, m or in (default mm)")
@@ -115,14 +119,23 @@ def run(args) -> int:
     req = _req.Requirements(**{name: opt.parse(getattr(args, f"req_{name}"))
                                for name, (opt, _) in _req.options().items()
                                if opt.cli and getattr(args, f"req_{name}") is not None})
-    _echo_requirements(req, _mechanisms.design_spec(args.mechanism), task)
     objectives = tuple(o.strip() for o in args.objectives.split(",") if o.strip())
-    with _common.dask_client(args) as client:
-        res = design(args.mechanism, task, req, objectives, mode=args.mode, place=args.place,
-                     min_length=args.min_length, max_length=args.max_length, shape=shape,
-                     algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
-                     n_jobs=args.n_jobs, client=client, out=args.out, progress=True, pick=args.pick,
-                     polish=not args.no_polish, overwrite=args.overwrite)
+    if args.mechanism == "any":
+        return _run_any(args, task, req, objectives, shape, started)
+    _echo_requirements(req, _mechanisms.design_spec(args.mechanism), task)
+    from mechopt.analysis.design_eval import NoFeasibleDesign
+
+    try:
+        with _common.dask_client(args) as client:
+            res = design(args.mechanism, task, req, objectives, mode=args.mode, place=args.place,
+                         min_length=args.min_length, max_length=args.max_length, shape=shape,
+                         algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
+                         n_jobs=args.n_jobs, client=client, out=args.out, progress=True, pick=args.pick,
+                         polish=not args.no_polish, overwrite=args.overwrite)
+    except NoFeasibleDesign as exc:  # an empty result is a result: its files are written
+        print(f"{exc}; wrote {args.out}/run.json, population.csv (least violating first), history.csv, "
+              f"front.png ({time.perf_counter() - started:.1f} s)")
+        return 0
     chosen = json.loads((Path(args.out) / "design.json").read_text())
     obj = ", ".join(f"{k} {v:.5g} {chosen['objective_units'][k]}".rstrip(" -")
                     for k, v in chosen["objectives"].items())
@@ -161,3 +174,33 @@ def _echo_requirements(req, spec, task):
         print(f"mechopt design: {', '.join(parts)}", file=sys.stderr)
     for w in warnings:
         print(w, file=sys.stderr)
+
+
+def _run_any(args, task, req, objectives, shape, started) -> int:
+    """``mechopt design any``: every mechanism (or ``--mechanisms``), one merged front."""
+    import time
+
+    from mechopt.workflows.design_any import design_any
+
+    from mechopt.analysis.design_eval import NoFeasibleDesign
+
+    names = [n.strip() for n in args.mechanisms.split(",") if n.strip()] if args.mechanisms else None
+    try:
+        with _common.dask_client(args) as client:
+            res = design_any(task, req, objectives, mechanisms=names, pick=args.pick, out=args.out,
+                             overwrite=args.overwrite, progress=True, mode=args.mode, place=args.place,
+                             min_length=args.min_length, max_length=args.max_length, shape=shape,
+                             algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
+                             n_jobs=args.n_jobs, client=client, polish=not args.no_polish)
+    except NoFeasibleDesign as exc:  # a result: no mechanism has a feasible design (no file written)
+        print(f"{exc} ({time.perf_counter() - started:.1f} s)")
+        return 0
+    counts = res.front["mechanism"].value_counts()
+    per = ", ".join(f"{m} {counts.get(m, 0)} of {len(r.front)}" for m, r in res.results.items())
+    skipped = "; skipped: " + "; ".join(f"{m} ({why})" for m, why in res.skipped.items()) if res.skipped else ""
+    obj = ", ".join(f"{k} {v:.5g} {res.chosen['objective_units'][k]}".rstrip(" -")
+                    for k, v in res.chosen["objectives"].items())
+    print(f"{len(res.front)} designs on the merged front ({per}){skipped}; chosen "
+          f"({res.info['chosen']['by']}): {res.chosen['repr']}; {obj}; wrote {args.out}/front.csv, fronts.csv, "
+          f"design.json, run.json, front.png, design.png ({time.perf_counter() - started:.1f} s)")
+    return 0

@@ -13,7 +13,7 @@ NAME = "motion"
 def add_parser(subparsers):
     """Register ``motion``."""
     from mechopt.core.motion import PROFILES
-    from mechopt.core.bodies import MATERIALS
+    from mechopt.core.rigid_bodies import MATERIALS
 
     mp = subparsers.add_parser(NAME, help="run a design along a timed motion: actuator efforts, rates, power")
     mp.add_argument("design_dir", help="folder written by mechopt design (design.json, run.json)")

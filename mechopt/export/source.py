@@ -53,25 +53,13 @@ def _read_json(path: Path, what: str) -> dict:
 
 def task_from_dict(d: dict):
     """The :class:`~mechopt.analysis.task.Task` of ``Task.to_dict()`` (run.json's
-    ``design.task``), checked by its constructors."""
+    ``design.task``): :meth:`~mechopt.analysis.task.Task.from_dict`."""
     from mechopt.analysis.task import Task
 
-    kind, unit = d.get("kind"), d.get("unit", "mm")
     try:
-        if kind == "rect":
-            v = np.asarray(d["vertices"], float)
-            x0, y0 = v.min(0)
-            x1, y1 = v.max(0)
-            return Task.rect(x1 - x0, y1 - y0, (0.5 * (x0 + x1), 0.5 * (y0 + y1)), unit)
-        if kind == "circle":
-            return Task.circle(d["radius"], tuple(d["center"]), unit)
-        if kind == "polygon":
-            return Task.polygon(d["vertices"], unit)
-        if kind == "points":
-            return Task.points(d["points"], unit)
-    except (KeyError, TypeError) as exc:
-        raise ValueError(f"run.json's task ({kind}) lacks {exc}") from None
-    raise ValueError(f"run.json's task kind must be rect, circle, polygon or points, got {kind!r}")
+        return Task.from_dict(d)
+    except ValueError as exc:
+        raise ValueError(f"run.json's {exc}") from None
 
 
 @dataclass(frozen=True)

@@ -11,8 +11,10 @@ of the complement of ``R``; for every mechanism here each hole contains a base j
 asymmetric five-bar ``< |a_i - c_i|``; the biglide's and gantry's leg regions are
 simply connected, their complements unbounded; a spec's
 :meth:`~mechopt.core.design_spec.DesignSpec.holes` names them), so "no base joint in
-``T``" closes the argument. Margin: ``c - h_b/2`` [L] > 0. A point task is checked at
-its points exactly.
+``T``" closes the argument. Margin: ``c - h_b/2`` [L] > 0. A path (a polyline) is
+covered by its samples in the same way (every point of it within ``h_b/2`` of one, and
+a disk of radius ``c`` about a sample lies in ``R``): margin ``c - h_b/2``. A point task
+is checked at its points exactly.
 """
 from __future__ import annotations
 
@@ -45,6 +47,8 @@ class Reach(Requirement):
     @staticmethod
     def _margin(ctx) -> float:
         clr = ctx.clearance
+        if ctx.task.is_path:
+            return float(clr.min()) - 0.5 * ctx.samples["gap"]
         if not ctx.is_region:
             return float(clr.min())
         D = ctx.diameter

@@ -1,9 +1,10 @@
 """Singular: no type-II singularity over the task (always required).
 
 ``s0 * type2_function`` (the sine of the angle between the legs, ``s0`` its sign at
-the task's reference point: the centre of its box, or the mean of a point task's
-points; where that point is out of reach or singular, the sign at the reachable
-sample farthest from the type-II locus) stays above ``singularity_margin``. ``T`` is connected, so one sign means one
+the task's reference point: the centre of its box, or the first point of a point task
+or path; where that point is out of reach or singular, the sign at the reachable
+sample farthest from the type-II locus) stays above ``singularity_margin``. A path is
+connected too: one sign along it means it never crosses the type-II locus. ``T`` is connected, so one sign means one
 connected singularity-free piece, one assembly mode. The minimum over the task is
 located on the samples and refined (:mod:`mechopt.analysis.sampling`). Implied by
 ``LCI >= gamma > 0``.
@@ -54,7 +55,7 @@ class Singular(Requirement):
         +1 when no sample is reachable."""
         def compute():
             s = ctx.samples
-            rx, ry = ctx.task.reference if ctx.is_region else (s["allx"].mean(), s["ally"].mean())
+            rx, ry = ctx.task.reference if ctx.is_region else ctx.task.pts[0]
             s0 = float(np.sign(ctx.mech.type2_function(*ctx.to_mech(np.float64(rx), np.float64(ry)))))
             if not (math.isfinite(s0) and s0):
                 f = ctx.type2_raw[np.isfinite(ctx.type2_raw)]

@@ -37,14 +37,7 @@ def _read_json(path: Path) -> dict:
 def _task_of(d: dict):
     from mechopt.analysis.task import Task
 
-    kind, unit = d.get("kind"), d.get("unit", "mm")
-    if kind == "circle":
-        return Task.circle(d["radius"], tuple(d["center"]), unit)
-    if kind == "points":
-        return Task.points(d["points"], unit)
-    if kind in ("rect", "polygon"):
-        return Task(kind, vertices=np.asarray(d["vertices"], float), unit=unit, label=d.get("label", ""))
-    raise ValueError(f"run.json: unknown task kind {kind!r}")
+    return Task.from_dict(d)
 
 
 def load_design(folder):
