@@ -9,23 +9,6 @@ Each module declares its members on the protocol of :mod:`mechopt.requirements.b
 line read the registry alone: a new requirement is one new module added to
 :data:`MODULES` (or, in a test, to a monkeypatched copy of it).
 
-module          requirement (option)                              objectives
-==============  ================================================  ====================================
-reach           reach (always)
-singular        singular (always; ``singularity_margin``)
-lci             lci (``--min-lci``)                               min-lci, mean-lci
-joints          joints (``--joint-limits``, cranks)
-link_angle      link_angle (``--link-angle``)
-stroke          stroke (``--max-stroke``, sliders)
-lengths         lengths (bipod struts, always)
-speed           speed (``--min-speed``, ``--actuator-speed``)     speed
-force           force (``--min-force``, ``--actuator-torque``)    force
-torque          (``--payload``)                                   torque
-accuracy        error (``--max-error``)                           error
-size            size, footprint
-motion          peak_torque, rms_torque                           peak-torque, rms-torque, moving-mass
-==============  ================================================  ====================================
-=======
 - ``reach``: requirement reach (always)
 - ``singular``: requirement singular (always; ``singularity_margin``)
 - ``lci``: requirement lci (``--min-lci``); objectives min-lci, mean-lci
