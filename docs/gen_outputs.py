@@ -260,7 +260,8 @@ DESIGN_JSON = {
     "values": ("`type2_min` (smallest sine of the leg angle over the task), `lci_min`, `lci_mean` "
                "(over the interior grid), `size` [unit], and with their options `footprint` [unit], "
                "`speed` [unit/s], `force` [N], `torque` [N m or N], `error_um` [um] (the proven worst-case "
-               "position error over the task, with `--max-error` or the `error` objective)", ""),
+               "position error over the task, with `--max-error` or the `error` objective), `peak_torque`, "
+               "`rms_torque` [N m or N] (along the pick-and-place cycle, with `--cycle-time`)", ""),
     "tolerance": ("what the margins rest on: `boundary_gap` [unit], `interior_step` [unit], `reach` and "
                   "`minima` (sentences); for a point task `points`", ""),
     "repr": ("the mechanism as Python (`FiveBar(r1=..., ...)`)", ""),
@@ -270,7 +271,46 @@ DESIGN_JSON = {
     "link1_angle_deg": ("gantry, biglide with `--link-angle`: `[lo, hi]` of link 1's angle", "deg"),
     "link2_angle_deg": ("the same for link 2", "deg"),
 }
-DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque", "error_um")
+DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque", "error_um",
+                 "peak_torque", "rms_torque")
+#: `mechopt motion`: motion.csv's columns, motion.json's and bodies.json's keys
+MOTION_CSV = {
+    "t": ("time from the start of the cycle", "s"),
+    "x": ("platform point x (task frame)", "m"),
+    "y": ("platform point y (task frame)", "m"),
+    "q_1, q_2": ("actuator positions (crank angles; slider or strut positions)", "rad or m"),
+    "qd_1, qd_2": ("actuator rates", "rad/s or m/s"),
+    "qdd_1, qdd_2": ("actuator accelerations", "rad/s^2 or m/s^2"),
+    "tau_1, tau_2": ("actuator efforts (torque of a crank, force of a slider or strut), positive along +q",
+                     "N m or N"),
+    "power_1, power_2": ("mechanical power of each actuator, tau_i qd_i", "W"),
+}
+MOTION_JSON = {
+    "q_min, q_max": ("range of each actuator's position over the motion (two values each)", "rad or m"),
+    "qd_peak, qdd_peak": ("largest |rate|, |acceleration| of each actuator", "rad/s, rad/s^2 or m/s, m/s^2"),
+    "tau_peak": ("largest |effort| of each actuator", "N m or N"),
+    "tau_rms": ("root mean square effort of each actuator over the cycle (trapezoidal rule in time)", "N m or N"),
+    "power_peak": ("largest |power| of each actuator", "W"),
+    "moving_mass": ("mass of the moving bodies (motors on the frame excluded)", "kg"),
+    "cycle_time": ("duration of the motion", "s"),
+    "mechanism, unit, path, profile, samples": ("the design's mechanism and length unit, the options", ""),
+    "gravity": ("gravity in the plane (gx, gy)", "m/s^2"),
+    "mass_source": ("`law`, `wu2008-table2` (the gantry's default), `+user` with --masses bodies", ""),
+    "limits": ("`max_speed`, `max_torque`, `rms_limit`: the limits given (null: none)", "rad/s or m/s; N m or N"),
+    "within_limits": ("every peak rate, peak effort and RMS effort within the limits given", ""),
+}
+BODIES_JSON = {
+    "source, gravity_m_s2, actuator_inertia, moving_mass_kg": (
+        "the model: where the masses come from, its gravity, the rotors' reflected inertia I_r N^2 per "
+        "actuator, the moving mass", "-, m/s^2, kg m^2 or kg, kg"),
+    "law": ("the mass law: `material`, `density_kg_m3`, `outer_m`, `wall_m` (square tube), `motor_kg`, "
+            "`payload_kg`, `carriage_kg`, `rotor_inertia_kg_m2`, `gear_ratio` (null for Wu's Table 2)", ""),
+    "bodies": ("one object per body: `name`, `kind` (link, cylinder, rod, carriage, motor, payload, "
+               "counterweight), `mass_kg`, `com_m` (centre of mass in the body frame: origin at its first "
+               "joint, x along the body), `com_along` (the same as a fraction of `length_m`), "
+               "`inertia_com_kg_m2` (about the centre of mass, normal to the plane), `length_m`, `joints` "
+               "(the joints it connects)", "kg, m, kg m^2"),
+}
 DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points", "path_gap")
 DESIGN_RUN = {
     "design": ("the sizing problem: `mechanism`, `task` (`kind`, `unit`, `label`, and `vertices`, "
@@ -713,6 +753,27 @@ def _design() -> str:
     return "\n".join(out)
 
 
+def _motion() -> str:
+    def rows(d):
+        return [(", ".join(f"`{k.strip()}`" for k in key.split(",")), m, _unit(u)) for key, (m, u) in d.items()]
+    return "\n".join([
+        "## `mechopt motion DESIGN_DIR`\n",
+        "Runs the chosen design of a `mechopt design` folder along a timed motion (`--path`: the "
+        "task's pick-and-place cycle, a segment or a CSV polyline; `--profile`, `--cycle-time`) with "
+        "its mass model (`--masses`, default the stated 20 x 20 x 2 mm aluminium tube law; Wu 2008 "
+        "Table 2 for the gantry) and writes into `--out` (default the design's folder) `motion.csv`, "
+        "`motion.json`, `bodies.json` and `motion.png` (effort and rate of each actuator over time "
+        "with the limits given drawn). Actuator 1 is the leg of `q1` (the left crank of a five-bar).\n",
+        "`motion.csv`:\n", _table(["column", "meaning", "unit"], rows(MOTION_CSV)),
+        "`motion.json` (per-actuator values are lists of two):\n",
+        _table(["key", "meaning", "unit"], rows(MOTION_JSON)),
+        "`bodies.json`:\n", _table(["key", "meaning", "unit"], rows(BODIES_JSON)),
+        "Keys inside `bodies`, `law` and `limits`: `name`, `kind`, `mass_kg`, `com_m`, `com_along`, "
+        "`inertia_com_kg_m2`, `length_m`, `joints`, `material`, `density_kg_m3`, `outer_m`, `wall_m`, "
+        "`motor_kg`, `payload_kg`, `carriage_kg`, `rotor_inertia_kg_m2`, `gear_ratio`, `max_speed`, "
+        "`max_torque`, `rms_limit`.\n"])
+
+
 def _export() -> str:
     from mechopt.export import FORMATS
 
@@ -846,8 +907,8 @@ def _reproduce() -> str:
 
 def render() -> str:
     problems = _problem_columns()
-    parts = [_conventions(), _evaluate(), _optimize(problems), _sweep(problems), _design(), _export(), _accuracy(),
-             _atlas(),
+    parts = [_conventions(), _evaluate(), _optimize(problems), _sweep(problems), _design(), _motion(), _export(),
+             _accuracy(), _atlas(),
              _reproduce()]
     text = "\n".join(p.rstrip("\n") + "\n" for p in parts)
     while "\n\n\n" in text:

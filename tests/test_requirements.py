@@ -71,7 +71,7 @@ def test_every_member_declares_the_protocol():
     names = [m.name for m in members if isinstance(m, Requirement)]
     assert len(names) == len(set(names)) and names[:2] == ["reach", "singular"]
     assert set(req_package.objectives()) == {"size", "footprint", "min-lci", "mean-lci", "speed", "force", "torque",
-                                             "error", "clearance"}
+                                             "error", "clearance", "peak-torque", "rms-torque", "moving-mass"}
     options = req_package.options()  # raises on an option declared twice
     assert "min_lci" in options and "singularity_margin" in options
     spec = mechanism_package.design_spec("five-bar")
@@ -98,7 +98,8 @@ def test_objective_bounds_give_a_hypervolume(mechanism):
     from mechopt.problems.design import DesignProblem
 
     task = Task.rect(40, 30, (0, 120))
-    req = Requirements(actuator_speed=2.0, actuator_torque=3.0, payload=5.0, error_model={"encoder_counts": 16384})
+    req = Requirements(actuator_speed=2.0, actuator_torque=3.0, payload=5.0, error_model={"encoder_counts": 16384},
+                       cycle_time=0.5)
     p = DesignProblem(mechanism, task, req, tuple(req_package.objectives()), max_length=300)
     for ob in p.objectives:
         lo, hi = ob.bounds

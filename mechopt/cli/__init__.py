@@ -1,4 +1,4 @@
-"""The ``mechopt`` command: evaluate, reproduce, report, problems, optimize, sweep, design, export, accuracy, atlas.
+"""The ``mechopt`` command: evaluate, reproduce, report, problems, optimize, sweep, design, motion, export, accuracy, atlas.
 
 Each command is one module of this package with the same interface: ``NAME`` (the
 command), ``add_parser(subparsers)`` (registers it and its options) and ``run(args) ->
@@ -24,11 +24,11 @@ import os
 import sys
 
 from mechopt import __version__
-from mechopt.cli import accuracy, atlas, design, evaluate, export, optimize, problems, report, reproduce, sweep
+from mechopt.cli import accuracy, atlas, design, evaluate, export, motion, optimize, problems, report, reproduce, sweep
 from mechopt.cli._common import Parser, UsageError
 
 #: the command modules, in the order of ``mechopt --help``
-COMMANDS = (evaluate, reproduce, report, problems, optimize, sweep, design, export, accuracy, atlas)
+COMMANDS = (evaluate, reproduce, report, problems, optimize, sweep, design, motion, export, accuracy, atlas)
 
 EXIT_USAGE = 2
 #: exit statuses of a run stopped by SIGINT and SIGTERM (128 + signal number)

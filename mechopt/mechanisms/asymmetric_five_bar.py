@@ -132,6 +132,15 @@ class AsymmetricFiveBar(PlanarMechanism):
         """``(b1x, b1y, b2x, b2y, reachable)`` of the working mode; NaN where unreachable."""
         return _fb.legs_elbows(x, y, self.r3, self._legs())
 
+    def bodies(self):
+        """The declared bodies (:func:`~mechopt.mechanisms.five_bar.model.legs_bodies`)."""
+        return _fb.legs_bodies(self.r3, self._legs())
+
+    def body_frames(self, x, y, xd, yd, xdd, ydd):
+        """``(q, qd, qdd, frames)`` along a motion of ``P``
+        (:func:`~mechopt.mechanisms.five_bar.model.legs_body_frames`)."""
+        return _fb.legs_body_frames(x, y, xd, yd, xdd, ydd, self.r3, self._legs())
+
     def closure(self, x, y):
         """``A p_dot = B theta_dot``: ``a_i = P - B_i``, ``B_ii = (B_i - A_i) x a_i``."""
         return _fb.legs_closure(x, y, self.r3, self._legs())

@@ -340,6 +340,49 @@ class Bipod(PlanarMechanism):
         """``((q1_min, q1_max), (q2_min, q2_max))`` [L]."""
         return (self.q1_min, self.q1_max), (self.q2_min, self.q2_max)
 
+    # --- bodies (the mass model and the dynamics) ------------------------------
+    def bodies(self):
+        """The declared bodies (:class:`mechopt.core.rigid_bodies.BodySpec`): per strut ``i`` a
+        motor on ``A_i`` (on the frame), the cylinder pivoting about ``A_i`` (a tube as
+        long as the retracted strut, ``q_i_min``) and the rod sliding in it (a tube as
+        long as the stroke, ``q_i_max - q_i_min``, from ``P`` back into the cylinder,
+        joined to it at the prismatic joint ``C_i``); the payload at ``P``."""
+        from mechopt.core.rigid_bodies import BodySpec
+
+        out = []
+        for i, (lo, hi) in enumerate(self.joint_limits, 1):
+            out += [BodySpec(f"motor{i}", "motor", 0.0, (f"A{i}",), leg=i),
+                    BodySpec(f"cylinder{i}", "cylinder", lo, (f"A{i}", f"C{i}"), leg=i),
+                    BodySpec(f"rod{i}", "rod", hi - lo, ("P", f"C{i}"), leg=i)]
+        return tuple(out + [BodySpec("payload", "payload", 0.0, ("P",))])
+
+    def body_frames(self, x, y, xd, yd, xdd, ydd):
+        """``(q, qd, qdd, frames)`` of :meth:`bodies` along a motion of ``P``.
+
+        With ``u_i = (P - A_i) / q_i`` the closure ``q_i^2 = |P - A_i|^2`` differentiated
+        once and twice gives ``q_dot_i = u_i . P_dot`` and ``q_ddot_i = u_i . P_ddot +
+        (|P_dot|^2 - q_dot_i^2) / q_i``. The cylinder's frame has its origin at ``A_i``,
+        the rod's at ``P``, both with the x axis along ``P - A_i``; NaN where unreachable."""
+        from mechopt.core import rigid_bodies as _b
+
+        x, y = as_points(x, y)
+        q1, q2, _ = self.ik(x, y)
+        P = _b.stack2(x, y)
+        Pd, Pdd = _b.stack2(xd, yd), _b.stack2(xdd, ydd)
+        zero = np.zeros(P.shape)
+        q, qd, qdd, frames = [], [], [], {}
+        for i, (A, qi) in enumerate(zip(self.base_joints, (q1, q2)), 1):
+            r = P - np.asarray(A)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                w = np.sum(r * Pd, -1) / qi
+                al = np.sum(r * Pdd, -1) / qi + (np.sum(Pd * Pd, -1) - w * w) / qi
+            frames[f"motor{i}"] = _b.fixed_frame(A, x.shape)
+            frames[f"cylinder{i}"] = (np.broadcast_to(np.asarray(A, float), P.shape), zero, zero, r, Pd, Pdd)
+            frames[f"rod{i}"] = (P, Pd, Pdd, r, Pd, Pdd)
+            q.append(qi), qd.append(w), qdd.append(al)
+        frames["payload"] = _b.translating_frame(P, Pd, Pdd)
+        return np.stack(q, -1), np.stack(qd, -1), np.stack(qdd, -1), frames
+
     # --- kinematics ------------------------------------------------------------
     def strut_lengths(self, x, y):
         """``(q1, q2)`` of Stan eq. (6) at any point, ignoring strokes and branch."""

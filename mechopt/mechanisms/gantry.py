@@ -442,6 +442,58 @@ class Gantry(TwoSliderMechanism):
         """``(x_B1, x_B2) = (-d1, d1)``: the guides of the two-slider topology."""
         return self.guides
 
+    # --- bodies (the mass model and the dynamics) ------------------------------
+    def bodies(self):
+        """The declared bodies of Wu's machine (sec. 5, Table 2; the table of
+        :mod:`mechopt.mechanisms.gantry_dynamics`): carriages on ``B_1``, ``B_2``; links
+        ``A1B1``, ``A2B2`` and the parallelogram's ``A3B3`` (``B_3 = B_1 + (0, l2)``,
+        ``A_3 = A_1 + (0, l2)``); counterweights hanging at ``-q_i``; the platform."""
+        from mechopt.core.rigid_bodies import BodySpec
+
+        return (BodySpec("carriage1", "carriage", 0.0, ("B1",), leg=1),
+                BodySpec("carriage2", "carriage", 0.0, ("B2",), leg=2),
+                BodySpec("A1B1", "link", self.l, ("B1", "A1"), leg=1),
+                BodySpec("A2B2", "link", self.l, ("B2", "A2"), leg=2),
+                BodySpec("A3B3", "link", self.l, ("B3", "A3"), leg=1),
+                BodySpec("counterweight1", "counterweight", 0.0, ("B1",), leg=1),
+                BodySpec("counterweight2", "counterweight", 0.0, ("B2",), leg=2),
+                BodySpec("platform", "payload", 0.0, ("A1", "A2", "A3")))
+
+    def body_frames(self, x, y, xd, yd, xdd, ydd):
+        """``(q, qd, qdd, frames)`` of :meth:`bodies` along a motion of ``O' = (x, y)``
+        (:meth:`~mechopt.mechanisms.sliders.TwoSliderMechanism.slider_motion`)."""
+        from mechopt.core import rigid_bodies as _b
+
+        q, qd, qdd, S, A = self.slider_motion(x, y, xd, yd, xdd, ydd)
+        up = np.array([0.0, self.l2])
+        flip = np.array([1.0, -1.0])
+        frames = {}
+        for i, Si in enumerate(S, 1):
+            frames[f"carriage{i}"] = _b.translating_frame(*Si)
+            frames[f"A{i}B{i}"] = _b.segment_frame(Si, A)
+            frames[f"counterweight{i}"] = _b.translating_frame(*(v * flip for v in Si))
+        frames["A3B3"] = _b.segment_frame((S[0][0] + up, S[0][1], S[0][2]), (A[0] + up, A[1], A[2]))
+        frames["platform"] = _b.translating_frame(A[0] + np.array([0.0, self.l2 / 2.0]), A[1], A[2])
+        return q, qd, qdd, frames
+
+    def default_masses(self, length_unit: float = 1.0) -> dict:
+        """Wu's Table 2 (:meth:`~mechopt.mechanisms.gantry_dynamics.GantryInertia.wu2008_scaled`:
+        exactly Table 2 for the Table 1 machine, carried over to this link length
+        otherwise) as ``{body: (mass [kg], com along the link from B [m], central inertia
+        [kg m^2])}``, the lengths in metres with ``length_unit`` [m/L]; and the gravity
+        [m/s^2] of the table under the key ``"g"``."""
+        from mechopt.mechanisms.gantry_dynamics import GantryInertia
+
+        l = self.l * length_unit
+        p = GantryInertia.wu2008_scaled(l, _wu2008_link_length_m())
+        s = l / 2.0  # Table 2 prints no offset: mid-link (the module's stated assumption)
+        link = lambda m, I: (m, s, I - m * s * s)  # noqa: E731  (I about B -> about the centre)
+        return {"carriage1": (p.m11, 0.0, 0.0), "carriage2": (p.m21, 0.0, 0.0),
+                "A1B1": link(p.m12, p.I12), "A2B2": link(p.m22, p.I22),
+                "A3B3": link(p.m4, p.I12 if p.I4 is None else p.I4),
+                "counterweight1": (p.m13, 0.0, 0.0), "counterweight2": (p.m23, 0.0, 0.0),
+                "platform": (p.mN, 0.0, 0.0), "g": p.g}
+
     def _segment_integral(self, u0, u1) -> float:
         """The circular-segment area of the workspace's column integrals with the C
         library's ``asin`` (``math``): the gantry's areas keep the digits they had

@@ -68,6 +68,7 @@ import math
 
 import numpy as np
 
+from mechopt.core import rigid_bodies as _b
 from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
@@ -242,6 +243,53 @@ class TwoSliderMechanism(PlanarMechanism):
         nan = np.nan
         return (np.where(ok, t1, nan), np.where(ok, t2, nan), np.where(ok, c1, nan),
                 np.where(ok, c2, nan), ok)
+
+    # --- bodies (the mass model and the dynamics) ----------------------------------
+    def bodies(self):
+        """The declared bodies (:class:`mechopt.core.rigid_bodies.BodySpec`): per leg the slider
+        carriage on ``S_i`` and the link ``S_i P`` (a tube of the mass law); the payload
+        at ``P``. The motors stay on the frame (they drive the carriages)."""
+        out = []
+        for i in (1, 2):
+            out += [_b.BodySpec(f"carriage{i}", "carriage", 0.0, (f"S{i}",), leg=i),
+                    _b.BodySpec(f"link{i}", "link", self._L, (f"S{i}", "P"), leg=i)]
+        return tuple(out + [_b.BodySpec("payload", "payload", 0.0, ("P",))])
+
+    def slider_motion(self, x, y, xd, yd, xdd, ydd):
+        """``(q, qd, qdd, S, A)``: slider positions with their exact derivatives, the
+        sliders ``S_i = (g_i, q_i)`` and the link joint ``A = P - (0, e)`` as
+        ``(position, velocity, acceleration)`` arrays of shape ``(..., 2)``.
+
+        The closure ``|A - S_i|^2 = L^2`` with ``d = A - S_i = (x - g_i, c_i)``
+        differentiated once and twice gives ``q_dot_i = y_dot + (x - g_i) x_dot / c_i``
+        (Wu eq. 4) and ``q_ddot_i = y_ddot + ((x - g_i) x_ddot + x_dot^2 +
+        (y_dot - q_dot_i)^2) / c_i``; NaN where unreachable."""
+        x, y = as_points(x, y)
+        q1, q2, ok = self.ik(x, y)
+        xd, yd, xdd, ydd = np.broadcast_arrays(*(np.asarray(v, float) for v in (xd, yd, xdd, ydd)))
+        q, qd, qdd, S = [], [], [], []
+        for g, qi in zip(self._g, (q1, q2)):
+            c = y - self._e - qi
+            with np.errstate(divide="ignore", invalid="ignore"):
+                w = yd + (x - g) * xd / c
+                al = ydd + ((x - g) * xdd + xd * xd + (yd - w) ** 2) / c
+            z = np.zeros(x.shape)
+            S.append((_b.stack2(np.full(x.shape, g), qi), _b.stack2(z, w), _b.stack2(z, al)))
+            q.append(qi), qd.append(w), qdd.append(al)
+        A = (_b.stack2(x, y - self._e), _b.stack2(xd, yd), _b.stack2(xdd, ydd))
+        return np.stack(q, -1), np.stack(qd, -1), np.stack(qdd, -1), S, A
+
+    def body_frames(self, x, y, xd, yd, xdd, ydd):
+        """``(q, qd, qdd, frames)`` of :meth:`bodies` along a motion of ``P``
+        (:meth:`slider_motion`; :mod:`mechopt.core.rigid_bodies` for the frames)."""
+        q, qd, qdd, S, A = self.slider_motion(x, y, xd, yd, xdd, ydd)
+        frames = {}
+        for i, Si in enumerate(S, 1):
+            frames[f"carriage{i}"] = _b.translating_frame(*Si)
+            frames[f"link{i}"] = _b.segment_frame(Si, A)
+        P = (A[0] + np.array([0.0, self._e]), A[1], A[2])
+        frames["payload"] = _b.translating_frame(*P)
+        return q, qd, qdd, frames
 
     def link_angles(self, x, y):
         """``(theta_1, theta_2)`` [rad] of the links from the vertical (Wu eq. 1), in

@@ -23,6 +23,8 @@ line read the registry alone: a new requirement is one new module added to
 - ``size``: objectives size, footprint
 - ``collisions``: requirements clearance (``--min-clearance``), joint_angle (``--min-joint-angle``),
   keep_out (``--keep-out``), base (``--min-base``, ``--motor-diameter``); objective clearance
+- ``motion``: requirements peak_torque (``--max-torque``, ``--cycle-time``), rms_torque
+  (``--max-rms-torque``); objectives peak-torque, rms-torque, moving-mass
 
 :class:`Requirements` holds the values of every declared option (a requirement is
 off while its first option is None).
@@ -38,7 +40,7 @@ __all__ = ["MODULES", "Requirements", "registry", "requirements", "objectives", 
 #: the member modules, in the order of the constraint columns (``g_<name>``, ``margin_<name>``)
 MODULES = tuple(f"mechopt.requirements.{m}" for m in (
     "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque", "accuracy",
-    "size", "collisions"))
+    "size", "collisions", "motion"))
 
 
 def registry() -> tuple:

@@ -21,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechopt.mechanisms.five_bar import lci as _fast_lci
+from mechopt.core import rigid_bodies as _b
 from mechopt.core import validation as _v
 from mechopt.core.bodies import GROUND, Body, Shapes
 from mechopt.core.design_spec import DesignSpec
@@ -30,7 +31,8 @@ from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as
 
 __all__ = ["FiveBar", "FiveBarDesignSpec", "FiveBarErrorSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows",
            "legs_closure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk",
-           "legs_assembly_of", "legs_tree", "legs_tree_configuration"]
+           "legs_assembly_of", "legs_tree", "legs_tree_configuration",
+           "legs_bodies", "legs_body_frames"]
 
 MODES = ("+-", "-+", "++", "--")
 _SIGN = {"+": 1.0, "-": -1.0}
@@ -176,6 +178,58 @@ def legs_assembly_of(x, y, r3, legs):
     x, y = as_points(x, y)
     cross = (b2x - b1x) * (y - b1y) - (b2y - b1y) * (x - b1x)
     return np.where(cross >= 0, "up", "down")
+
+
+def legs_bodies(r3, legs):
+    """The bodies of a 5R (:class:`mechopt.core.rigid_bodies.BodySpec`): per leg ``i`` a motor
+    on the base joint ``A_i`` (fixed), the crank ``A_i B_i`` and the distal link
+    ``B_i P`` (tubes of the mass law); the payload at ``P``."""
+    out = []
+    for i, (a, c, _) in enumerate(legs, 1):
+        out += [_b.BodySpec(f"motor{i}", "motor", 0.0, (f"A{i}",), leg=i),
+                _b.BodySpec(f"crank{i}", "link", a, (f"A{i}", f"B{i}"), leg=i),
+                _b.BodySpec(f"distal{i}", "link", c, (f"B{i}", "P"), leg=i)]
+    return tuple(out + [_b.BodySpec("payload", "payload", 0.0, ("P",))])
+
+
+def legs_body_frames(x, y, xd, yd, xdd, ydd, r3, legs):
+    """``(q, qd, qdd, frames)`` of :func:`legs_bodies` along a motion of ``P`` (module
+    :mod:`mechopt.core.rigid_bodies` for the frames).
+
+    The crank tip ``B = A + a n``, ``n = (cos theta, sin theta)``, ``t = (-sin, cos)``
+    moves with ``B_dot = a theta_dot t`` and ``B_ddot = a theta_ddot t - a theta_dot^2 n``;
+    the closure ``|P - B|^2 = c^2`` differentiated once and twice, with ``d = P - B``::
+
+        theta_dot  = d . P_dot / (a d . t),
+        theta_ddot = (d . P_ddot + a theta_dot^2 d . n + |P_dot - B_dot|^2) / (a d . t)
+
+    (``a d . t = B_ii`` of :func:`legs_closure`). Exact; NaN where unreachable."""
+    x, y = as_points(x, y)
+    P = _b.stack2(x, y)
+    Pd, Pdd = _b.stack2(xd, yd), _b.stack2(xdd, ydd)
+    th1, th2, _ = legs_ik(x, y, r3, legs)
+    q, qd, qdd, frames = [], [], [], {}
+    shape = x.shape
+    for i, ((a, _, _), th, ax) in enumerate(zip(legs, (th1, th2), (-r3, r3)), 1):
+        n = _b.stack2(np.cos(th), np.sin(th))
+        t = _b.stack2(-np.sin(th), np.cos(th))
+        A = np.array([ax, 0.0])
+        B = A + a * n
+        d = P - B
+        dt = a * np.sum(d * t, -1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            w = np.sum(d * Pd, -1) / dt
+            Bd = (a * w)[..., None] * t
+            rel = Pd - Bd
+            al = (np.sum(d * Pdd, -1) + a * w * w * np.sum(d * n, -1) + np.sum(rel * rel, -1)) / dt
+        Bdd = (a * al)[..., None] * t - (a * w * w)[..., None] * n
+        zero = np.zeros(shape + (2,))
+        frames[f"motor{i}"] = _b.fixed_frame(A, shape)
+        frames[f"crank{i}"] = _b.segment_frame((np.broadcast_to(A, B.shape), zero, zero), (B, Bd, Bdd))
+        frames[f"distal{i}"] = _b.segment_frame((B, Bd, Bdd), (P, Pd, Pdd))
+        q.append(th), qd.append(w), qdd.append(al)
+    frames["payload"] = _b.translating_frame(P, Pd, Pdd)
+    return np.stack(q, -1), np.stack(qd, -1), np.stack(qdd, -1), frames
 
 
 def legs_tree(name, r3, legs) -> KinematicTree:
@@ -426,6 +480,15 @@ class FiveBar(PlanarMechanism):
         Returns ``(b1x, b1y, b2x, b2y, reachable)``; NaN where unreachable.
         """
         return legs_elbows(x, y, self.r3, self._legs())
+
+    # --- bodies (the mass model and the dynamics) ---------------------------
+    def bodies(self):
+        """The declared bodies (:func:`legs_bodies`): motors, cranks, distal links, payload."""
+        return legs_bodies(self.r3, self._legs())
+
+    def body_frames(self, x, y, xd, yd, xdd, ydd):
+        """``(q, qd, qdd, frames)`` along a motion of ``P`` (:func:`legs_body_frames`)."""
+        return legs_body_frames(x, y, xd, yd, xdd, ydd, self.r3, self._legs())
 
     # --- protocol ------------------------------------------------------------
     def closure(self, x, y):
