@@ -67,6 +67,15 @@ class Objective:
 HV_REFERENCE = 1.1
 
 
+def _plain(v):
+    """An option's value as plain JSON data (tuples as lists, numpy scalars as numbers)."""
+    if isinstance(v, np.generic):
+        return v.item()
+    if isinstance(v, (tuple, list, np.ndarray)):
+        return [_plain(u) for u in v]
+    return v
+
+
 def _evaluate_chunk(args):
     problem, X = args
     return problem.evaluate_designs(X)
@@ -79,8 +88,13 @@ class MechoptProblem(Problem):
     ``var_names``, ``objectives`` (tuple of :class:`Objective`, each with its
     ``bounds``), ``constr_names``, ``default_algorithm``, ``default_pop``,
     ``default_gen`` (the default run, chosen by measurement against a brute-force
-    front: ``benchmarks/bench_fronts.py``), and ``settings`` (the constructor
-    options that change the numbers).
+    front: ``benchmarks/bench_fronts.py``), and ``options`` (the names of the
+    constructor's options, each kept under an attribute of the same name).
+
+    :attr:`settings` holds every option's value (those of :attr:`options`, and what a
+    subclass assigns to ``settings`` itself): it is written to ``run.json`` and the
+    run folder's manifest key (a folder of a run with other options is refused) and
+    shown by ``repr``.
     """
 
     name = "base"
@@ -91,9 +105,9 @@ class MechoptProblem(Problem):
     default_algorithm = "nsga2"
     default_pop = 40
     default_gen = 30
-    #: options that change the numbers (e.g. the quadrature of the Liu means);
-    #: written to ``run.json`` so that a front can be recomputed elsewhere
-    settings: dict = {}
+    #: the constructor's options (e.g. the quadrature of the Liu means), each stored under
+    #: an attribute of its name; their values are the :attr:`settings`
+    options: tuple[str, ...] = ()
 
     #: why the front is a single design, when it is (shown by ``mechopt problems``
     #: and written to ``run.json``); None for a problem with a real trade-off
@@ -107,6 +121,20 @@ class MechoptProblem(Problem):
         self.n_jobs = 1
         self.client = None
         self.on_chunk = None
+
+    @property
+    def settings(self) -> dict:
+        """Every option's value, ``{name: plain value}`` (numbers, strings, booleans,
+        lists): those named by :attr:`options`, then any a subclass assigned to
+        ``settings``. Written to ``run.json`` and the manifest key, so that a front can
+        be recomputed elsewhere and a run folder is never reused by another problem."""
+        out = {k: _plain(getattr(self, k)) for k in self.options}
+        out.update(self.__dict__.get("_assigned_settings", {}))
+        return out
+
+    @settings.setter
+    def settings(self, value: dict):
+        self.__dict__["_assigned_settings"] = dict(value)
 
     def __repr__(self):
         opts = ", ".join(f"{k}={v!r}" for k, v in self.settings.items())
