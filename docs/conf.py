@@ -34,6 +34,12 @@ autodoc_typehints = "none"      # numpydoc's sections carry the types; signature
 autodoc_inherit_docstrings = True
 autoclass_content = "class"
 
+# --- intersphinx -------------------------------------------------------------
+# Not enabled: links to numpy, pandas, pymoo and matplotlib need their objects.inv
+# inventories, which intersphinx downloads; the docs build runs offline in CI, and no
+# inventory of them is shipped in docs/ yet (add them as docs/_inv/<name>.inv and set
+# intersphinx_mapping = {"numpy": ("https://numpy.org/doc/stable/", "_inv/numpy.inv"), ...}).
+
 # --- numpydoc ----------------------------------------------------------------
 numpydoc_show_class_members = False   # autodoc's :members: lists them once
 numpydoc_class_members_toctree = False

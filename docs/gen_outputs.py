@@ -189,7 +189,14 @@ HISTORY = {
 RUN_JSON = {
     "problem": ("registry name of the problem", ""),
     "summary": ("the problem's one-line summary", ""),
-    "settings": ("the problem's options that change the numbers (e.g. `quadrature`)", ""),
+    "settings": ("every option of the problem, defaults filled in (a run folder of a run with other "
+                 "settings is refused): the Liu problems' `region` and `quadrature`, `stan2008-biglide`'s "
+                 "`l1`, `q_min`, `q_max`, `wu2008`'s `b`, `h`, `le2013-gamma`'s `tied`, the design "
+                 "problem's task and requirements", ""),
+    "region": ("setting: the Liu 2006 optimum region (sec. 3.1)", ""),
+    "tied": ("setting: the half base follows Le eq. (24) (false: it is a variable)", ""),
+    "q_min": ("setting: lower stroke limit of both Biglide sliders", "L"),
+    "q_max": ("setting: upper stroke limit of both Biglide sliders", "L"),
     "single_optimum": ("why the front is a single design, or null", ""),
     "algorithm": ("`name`, `pop` and `gen` (the generation limit, null if the termination sets none)", ""),
     "name": ("algorithm name (`ga`, `de`, `nsga2`, `nsga2-mnn`, `nsga3` or a class name)", ""),

@@ -7,7 +7,11 @@ from __future__ import annotations
 
 import importlib
 
-__all__ = ["get", "available", "names"]
+__all__ = ["get", "available", "names", "PYMOO_KEYWORDS"]
+
+#: keywords of :class:`pymoo.core.problem.Problem` that every problem passes on (they
+#: change how it is evaluated, not its numbers, so they are not among its settings)
+PYMOO_KEYWORDS = ("callback", "elementwise_runner", "elementwise")
 
 # name -> (module, class name, constructor kwargs)
 _REGISTRY = {
@@ -36,7 +40,10 @@ def get(name: str, **options):
     """A new instance of the registered Problem ``name``.
 
     ``options`` are passed to its constructor (e.g. ``quadrature="area"`` for the
-    Liu problems); an option the problem does not take is a ValueError.
+    Liu problems), and pymoo's own :data:`PYMOO_KEYWORDS` to
+    :class:`pymoo.core.problem.Problem` (e.g. ``elementwise_runner=
+    StarmapParallelization(pool.starmap)``); an option the problem does not take is a
+    ValueError.
     """
     import inspect
 
@@ -49,7 +56,7 @@ def get(name: str, **options):
     params = inspect.signature(klass.__init__).parameters.values()
     accepted = {p.name for p in params if p.kind is p.POSITIONAL_OR_KEYWORD} - {"self"} - set(kw)
     for key in options:
-        if key not in accepted:
+        if key not in accepted and key not in PYMOO_KEYWORDS:
             takes = ", ".join(sorted(accepted)) or "none"
             raise ValueError(f"problem {name!r} takes no option {key!r} (its options: {takes})")
     return klass(**kw, **options)

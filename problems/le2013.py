@@ -188,6 +188,7 @@ class LeSquareGamma(MechoptProblem):
     default_algorithm = "nsga2"
     default_pop = 60
     default_gen = 30
+    options = ("tied",)
 
     def __init__(self, tied: bool = True, **kwargs):
         self.tied = bool(tied)

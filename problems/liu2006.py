@@ -154,13 +154,13 @@ class LiuRegion(MechoptProblem):
     default_algorithm = "nsga2"
     default_pop = 200
     default_gen = 100
+    options = ("region", "quadrature")
 
     def __init__(self, region: str = "w-gci", quadrature: str = "polar", **kwargs):
         from mechopt.core import validation as _v
 
         self.region = _v.choice("region", region, tuple(REGIONS))
         self.quadrature = _v.choice("quadrature", quadrature, QUADRATURES)
-        self.settings = {"quadrature": self.quadrature}
         self.name = f"liu2006-{region}"
         self.summary = "Liu 2006 region " + ", ".join(f"{q} {op} {t}" for q, op, t in REGIONS[region]) \
             + f"; max (r_MIC, GCI) over r1 + r2 + r3 = 3; {self.quadrature} means"
@@ -198,12 +198,12 @@ class LiuManyObjective(MechoptProblem):
     default_algorithm = "nsga2-mnn"
     default_pop = 300
     default_gen = 40
+    options = ("quadrature",)
 
     def __init__(self, quadrature: str = "polar", **kwargs):
         from mechopt.core import validation as _v
 
         self.quadrature = _v.choice("quadrature", quadrature, QUADRATURES)
-        self.settings = {"quadrature": self.quadrature}
         self.summary = f"{self._summary}; {self.quadrature} means"
         super().__init__(*_bounds(), **kwargs)
 

@@ -7,7 +7,10 @@ scale-free: W scales as b^2 and T not at all); the workspace is the half ``y > 0
 
 Biglide (sec. 5.2): design variable ``L2`` in ``(1, 1.2)``. The paper gives neither
 the guide half-distance ``L1`` nor the slider strokes; we use ``L1 = 1`` and
-strokes ``q in [0, 1]`` (constructor arguments), mode ``"--"``.
+strokes ``q in [0, 1]`` (constructor arguments), mode ``"--"``. The links must be
+longer than ``L1`` (:class:`~mechopt.mechanisms.biglide.Biglide`), so with ``L1 > 1``
+the range is Stan's scaled by ``L1``: ``L2 in (L1, 1.2 L1)``
+(:func:`biglide_l2_bounds`).
 
 Objectives (both maximised): ``W`` (exact workspace area, Stan eq. 8) and ``T``
 (area mean of the TQI of Stan eq. 9 over that workspace).
@@ -29,7 +32,8 @@ from mechopt.mechanisms.bipod import Bipod, bipod_tqi_integral, bipod_workspace_
 
 from mechopt.run.problem import MechoptProblem, Objective
 
-__all__ = ["StanBipod", "StanBiglide", "BIPOD_BOUNDS", "BIGLIDE_BOUNDS", "biglide_indices"]
+__all__ = ["StanBipod", "StanBiglide", "BIPOD_BOUNDS", "BIGLIDE_BOUNDS", "biglide_indices",
+           "biglide_l2_bounds"]
 
 #: Stan eq. (12)
 BIPOD_BOUNDS = (0.52, 1.35)
@@ -37,6 +41,26 @@ BIPOD_BOUNDS = (0.52, 1.35)
 Q_MAX_OVER_Q_MIN = 1.6
 #: Stan sec. 5.2
 BIGLIDE_BOUNDS = (1.0, 1.2)
+
+
+def biglide_l2_bounds(l1: float) -> tuple[float, float]:
+    """The range of ``L2`` [L] for guides ``2 L1`` apart: Stan's ``(1, 1.2)`` (sec. 5.2)
+    when ``L1 <= 1``; ``(L1, 1.2 L1)`` for a larger ``L1`` (Stan's range scaled by
+    ``L1``), since a Biglide needs ``L2 > L1``. The lower end is open (``L2 = L1``
+    leaves no workspace): the returned lower bound is ``1e-6 max(1, L1)`` above it.
+
+    Parameters
+    ----------
+    l1 : float
+        Half the distance of the guides [L], > 0.
+
+    Returns
+    -------
+    tuple of float
+        ``(lower, upper)`` bounds of ``L2`` [L].
+    """
+    s = max(1.0, float(l1))
+    return BIGLIDE_BOUNDS[0] * s + 1e-6 * s, BIGLIDE_BOUNDS[1] * s
 
 
 class _StanProblem(MechoptProblem):
@@ -127,13 +151,21 @@ class StanBiglide(_StanProblem):
     summary = "Stan 2008 Biglide: max workspace W and global TQI T over L2 in (1, 1.2), L1 = 1, strokes [0, 1]"
     var_names = ("L2",)
     gtqi_method = "gauss"
+    #: half the guide distance L1 and the strokes [q_min, q_max] of both sliders [L]
+    options = ("l1", "q_min", "q_max")
     single_optimum = ("with L1 = 1 and strokes [0, 1] (the paper states neither) W and T both grow "
                       "with L2, so the front is the upper bound L2 = 1.2")
 
     def __init__(self, l1: float = 1.0, q_min: float = 0.0, q_max: float = 1.0, **kwargs):
-        self.l1, self.q_min, self.q_max = float(l1), float(q_min), float(q_max)
-        # L2 = L1 exactly leaves no workspace: keep the open interval open
-        super().__init__([BIGLIDE_BOUNDS[0] + 1e-6], [BIGLIDE_BOUNDS[1]], **kwargs)
+        from mechopt.core import validation as _v
+
+        self.l1 = _v.positive_length("l1", l1)
+        self.q_min, self.q_max = _v.finite_number("q_min", q_min), _v.finite_number("q_max", q_max)
+        lo, hi = biglide_l2_bounds(self.l1)
+        self.summary = (f"Stan 2008 Biglide: max workspace W and global TQI T over L2 in "
+                        f"({lo - 1e-6 * max(1.0, self.l1):g}, {hi:g}), L1 = {self.l1:g}, "
+                        f"strokes [{self.q_min:g}, {self.q_max:g}]")
+        super().__init__([lo], [hi], **kwargs)
 
     def _mechanism(self, l2):
         return Biglide(self.l1, l2, self.q_min, self.q_max)

@@ -40,12 +40,18 @@ class WuGantry(MechoptProblem):
     default_algorithm = "nsga2"
     default_pop = 20
     default_gen = 20
+    #: the task rectangle b x h [mm]
+    options = ("b", "h")
     single_optimum = ("k_av and l both improve as theta_1S falls (Wu sec. 4.3), so the front is "
                       "the lower bound; the paper trades them against the singularity at "
                       "theta_1S = 0 and fixes 10 deg (see wu2008-dynamic for a real trade-off)")
 
     def __init__(self, b: float = 500.0, h: float = 400.0, **kwargs):
-        self.b, self.h = float(b), float(h)
+        from mechopt.core import validation as _v
+
+        self.b, self.h = _v.positive_length("b", b), _v.positive_length("h", h)
+        if (self.b, self.h) != (500.0, 400.0):
+            self.summary = self.summary.replace("task 500 x 400 mm", f"task {self.b:g} x {self.h:g} mm")
         super().__init__([THETA_1S_BOUNDS_DEG[0]], [THETA_1S_BOUNDS_DEG[1]], **kwargs)
         # ranges of the objectives (hypervolume normalisation): k_av falls and l grows
         # with theta_1S (closed forms: k_av_literal_of_design, eq. 14-15), so their

@@ -475,12 +475,12 @@ def test_bad_input_is_one_line_exit_2(tmp_path, capsys, argv, message):
     assert not (tmp_path / "o" / "atlas.csv").exists()
 
 
-def test_unreachable_scheduler_is_one_line_exit_2(tmp_path, capsys):
+def test_unreachable_scheduler_is_one_line_exit_3(tmp_path, capsys):
     pytest.importorskip("dask.distributed")
     address = f"tcp://127.0.0.1:{_free_port()}"
     t = time.perf_counter()
     assert main(["atlas", "five-bar", "--step", "0.5", "--out", str(tmp_path),
-                 "--dask", address, "--dask-timeout", "1"]) == 2
+                 "--dask", address, "--dask-timeout", "1"]) == 3  # a runtime failure
     assert time.perf_counter() - t < 30
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "cannot reach the Dask scheduler" in err and address in err

@@ -1,5 +1,5 @@
 """A Dask run cannot hang: a cluster without workers, or whose worker cannot import
-mechopt, ends with one line within the timeout (exit 2); a run that loses its
+mechopt, ends with one line within the timeout (exit 3, a runtime failure); a run that loses its
 cluster mid-way keeps its finished chunks."""
 import subprocess
 import sys
@@ -18,7 +18,7 @@ ATLAS = ["atlas", "five-bar", "--step", "0.1", "--no-figures", "--dask-timeout",
 def test_cluster_without_workers(tmp_path, capsys):
     with distributed.LocalCluster(n_workers=0, processes=False, dashboard_address=None) as cluster:
         t0 = time.monotonic()
-        assert main([*ATLAS, "--dask", cluster.scheduler_address, "--out", str(tmp_path / "a")]) == 2
+        assert main([*ATLAS, "--dask", cluster.scheduler_address, "--out", str(tmp_path / "a")]) == 3  # a runtime failure
         assert time.monotonic() - t0 < 30
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "no workers" in err
@@ -52,7 +52,7 @@ def test_worker_without_mechopt(tmp_path, capsys):
         try:
             out = tmp_path / "b"
             assert main([*ATLAS, "--dask", cluster.scheduler_address, "--dask-timeout", "30",
-                         "--out", str(out)]) == 2
+                         "--out", str(out)]) == 3  # a runtime failure
         finally:
             worker.terminate()
             worker.wait(30)

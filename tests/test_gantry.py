@@ -444,8 +444,12 @@ def test_summary_for_table1():
     assert s_m["workspace_area"] == pytest.approx(s["workspace_area"] * 1e-6, rel=1e-12)
     with pytest.raises(ValueError, match="length_unit"):
         Gantry.from_parameters(length_unit="km")
-    with pytest.raises(ValueError, match="from_parameters"):
-        wu2008_gantry().summary()
+    # a gantry not made by from_parameters (its task 300 mm higher): the same numbers,
+    # eta_d once its length unit is given (NaN without: the dynamics is in metres)
+    other = wu2008_gantry().summary()
+    assert np.isnan(other["eta_d"]) and other["k_av"] == pytest.approx(s["k_av"], rel=1e-12)
+    assert other["d"] == pytest.approx(s["d"], rel=1e-12) and other["gtqi"] == pytest.approx(s["gtqi"], rel=1e-9)
+    assert wu2008_gantry().summary(length_unit="mm")["eta_d"] == pytest.approx(s["eta_d"], rel=1e-9)
 
 
 # --- one topology with the Biglide -----------------------------------------------------------

@@ -87,8 +87,8 @@ def test_every_liu_problem_names_its_quadrature():
         if name.startswith("liu2006"):
             for q in ("polar", "area"):
                 p = get(name, quadrature=q)
-                assert p.settings == {"quadrature": q} and p.summary.endswith(f"{q} means")
-            assert get(name).settings == {"quadrature": "polar"}  # the paper's
+                assert p.settings["quadrature"] == q and p.summary.endswith(f"{q} means")
+            assert get(name).settings["quadrature"] == "polar"  # the paper's
     with pytest.raises(ValueError, match="takes no option 'quadrature'"):
         get("wu2008", quadrature="area")
 

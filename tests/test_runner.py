@@ -134,7 +134,7 @@ def test_unreachable_scheduler(argv, tmp_path, capsys, monkeypatch):
 
     real = parallel.connect
     monkeypatch.setattr(parallel, "connect", connect)
-    assert main([*argv, "--dask", "tcp://127.0.0.1:9", "--dask-timeout", "0.5", "--out", str(tmp_path / "o")]) == 2
+    assert main([*argv, "--dask", "tcp://127.0.0.1:9", "--dask-timeout", "0.5", "--out", str(tmp_path / "o")]) == 3  # a runtime failure
     err = capsys.readouterr().err
     assert "cannot reach the Dask scheduler" in err and err.count("\n") == 1
     assert not (tmp_path / "o").exists()

@@ -95,6 +95,30 @@ def add_run_options(p, resumable=False):
                         "paper's) or area; recorded in run.json")
     p.add_argument("--overwrite", action="store_true",
                    help="replace another run that --out holds (only the files that run wrote)")
+    add_json_option(p)
+
+
+def add_json_option(p):
+    """``--json``: the command's summary as one JSON object on stdout (:func:`print_json`)."""
+    p.add_argument("--json", action="store_true",
+                   help="print the summary as one JSON object on stdout instead of the line")
+
+
+def print_json(summary: dict):
+    """One JSON object on stdout (NaN as null), for ``--json``."""
+    import json
+    import math
+
+    def clean(v):
+        if isinstance(v, float) and not math.isfinite(v):
+            return None
+        if isinstance(v, dict):
+            return {str(k): clean(u) for k, u in v.items()}
+        if isinstance(v, (list, tuple)):
+            return [clean(u) for u in v]
+        return v
+
+    print(json.dumps(clean(summary), default=str))
 
 
 def add_dask_options(p, group=None, help="evaluate on a Dask cluster instead of joblib"):
@@ -102,7 +126,9 @@ def add_dask_options(p, group=None, help="evaluate on a Dask cluster instead of 
     ``--dask-timeout``, which :func:`dask_client` reads."""
     (group or p).add_argument("--dask", metavar="SCHEDULER_ADDRESS", default=None, help=help)
     p.add_argument("--dask-timeout", type=float, default=10.0, metavar="SECONDS",
-                   help="time to wait for the Dask scheduler and its first worker [s] (default 10)")
+                   help="time to wait for the Dask scheduler and its first worker, and for a result "
+                        "while no worker computes one (a stall) [s] (default 10); the workers' "
+                        "kernel compilation has its own start-up allowance (900 s)")
 
 
 def problem_options(args) -> dict:

@@ -4,7 +4,8 @@
 r1 + r2 + r3 = 3, 0 <= r3 <= 1.5, r1, r2 > 0 (non-dimensional link ratios) on a lattice of
 ``--step`` with :func:`mechopt.run.atlas.run_atlas`, which writes ``atlas.csv``,
 ``atlas.json``, one ``atlas_<index>.png`` per index and, with ``--where``, ``region.csv``
-into ``DIR``; the same command again resumes from the finished chunks.
+into ``DIR``; the same command again resumes from the finished chunks. ``--json`` prints
+``atlas.json`` (with ``command`` and ``out``) as one JSON object instead of the lines.
 """
 from __future__ import annotations
 
@@ -42,6 +43,7 @@ def add_parser(subparsers):
     fb.add_argument("--no-figures", action="store_true", help="write the tables only")
     fb.add_argument("--overwrite", action="store_true",
                     help="replace an atlas of other settings that --out holds (files it wrote only)")
+    _common.add_json_option(fb)
 
 
 def run(args) -> int:
@@ -50,8 +52,15 @@ def run(args) -> int:
     # atlas module
     from mechopt.run.atlas import DEFAULT_INDICES, run_atlas
 
-    run_atlas(args.out, step=args.step, indices=args.index or DEFAULT_INDICES, quadrature=args.quadrature,
-              mode=args.mode, n_jobs=2 if args.n_jobs is None else args.n_jobs, dask=args.dask,
-              where=args.where, figures=not args.no_figures, chunk_size=args.chunk_size,
-              dask_timeout=args.dask_timeout, overwrite=args.overwrite)
+    import logging
+
+    quiet = logging.getLogger("mechopt").level > logging.INFO
+    manifest = run_atlas(args.out, step=args.step, indices=args.index or DEFAULT_INDICES,
+                         quadrature=args.quadrature, mode=args.mode,
+                         n_jobs=2 if args.n_jobs is None else args.n_jobs, dask=args.dask, where=args.where,
+                         figures=not args.no_figures, chunk_size=args.chunk_size,
+                         dask_timeout=args.dask_timeout, overwrite=args.overwrite,
+                         verbose=not (args.json or quiet))
+    if args.json:
+        _common.print_json({"command": NAME, "out": str(args.out), **manifest})
     return 0

@@ -6,7 +6,8 @@ Runs :func:`mechopt.run.runner.optimize` (or continues a checkpointed run with
 ``run.json`` and ``front.png`` into ``DIR`` (``checkpoint.pkl`` with
 ``--checkpoint-every``). Prints one line: the number of designs on the front and the
 wall time [s], or, when no design is feasible, :func:`mechopt.run.runner.infeasible_line`
-(an answer, exit status 0). The run options are those of ``mechopt sweep``
+(an answer, exit status 0); with ``--json`` one JSON object (``n_front``, ``feasible``,
+``evaluations``, ``generations``, ``wall_time_s``, ``infeasible``, ``files``, ...). The run options are those of ``mechopt sweep``
 (:func:`mechopt.cli._common.add_run_options`).
 """
 from __future__ import annotations
@@ -31,8 +32,10 @@ def add_parser(subparsers):
 
 def run(args) -> int:
     """Start or resume the run, print its one-line summary."""
+    from pathlib import Path
+
     from mechopt.problems import get
-    from mechopt.run.runner import infeasible_line, optimize, resume
+    from mechopt.run.runner import RUN_OUTPUTS, infeasible_line, optimize, resume
 
     if args.resume is not None:
         args.out = args.resume
@@ -52,6 +55,15 @@ def run(args) -> int:
             res = optimize(problem, args.algorithm, args.pop, args.gen, _common.seed(args), args.n_jobs,
                            client, args.out, progress=True, checkpoint_every=args.checkpoint_every,
                            overwrite=args.overwrite, **_common.run_settings(args))
+    if args.json:
+        _common.print_json({"command": NAME, "out": str(args.out), "problem": res.info["problem"],
+                            "settings": res.info["settings"], "n_front": len(res.front),
+                            "feasible": res.info["feasible"], "evaluations": res.info["evaluations"],
+                            "generations": res.info["generations"], "wall_time_s": res.info["wall_time_s"],
+                            "infeasible": infeasible_line(res.info),
+                            "files": sorted(p.name for p in Path(args.out).iterdir()
+                                            if p.name in RUN_OUTPUTS)})
+        return 0
     if infeasible_line(res.info):  # an empty front is an answer: one line, status 0
         print(infeasible_line(res.info))
         return 0

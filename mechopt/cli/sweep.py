@@ -6,7 +6,8 @@ or a comma list, in [0, 1]; :func:`mechopt.run.runner.parse_weights`) and writes
 ``sweep.csv``, ``sweep.png`` and the front run's ``front.csv`` (with its ``history.csv``,
 ``run.json``, ``front.png``) into ``DIR``. Prints one line: the number of weighted-sum
 optima (and of the weights without a feasible design), or, when nothing is feasible,
-:func:`mechopt.run.runner.infeasible_line` (exit status 0). The run options are those of
+:func:`mechopt.run.runner.infeasible_line` (exit status 0); ``--json``: one JSON object
+(``weights``, ``feasible_weights``, ``evaluations``, ``feasible``, ``files``, ...). The run options are those of
 ``mechopt optimize`` (:func:`mechopt.cli._common.add_run_options`).
 """
 from __future__ import annotations
@@ -34,6 +35,12 @@ def run(args) -> int:
         table = sweep(problem, weights, args.pop, args.gen, _common.seed(args), args.n_jobs, client,
                       args.out, overwrite=args.overwrite, **_common.run_settings(args))
     info = table.attrs["sweep"]
+    if args.json:
+        _common.print_json({"command": NAME, "out": str(args.out), "problem": problem.name,
+                            "settings": problem.settings, **info, "infeasible": infeasible_line(info),
+                            "files": ["sweep.csv", "sweep.png", "front.csv", "history.csv", "run.json",
+                                      "front.png"]})
+        return 0
     if infeasible_line(info):
         print(infeasible_line(info))
         return 0

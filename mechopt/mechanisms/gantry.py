@@ -578,28 +578,56 @@ class Gantry(TwoSliderMechanism):
         by an ``n x n`` Gauss-Legendre rule, of :meth:`dynamics` (same arguments)."""
         return self.dynamics(inertia, length_unit).eta_d(n=n)
 
-    def summary(self, inertia=None, n: int = 48) -> dict:
-        """Every number of ``mechopt evaluate gantry`` (:attr:`summary_keys`, floats) of
-        a gantry made by :meth:`from_parameters` (Wu's synthesis).
+    def summary(self, inertia=None, n: int = 48, length_unit: str | None = None) -> dict:
+        """Every number of ``mechopt evaluate gantry`` (:attr:`summary_keys`, floats), for
+        a gantry however it was made.
 
         ``workspace_area`` (exact area of the reachable set, [length_unit^2]), ``k_av``
-        (literal reading of eq. 7 over ``[-b/2, b/2]``), ``d``, ``d1``, ``l``, ``stroke``
-        (eq. 14-16, [length_unit]), ``eta_d`` (eq. 44, area mean of kappa_D over the task
+        (literal reading of eq. 7 over the task rectangle's ``[x_min, x_max]``), ``d``
+        (the distance from a column to the nearer side of the task rectangle, Wu Fig. 2),
+        ``d1``, ``l``, ``stroke`` ([length_unit]; for a gantry of :meth:`from_parameters`
+        the values of eq. 14-16), ``eta_d`` (eq. 44, area mean of kappa_D over the task
         rectangle, :meth:`eta_d` with ``inertia``, default Wu's Table 2 carried over to
-        this link length) and ``gtqi`` (area mean of :func:`mechopt.core.indices.tqi` over the
-        task rectangle, not over the workspace as :meth:`gtqi`); ``quadrature`` names
+        this link length) and ``gtqi`` (area mean of :func:`mechopt.core.indices.tqi` over
+        the task rectangle, not over the workspace as :meth:`gtqi`); ``quadrature`` names
         their rule, ``"gauss-legendre-NxN"`` (tensor Gauss-Legendre, ``n`` nodes per axis).
+
+        A gantry made by its own constructor: without a ``task_workspace``, ``k_av``,
+        ``d``, ``eta_d`` and ``gtqi`` (which are defined over the task rectangle) are NaN;
+        ``eta_d`` also needs ``length_unit`` (``"mm"`` or ``"m"``: the dynamics is in
+        metres), NaN without it.
+
+        Parameters
+        ----------
+        inertia : GantryInertia, optional
+            The masses of :meth:`dynamics`.
+        n : int
+            Gauss-Legendre nodes per axis of the task rectangle.
+        length_unit : str, optional
+            The unit of this gantry's lengths (default: that of :meth:`from_parameters`).
+
+        Returns
+        -------
+        dict
+            ``{key: float}`` for :attr:`summary_keys` but ``quadrature`` (a str).
         """
         from mechopt.mechanisms.gantry_dynamics import rectangle_rule
 
-        if self.synthesis_inputs is None:
-            raise ValueError("summary needs a gantry made by Gantry.from_parameters (Wu's synthesis)")
-        kw = self.synthesis_inputs
-        d, d1, l, stroke = dimensional_synthesis(kw["b"], kw["h"], math.radians(kw["theta_1s_deg"]))
-        xs, ys, w = rectangle_rule(self.task_workspace, n)
-        out = dict(workspace_area=self.workspace_area(), k_av=self.k_av(reading="literal"), d=d,
-                   d1=d1, l=l, stroke=stroke, eta_d=self.eta_d(n, inertia),
-                   gtqi=float(np.sum(w * self.tqi(xs, ys))))
+        nan = float("nan")
+        if self.synthesis_inputs is not None:
+            kw = self.synthesis_inputs
+            d, d1, l, stroke = dimensional_synthesis(kw["b"], kw["h"], math.radians(kw["theta_1s_deg"]))
+        else:
+            d1, l, stroke = self.d1, self.l, self.stroke
+            d = nan if self.task_workspace is None else min(self.d1 - self.task_workspace[1],
+                                                           self.task_workspace[0] + self.d1)
+        out = dict(workspace_area=self.workspace_area(), d=d, d1=d1, l=l, stroke=stroke,
+                   k_av=nan, eta_d=nan, gtqi=nan)
+        if self.task_workspace is not None:
+            xs, ys, w = rectangle_rule(self.task_workspace, n)
+            out.update(k_av=self.k_av(reading="literal"), gtqi=float(np.sum(w * self.tqi(xs, ys))))
+            if self.synthesis_inputs is not None or length_unit is not None:
+                out["eta_d"] = self.eta_d(n, inertia, length_unit)
         res = {k: float(out[k]) for k in self.summary_keys[:-1]}
         res["quadrature"] = f"gauss-legendre-{n}x{n}"
         return res

@@ -7,15 +7,24 @@ of a population), never over single points.
 """
 from __future__ import annotations
 
+import logging
 import math
 import os
 import threading
+import weakref
 from typing import Callable, Iterable, Sequence
 
 from mechopt.core import validation as _v
 
 __all__ = ["parallel_map", "map_async", "start_workers", "chunks", "connect", "check_cluster",
-           "kernel_path", "stop_workers", "DEFAULT_STALL_S", "close_client", "cluster_threads"]
+           "kernel_path", "stop_workers", "DEFAULT_STALL_S", "close_client", "cluster_threads", "warm_up",
+           "warm_workers", "WARMUP_S", "RunFailure"]
+
+
+class RunFailure(ValueError):
+    """A run that failed for a reason outside its input: the Dask cluster has no
+    workers, cannot run mechopt, stalls or is lost. A ValueError (one line), which the
+    command line ends with its own exit status (3, not the 2 of bad input)."""
 
 #: most local worker processes (a typo such as --n-jobs 1e9 would overflow joblib)
 MAX_JOBS = 1024
@@ -23,6 +32,13 @@ MAX_JOBS = 1024
 #: came from :func:`connect`, whose ``timeout`` is used instead
 DEFAULT_STALL_S = 300.0
 _STALL = {}  # id(client) -> stall timeout of clients made by connect()
+#: a Dask worker's start-up allowance [s]: compiling the kernels with an empty numba
+#: cache (:func:`warm_up`; about 28 s of CPU, 100 s of wall time on a loaded 2-core
+#: machine) or loading them from it (about 2 s), before the first chunk is sent. It
+#: is not the stall timeout (``--dask-timeout``), which then covers only connecting
+#: and a run that makes no progress
+WARMUP_S = 900.0
+_WARMED = weakref.WeakKeyDictionary()  # client -> {worker address: seconds of its warm-up}
 #: idle local workers exit after this many seconds (and are started again when needed);
 #: joblib's own default. A short one races loky's idle exit against a new map's first
 #: submit, which loky reports as "A worker stopped while some jobs were given to the
@@ -49,8 +65,8 @@ def _worker_facts() -> dict:
     return {"mechopt": __version__, "kernel": kernel_path()}
 
 
-class _NoAnswer(ValueError):
-    """A Dask call that did not return in time (:func:`_within`)."""
+class _NoAnswer(RunFailure):
+    """A Dask call that did not return in time (:func:`_within`): a runtime failure."""
 
 
 def _within(seconds: float, what: str, func, *args, **kw):
@@ -113,21 +129,96 @@ def _check_cluster(client, timeout, seconds):
     try:
         _within(timeout + 1.0, "the Dask cluster", client.wait_for_workers, 1, timeout=timeout)
     except Exception:  # noqa: BLE001 - distributed raises its own TimeoutError types
-        raise ValueError(f"the Dask cluster has no workers after {timeout:g} s") from None
+        raise RunFailure(f"the Dask cluster has no workers after {timeout:g} s") from None
     try:
         facts = _within(seconds, "the Dask workers", client.run, _worker_facts)
     except _NoAnswer:
         raise
     except Exception as exc:  # noqa: BLE001 - e.g. ModuleNotFoundError on a worker
-        raise ValueError(f"a Dask worker cannot run mechopt: {type(exc).__name__}: "
+        raise RunFailure(f"a Dask worker cannot run mechopt: {type(exc).__name__}: "
                          f"{str(exc).splitlines()[0] if str(exc) else ''}".rstrip(": ")) from None
     mine = _worker_facts()
     for addr, theirs in facts.items():
         if theirs != mine:
-            raise ValueError(f"Dask worker {addr} runs mechopt {theirs['mechopt']} with "
+            raise RunFailure(f"Dask worker {addr} runs mechopt {theirs['mechopt']} with "
                              f"{theirs['kernel']} kernels, this process {mine['mechopt']} with "
                              f"{mine['kernel']}: results would not be reproducible")
     return mine
+
+
+def warm_up(_=None) -> dict:
+    """Compile (or load from numba's cache, :func:`mechopt.core.jit.cache_dir`) every
+    compiled kernel in this process
+    (:func:`mechopt.mechanisms.five_bar.kernels.compile_all`); nothing without numba. Sent to each Dask worker before its first chunk
+    (:func:`warm_workers`).
+
+    Returns
+    -------
+    dict
+        ``{"kernel": "numba" or "numpy", "seconds": wall time [s]}``.
+    """
+    import time
+
+    from mechopt.mechanisms.five_bar.kernels import compile_all
+
+    t0 = time.perf_counter()
+    compile_all()
+    return {"kernel": kernel_path(), "seconds": time.perf_counter() - t0}
+
+
+def warm_workers(client, timeout: float = WARMUP_S) -> dict:
+    """:func:`warm_up` on every worker of the Dask ``client``, all at once, within the
+    start-up allowance ``timeout`` [s] (not the stall timeout): the first chunks then
+    measure evaluation, not compilation. Done once per client; a worker that joins
+    later compiles within its first chunk (which counts as progress, not as a stall:
+    :func:`parallel_map`).
+
+    Parameters
+    ----------
+    client : dask.distributed.Client
+        A connected client.
+    timeout : float
+        Seconds allowed for every worker's warm-up.
+
+    Returns
+    -------
+    dict
+        ``{worker address: seconds of its warm-up}``. ValueError (one line) when a
+        worker fails or the allowance runs out.
+    """
+    if client in _WARMED:
+        return _WARMED[client]
+    from dask.distributed import wait
+
+    futures = []
+    try:
+        workers = sorted(client.scheduler_info()["workers"])
+        futures = [client.submit(warm_up, i, workers=[w], allow_other_workers=False, pure=False)
+                   for i, w in enumerate(workers)]
+        wait(futures, timeout=timeout)
+        seconds = {w: f.result()["seconds"] for w, f in zip(workers, futures)}
+    except Exception as exc:  # noqa: BLE001 - TimeoutError, a worker's error, a lost cluster
+        for f in futures:
+            f.cancel()
+        what = (f"did not compile the kernels within the start-up allowance of {timeout:g} s"
+                if "Timeout" in type(exc).__name__ else f"failed to compile the kernels ({type(exc).__name__})")
+        raise RunFailure(f"the Dask workers {what}") from None
+    _WARMED[client] = seconds
+    log = logging.getLogger("mechopt")
+    for w, sec in seconds.items():
+        log.debug("Dask worker %s: kernels compiled or loaded in %.1f s", w, sec)
+    return seconds
+
+
+def _still_working(client, pending) -> bool:
+    """Whether the scheduler is reachable and one of the ``pending`` futures is being
+    computed by a worker (a slow chunk, or a late worker compiling its kernels): then
+    a wait without a result is no stall."""
+    try:
+        keys = {f.key for f in pending}
+        return any(k in keys for ks in client.processing().values() for k in ks)
+    except Exception:  # noqa: BLE001 - the scheduler is gone
+        return False
 
 
 def chunks(seq: Sequence, n_chunks: int) -> list:
@@ -159,12 +250,12 @@ def connect(address: str, timeout: float = 10.0):
                          timeout=timeout)
     except _NoAnswer:
         raise
+    except (OSError, TimeoutError) as exc:
+        raise RunFailure(f"cannot reach the Dask scheduler at {address!r}: {type(exc).__name__}") from None
     except ValueError as exc:  # a malformed address
         raise ValueError(f"bad Dask scheduler address {address!r}: {exc}") from None
-    except (OSError, TimeoutError) as exc:
-        raise ValueError(f"cannot reach the Dask scheduler at {address!r}: {type(exc).__name__}") from None
     except Exception as exc:  # noqa: BLE001 - e.g. an AssertionError inside distributed
-        raise ValueError(f"cannot reach the Dask scheduler at {address!r}: "
+        raise RunFailure(f"cannot reach the Dask scheduler at {address!r}: "
                          f"{type(exc).__name__} {exc}") from None
     _STALL[id(client)] = timeout
     try:
@@ -460,20 +551,28 @@ def _die_with_parent(parent: int | None = None):
 
 
 def _dask_map(func, items, client, tick, out):
-    """Map on a Dask cluster; a run that gets no result for the stall timeout (or loses
-    its scheduler) ends with one line, after the finished results were handed to
-    ``tick`` (so that an atlas keeps its finished chunks)."""
+    """Map on a Dask cluster, its workers warmed first (:func:`warm_workers`, with its own
+    allowance); a run that gets no result for the stall timeout while no worker
+    computes one of its items (or that loses its scheduler) ends with one line, after
+    the finished results were handed to ``tick`` (so that an atlas keeps its finished
+    chunks)."""
     from dask.distributed import wait
 
     stall = _STALL.get(id(client), DEFAULT_STALL_S)
     total = len(items)
+    warm_workers(client)
     try:
         futures = client.map(func, items, pure=False)
         index = {f.key: i for i, f in enumerate(futures)}
         results = [None] * total
         pending = set(futures)
         while pending:
-            done, pending = wait(pending, timeout=stall, return_when="FIRST_COMPLETED")
+            try:
+                done, pending = wait(pending, timeout=stall, return_when="FIRST_COMPLETED")
+            except Exception as exc:  # noqa: BLE001 - asyncio's or distributed's TimeoutError
+                if "Timeout" in type(exc).__name__ and _still_working(client, pending):
+                    continue  # a long chunk: progress, not a stall
+                raise
             for fut in sorted(done, key=lambda f: index[f.key]):
                 i = index[fut.key]
                 results[i] = fut.result()
@@ -485,5 +584,5 @@ def _dask_map(func, items, client, tick, out):
         name = type(exc).__name__
         what = (f"no result for {stall:g} s" if "Timeout" in name
                 else f"the Dask cluster failed ({name})")
-        raise ValueError(f"{what}: {len(out)} of {total} work units finished") from None
+        raise RunFailure(f"{what}: {len(out)} of {total} work units finished") from None
     return results

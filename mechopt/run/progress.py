@@ -1,6 +1,11 @@
-"""Progress on long runs: a bar on a terminal, plain lines in a pipe or CI."""
+"""Progress on long runs: a bar on a terminal, plain lines in a pipe or CI.
+
+Silent when the ``"mechopt"`` logger's own level is set above INFO (``mechopt
+--quiet``, or ``logging.getLogger("mechopt").setLevel(logging.WARNING)`` from Python).
+"""
 from __future__ import annotations
 
+import logging
 import sys
 import time
 
@@ -11,7 +16,8 @@ class Progress:
     """``Progress(total, label)``; call ``update(done, info="")`` and ``close()``.
 
     On a TTY it redraws one line with a bar; otherwise it prints a plain line at
-    most every ``min_interval`` seconds (and always the last one).
+    most every ``min_interval`` seconds (and always the last one). Nothing when the
+    ``"mechopt"`` logger's level is above INFO (module docstring).
     """
 
     def __init__(self, total: int, label: str, stream=None, min_interval: float = 2.0):
@@ -23,8 +29,11 @@ class Progress:
         self._t0 = time.perf_counter()
         self._last = -float("inf")
         self._state = None
+        self.silent = logging.getLogger("mechopt").level > logging.INFO
 
     def update(self, done: int, info: str = ""):
+        if self.silent:
+            return
         now = time.perf_counter()
         self._state = (done, info)
         if self.tty:
@@ -45,7 +54,7 @@ class Progress:
     def message(self, log, text: str):
         """``log(text)`` without breaking the bar: on a TTY the bar's line is cleared
         first and redrawn after (``log`` may write to the same terminal)."""
-        if not self.tty:
+        if not self.tty or self.silent:
             log(text)
             return
         self.stream.write("\r\033[K")
@@ -55,6 +64,6 @@ class Progress:
             self._draw(time.perf_counter())
 
     def close(self):
-        if self.tty:
+        if self.tty and not self.silent:
             self.stream.write("\n")
             self.stream.flush()

@@ -340,6 +340,10 @@ class RunResult:
     #: ``describe`` row (one-row table) of the least-violating design when no
     #: design is feasible, else None
     least: pd.DataFrame | None = None
+    #: pymoo's own ``Result`` of the run (``algorithm.result()``: ``X``, ``F``, ``G``,
+    #: ``pop``, ``opt``, ``algorithm``, ``exec_time``, as ``pymoo.optimize.minimize``
+    #: returns it; its ``F`` in minimisation form, :meth:`MechoptProblem.natural`)
+    result: object | None = None
 
 
 def _check_sizes(pop, gen):
@@ -381,8 +385,9 @@ def _optimum(algo):
 class _History:
     """pymoo callback: one history row per generation, and the progress line."""
 
-    def __init__(self, problem, progress: Progress | None, total: int | None):
+    def __init__(self, problem, progress: Progress | None, total: int | None, user=None):
         self.problem, self.progress, self.total, self.rows = problem, progress, total, []
+        self.user = user  # the caller's pymoo callback, called after the row
 
     def __call__(self, algorithm):
         opt = _optimum(algorithm)
@@ -407,6 +412,8 @@ class _History:
                 self.progress.update(int(round(100 * _termination_progress(algorithm))), info)
             else:
                 self.progress.update(algorithm.n_gen, info)
+        if self.user is not None:
+            self.user(algorithm)
 
 
 def _termination_progress(algorithm) -> float:
@@ -435,7 +442,7 @@ def optimize(problem, algorithm=None, pop: int | None = None, gen: int | None = 
              plot: bool = True, checkpoint_every: int | None = None, termination=None,
              tol: float | None = None, crossover_prob: float | None = None,
              mutation_prob: float | None = None, crossover_eta: float | None = None,
-             mutation_eta: float | None = None, overwrite: bool = False) -> RunResult:
+             mutation_eta: float | None = None, overwrite: bool = False, callback=None) -> RunResult:
     """Run ``problem`` with a seeded pymoo algorithm; write the run folder if ``out``.
 
     ``algorithm`` is a name of :data:`ALGORITHMS` (default: the problem's
@@ -469,6 +476,11 @@ def optimize(problem, algorithm=None, pop: int | None = None, gen: int | None = 
     (:func:`mechopt.run.io.output_set`). A folder holding another run is refused unless
     ``overwrite`` (then the files that run wrote are replaced); files no manifest
     accounts for are refused, never removed.
+
+    ``callback`` is a pymoo callback (a ``pymoo.core.callback.Callback`` or any
+    ``callback(algorithm)``), called after every generation as with
+    ``pymoo.optimize.minimize(..., callback=)``; it is not saved in a checkpoint. The
+    result's ``result`` is pymoo's own ``Result`` of the run.
     """
     operators = {"crossover_prob": crossover_prob, "mutation_prob": mutation_prob,
                  "crossover_eta": crossover_eta, "mutation_eta": mutation_eta}
@@ -501,12 +513,15 @@ def optimize(problem, algorithm=None, pop: int | None = None, gen: int | None = 
                          "pop": pop, "gen": _max_gen(algo.termination), "seed": seed, "tol": tol,
                          **operators, "checkpoint_every": checkpoint_every}}
     _check_budget(problem, algo)
+    if callback is not None and not callable(callback):
+        raise ValueError(f"callback must be a pymoo Callback or a function of the algorithm, "
+                         f"got {type(callback).__name__}")
     if out is None:
-        return _drive(algo, state, n_jobs, client, out, progress, plot)
+        return _drive(algo, state, n_jobs, client, out, progress, plot, callback=callback)
     out = _io.prepare_out_dir(out)
     with _io.run_in(out, "optimize", _run_key(problem, algo, seed), RUN_OUTPUTS, overwrite) as manifest:
         state["run_id"] = manifest["run_id"]
-        return _drive(algo, state, n_jobs, client, out, progress, plot, manifest)
+        return _drive(algo, state, n_jobs, client, out, progress, plot, manifest, callback=callback)
 
 
 #: the names a run writes into its folder: such files that no manifest of a mechopt run
@@ -689,7 +704,7 @@ def _save_checkpoint(algo, state, out: Path):
         algo.callback, algo.display = callback, display
 
 
-def _drive(algo, state, n_jobs, client, out, progress, plot, manifest=None) -> RunResult:
+def _drive(algo, state, n_jobs, client, out, progress, plot, manifest=None, callback=None) -> RunResult:
     """Advance ``algo`` to its termination, checkpointing on the way; write the outputs.
 
     ``n_jobs=None`` (without a Dask client): generations 1 and 2 run in this process
@@ -702,7 +717,7 @@ def _drive(algo, state, n_jobs, client, out, progress, plot, manifest=None) -> R
     total = state.get("gen")
     label = f"{problem.name} {state['algorithm']}"
     bar = Progress(total if total is not None else 100, label) if progress else None
-    hist = _History(problem, bar, total)
+    hist = _History(problem, bar, total, callback)
     hist.rows = state["rows"]
     algo.callback = hist
     if algo.display is None:
@@ -765,7 +780,7 @@ def _drive(algo, state, n_jobs, client, out, progress, plot, manifest=None) -> R
                 _io.save_figure(plot_front(problem, front, history, population, info), stage / "front.png")
         if os.path.isfile(out / CHECKPOINT) and not os.path.islink(out / CHECKPOINT):
             (out / CHECKPOINT).unlink()  # the run is complete: nothing to resume
-    return RunResult(front, history, info, population, least)
+    return RunResult(front, history, info, population, least, res)
 
 
 def _population_table(problem, pop) -> pd.DataFrame:
