@@ -41,6 +41,7 @@ page of a step-0.01 atlas (33 824 designs) stays below 5 MB.
 from __future__ import annotations
 
 import base64
+import functools
 import gzip
 import json
 import math
@@ -347,7 +348,7 @@ def _atlas_data(d: Path, where=()) -> dict:
     s, t = table["s"].to_numpy(float), table["t"].to_numpy(float)
     regions = []
     for w in where or ():
-        cond = parse_condition(w, names=names)
+        cond = parse_condition(w, names=names, param="--where")
         mask = np.asarray(cond.evaluate(table), bool)
         regions.append({"where": w, "count": int(mask.sum()), "index": np.flatnonzero(mask).tolist(),
                         "outline": _region_outline(s, t, mask)})
@@ -401,9 +402,15 @@ def _plotly_js() -> str:
 
 
 def _packed(text: str) -> str:
-    """``text`` gzip-compressed (level 9, no time stamp: the page is reproducible) and
+    """``text`` gzip-compressed (level 6, no time stamp: the page is reproducible) and
     base64-encoded."""
-    return base64.b64encode(gzip.compress(text.encode("utf-8"), 9, mtime=0)).decode("ascii")
+    return base64.b64encode(gzip.compress(text.encode("utf-8"), 6, mtime=0)).decode("ascii")
+
+
+@functools.lru_cache(maxsize=1)
+def _packed_library() -> str:
+    """The plotting library, packed once per process (about 1 s)."""
+    return _packed(_plotly_js())
 
 
 def build_page(folder, where=()) -> str:
@@ -423,7 +430,7 @@ def build_page(folder, where=()) -> str:
     """
     data = page_data(folder, where)
     payload = _packed(json.dumps(data, separators=(",", ":"), allow_nan=False))
-    lib = _packed(_plotly_js())
+    lib = _packed_library()
     title = f"mechopt explore: {data['title']}"
     html = _TEMPLATE.format(title=escape(title), css=_CSS, heading=escape(data["title"]),
                             sub=escape(f"mechopt {__version__} - folder {data['folder']}"),
