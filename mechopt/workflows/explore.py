@@ -837,6 +837,8 @@ _JS = r"""
     D.indices.forEach(function (c) { var o = document.createElement("option"); o.value = c; o.textContent = c; sel.appendChild(o); });
     sel.value = D.indices.indexOf("gci") >= 0 ? "gci" : D.indices[0];
     var big = n > 4000;
+    // a dense lattice is drawn with WebGL; every trace of the plot then is (a canvas covers the SVG layer)
+    var kind = big ? "scattergl" : "scatter";
     var COLORS = ["#d62728", "#ff7f0e", "#e377c2", "#17becf", "#8c564b"];
     var idx = []; for (var i = 0; i < n; i++) { idx.push(i); }
     var cur = {i: null};
@@ -844,24 +846,25 @@ _JS = r"""
       var c = sel.value, v = T[c], r = quantiles(v);
       var ok = [], nan = [];
       idx.forEach(function (i) { (v[i] === null ? nan : ok).push(i); });
-      var t = [{type: big ? "scattergl" : "scatter", x: ok.map(function (i) { return T.s[i]; }), y: ok.map(function (i) { return T.t[i]; }),
+      var t = [{type: kind, x: ok.map(function (i) { return T.s[i]; }), y: ok.map(function (i) { return T.t[i]; }),
                 customdata: ok, mode: "markers", name: c,
                 marker: {color: ok.map(function (i) { return v[i]; }), colorscale: "Viridis", cmin: r[0], cmax: r[1],
                          size: big ? 3 : 7, colorbar: {title: {text: c}}},
                 hovertemplate: "r1 %{customdata}<extra></extra>"}];
       t[0].hovertemplate = c + " %{marker.color}<extra></extra>";
-      t.push({type: "scatter", x: nan.map(function (i) { return T.s[i]; }), y: nan.map(function (i) { return T.t[i]; }),
+      t.push({type: kind, x: nan.map(function (i) { return T.s[i]; }), y: nan.map(function (i) { return T.t[i]; }),
               customdata: nan, mode: "markers", name: "no MIC (NaN)", marker: {color: "#bbb", size: big ? 2 : 5}});
       D.regions.forEach(function (R, k) {
         var col = COLORS[k % COLORS.length];
-        t.push({type: big ? "scattergl" : "scatter", x: R.index.map(function (i) { return T.s[i]; }), y: R.index.map(function (i) { return T.t[i]; }),
+        t.push({type: kind, x: R.index.map(function (i) { return T.s[i]; }), y: R.index.map(function (i) { return T.t[i]; }),
                 customdata: R.index, mode: "markers", name: "where " + R.where + " (" + R.count + ")",
+                visible: big ? "legendonly" : true,  // dense lattices: the outline alone (a click on the legend shows the designs)
                 marker: {symbol: "circle-open", size: big ? 4 : 9, color: col, opacity: 0.6}, hoverinfo: "skip"});
-        t.push({type: "scatter", x: R.outline.x, y: R.outline.y, mode: "lines", name: "outline of region " + (k + 1),
-                line: {color: col, width: 2}, hoverinfo: "skip", showlegend: false});
+        t.push({type: kind, x: R.outline.x, y: R.outline.y, mode: "lines", name: "outline of region " + (k + 1),
+                line: {color: col, width: 2.5}, hoverinfo: "skip", showlegend: false});
       });
       if (cur.i !== null) {
-        t.push({type: "scatter", x: [T.s[cur.i]], y: [T.t[cur.i]], mode: "markers", name: "selected",
+        t.push({type: kind, x: [T.s[cur.i]], y: [T.t[cur.i]], mode: "markers", name: "selected",
                 marker: {symbol: "star", size: 16, color: "#ff7f0e", line: {width: 1, color: "#111"}}, hoverinfo: "skip"});
       }
       return t;
@@ -918,8 +921,9 @@ _JS = r"""
         var p = ev.points.filter(function (q) { return q.customdata !== undefined; })[0];
         if (p) { select(p.customdata); }
       });
-      var best = 0, v = T[sel.value];
-      for (var i = 0; i < n; i++) { if (v[i] !== null && (v[best] === null || v[i] > v[best])) { best = i; } }
+      // first shown: the design of the first region (else of the whole space) with the largest index
+      var v = T[sel.value], pool = D.regions.length && D.regions[0].count ? D.regions[0].index : idx, best = pool[0];
+      pool.forEach(function (i) { if (v[i] !== null && (v[best] === null || v[i] > v[best])) { best = i; } });
       return select(best);
     }).then(function () { window.mechoptExplorer = {data: D, select: select, current: cur}; });
   }
