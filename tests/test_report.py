@@ -185,6 +185,11 @@ def test_front_figures_read_plainly():
     fig.draw_without_rendering()
     ax = fig.axes[0]
     assert [t.get_text() for t in ax.texts] == ["(1.78606, 616.621)"]
+    assert ax.get_legend() is None
+    # the chosen design of a front is starred
+    two = plot_front(problem, pd.DataFrame({a: [1.5, 1.7, 1.9], b: [500.0, 600.0, 700.0]}), pd.DataFrame(), chosen=1)
+    star = [c for c in two.axes[0].collections if c.get_label() == "chosen design"]
+    assert len(star) == 1 and star[0].get_offsets().tolist() == [[1.7, 600.0]]
     assert ax.get_xlim() == pytest.approx((1.78606 * 0.95, 1.78606 * 1.05))
     assert ax.get_ylim() == pytest.approx((616.621 * 0.95, 616.621 * 1.05))
     le = get("le2013")

@@ -76,10 +76,12 @@ def _label(ob):
     return f"{ob.name} [{ob.unit}] ({'max' if ob.sense < 0 else 'min'})"
 
 
-def plot_front(problem, front, history, population=None, info=None) -> Figure:
+def plot_front(problem, front, history, population=None, info=None, chosen=None) -> Figure:
     """The front of a 2-3 objective run (pairs of objectives for more), or the
     best-so-far curve of a single-objective run; with an empty front (no feasible
-    design) and the final ``population``, :func:`plot_population` instead."""
+    design) and the final ``population``, :func:`plot_population` instead. ``chosen``
+    (a row position of ``front``, e.g. the design a design run picks) is starred in
+    every panel."""
     obs = problem.objectives
     if len(front) == 0 and population is not None:
         n_eval = (info or {}).get("evaluations")
@@ -105,6 +107,10 @@ def plot_front(problem, front, history, population=None, info=None) -> Figure:
             _single_point(ax, float(front[obs[i].name].iloc[0]), float(front[obs[j].name].iloc[0]))
         else:
             ax.scatter(front[obs[i].name], front[obs[j].name], s=14)
+        if chosen is not None:
+            ax.scatter([front[obs[i].name].iloc[int(chosen)]], [front[obs[j].name].iloc[int(chosen)]], marker="*",
+                       s=160, color="C1", edgecolors="k", linewidths=0.5, zorder=4, label="chosen design")
+            ax.legend(fontsize=7)
         ax.set_xlabel(_label(obs[i]))
         ax.set_ylabel(_label(obs[j]))
         _plain_ticks(ax)
