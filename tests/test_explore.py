@@ -268,6 +268,17 @@ def _click_point(browser, div, x, y):
     ActionChains(browser).move_to_element_with_offset(el, int(round(dx)), int(round(dy))).pause(0.2).click().perform()
 
 
+def _wait_drawn(browser, i, k, timeout=20):
+    """Until the mechanism plot shows design ``i`` at slider position ``k``."""
+    t0 = time.time()
+    while time.time() - t0 < timeout:
+        if browser.execute_script("var d = window.mechoptExplorer.current.drawn; return d ? [d.i, d.k] : null;") == [i, k]:
+            return
+        time.sleep(0.05)
+    raise AssertionError(f"design {i} at position {k} not drawn: "
+                         f"{browser.execute_script('return window.mechoptExplorer.current')}")
+
+
 def _chains(xy):
     """Polylines of a trace with None separators."""
     out, cur = [], []
@@ -296,8 +307,7 @@ def test_design_page_in_browser(browser, design_run, artifacts, tmp_path):
     D[chosen] = -1
     j = int(np.argmax(D.min(1)))
     _click_point(browser, "front", F[j, 0], F[j, 1])
-    time.sleep(0.3)
-    assert browser.execute_script("return window.mechoptExplorer.current.i") == j
+    _wait_drawn(browser, j, 0)
     shown = browser.execute_script(
         "var o = {}; document.querySelectorAll('#design-vars td[data-value]').forEach(function (td) {"
         "  o[td.getAttribute('data-name')] = Number(td.getAttribute('data-value')); }); return o;")
@@ -313,6 +323,7 @@ def test_design_page_in_browser(browser, design_run, artifacts, tmp_path):
     k = 23
     slider.send_keys(*([Keys.ARROW_RIGHT] * k))
     assert int(slider.get_attribute("value")) == k
+    _wait_drawn(browser, j, k)  # the page draws the latest position once per animation frame
     px, py = _trace(browser, "mech", "platform")
     p = _rect_point(front.loc[j, "task_x"], front.loc[j, "task_y"], k / N_POSES)
     assert (px[0], py[0]) == pytest.approx(p, abs=1e-3)

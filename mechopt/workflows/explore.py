@@ -736,7 +736,8 @@ _JS = r"""
       el("pose-label").textContent = (D.region ? "boundary at arc-length fraction " : "task point ") +
         (D.region ? fmt(D.path_t[cur.k]) : (cur.k + 1) + " of " + nPose) + " (position " + (cur.k + 1) + "/" + nPose + ")" +
         (pose ? "" : " - out of reach");
-      return Plotly.react("mech", mechTraces(), layout, CONFIG);
+      var drawing = {i: cur.i, k: cur.k};
+      return Plotly.react("mech", mechTraces(), layout, CONFIG).then(function () { cur.drawn = drawing; });
     }
     function showRow(i) {
       var r = rowOf(D, i);
@@ -748,7 +749,14 @@ _JS = r"""
     }
     function select(i) { cur.i = i; showRow(i); if (dims.length > 1) { drawParallel(); } return drawMech(); }
     function setPose(k) { cur.k = k; slider.value = String(k); return drawMech(); }
-    slider.addEventListener("input", function () { setPose(Number(slider.value)); });
+    // while the slider moves, one drawing per animation frame (the latest position)
+    var pending = false;
+    slider.addEventListener("input", function () {
+      cur.k = Number(slider.value);
+      if (pending) { return; }
+      pending = true;
+      requestAnimationFrame(function () { pending = false; drawMech(); });
+    });
     el("legend-note").textContent = "Margins in the units of their requirement (front.csv); a negative one fails. " +
       "Drawings: " + D.designs.length + " designs x " + nPose + " platform positions, computed when the page was built " +
       "(the mechanism's inverse kinematics), outlines on a raster of the design's reach.";
