@@ -98,6 +98,8 @@ def test_every_figure_embedded_with_caption(results, report):
     embedded = [base64.b64decode(s) for s in srcs]
     assert len(set(embedded)) == len(embedded)  # no figure twice
     assert all(p.read_bytes() in embedded for p in pngs)
+    n = len(contents)
+    assert f"{n} figures, fronts and sweeps</p>" in html  # the header counts what is shown
     # the copy is named beside the one shown
     assert ("<code>wu2008/sweep/front.png</code> is the same image as <code>wu2008/front/front.png</code>"
             in html)

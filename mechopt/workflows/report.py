@@ -451,7 +451,8 @@ def _paper_html(d: Path, paper: str) -> tuple[str, int]:
         shown.setdefault(hashlib.sha256(png.read_bytes()).hexdigest(), f"{paper}/{png.name}")
         ref, desc = figure_caption(paper, png.name)
         figs.append(_figure_html(png, ref, desc, f"{paper}/{png.name}"))
-    n_fronts = sum(1 for _ in (d / paper).glob("*/*.png"))
+    runs = _runs_html(d, paper, shown)
+    n_fronts = runs.count("<figure")  # each image once: a copy of another is named, not counted
     html = [f'<section id="{escape(paper)}"><h2>{escape(paper_name(paper))}</h2>',
             f'<p class="title">{escape(TITLES.get(paper, paper))}</p>',
             f'<p class="counts">{escape(counts_line(counts(df)))}.{escape(kind)} '
@@ -462,8 +463,8 @@ def _paper_html(d: Path, paper: str) -> tuple[str, int]:
             f'<h3 id="{escape(paper)}-figures">Figures ({len(pngs)})</h3>',
             f'<div class="figs">{"".join(figs)}</div>' if figs else "<p>No figure was written.</p>",
             f'<h3 id="{escape(paper)}-fronts">Fronts and sweeps ({n_fronts})</h3>',
-            _runs_html(d, paper, shown), "</section>"]
-    return "\n".join(html), len(pngs) + n_fronts
+            runs, "</section>"]
+    return "\n".join(html), len(figs) + n_fronts
 
 
 _CSS = """
