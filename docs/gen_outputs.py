@@ -175,19 +175,6 @@ CONSTRAINTS = {
     "design": {},
 }
 #: requirements of ``mechopt design``: (meaning of margin_<name> / g_<name>, unit of the margin)
-REQUIREMENTS = {
-    "reach": ("the whole task reachable in one working mode: certified clearance (sampled minimum "
-              "minus half the boundary gap)", "unit"),
-    "singular": ("no type-II singularity over the task: smallest sine of the angle between the legs "
-                 "minus the singularity margin", "-"),
-    "lci": ("`--min-lci`: minimum LCI over the task minus the required level", "-"),
-    "joints": ("`--joint-limits`: smallest distance of the crank ranges to their limits", "rad"),
-    "link_angle": ("`--link-angle`: smallest distance of the link angles to their limits", "rad"),
-    "stroke": ("`--max-stroke`: the limit minus the longest stroke", "unit"),
-    "lengths": ("bipod: `--max-length` minus the longest strut at full extension", "unit"),
-    "speed": ("`--min-speed`: guaranteed speed minus the required one (Liu eq. 10)", "unit/s"),
-    "force": ("`--min-force`: guaranteed force minus the required one (Liu eq. 13)", "N"),
-}
 HISTORY = {
     "generation": ("generation number, from 1", "-"),
     "evaluations": ("designs evaluated so far", "-"),
@@ -267,7 +254,8 @@ DESIGN_JSON = {
     "feasible": ("every `g <= 0` under the fine certification", ""),
     "values": ("`type2_min` (smallest sine of the leg angle over the task), `lci_min`, `lci_mean` "
                "(over the interior grid), `size` [unit], and with their options `footprint` [unit], "
-               "`speed` [unit/s], `force` [N], `torque` [N m or N]", ""),
+               "`speed` [unit/s], `force` [N], `torque` [N m or N], `error_um` [um] (the proven worst-case "
+               "position error over the task, with `--max-error` or the `error` objective)", ""),
     "tolerance": ("what the margins rest on: `boundary_gap` [unit], `interior_step` [unit], `reach` and "
                   "`minima` (sentences); for a point task `points`", ""),
     "repr": ("the mechanism as Python (`FiveBar(r1=..., ...)`)", ""),
@@ -277,8 +265,8 @@ DESIGN_JSON = {
     "link1_angle_deg": ("gantry, biglide with `--link-angle`: `[lo, hi]` of link 1's angle", "deg"),
     "link2_angle_deg": ("the same for link 2", "deg"),
 }
-DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque")
-DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points")
+DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque", "error_um")
+DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points", "path_gap")
 DESIGN_RUN = {
     "design": ("the sizing problem: `mechanism`, `task` (`kind`, `unit`, `label`, and `vertices`, "
                "`center`/`radius` or `points`), `requirements` (angles in rad), `objectives`, `mode`, "
@@ -289,10 +277,64 @@ DESIGN_RUN = {
     "certification": ("the fine sampling: `n_boundary`, `n_interior`, `refine`", ""),
     "chosen": ("`index` (row of `front.csv`) and `by` (`knee` or the `--pick` weights) of design.json",
                ""),
+    "stage_times_s": ("wall time of each stage of the command: `optimisation`, `polish`, `certification`, "
+                      "`files` (figures drawn); `wall_time_s` is their sum", "s"),
 }
 DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
                    "max_length", "shape", "unit", "kind", "label", "vertices", "center", "radius", "points",
-                   "n_boundary", "n_interior", "refine", "by")
+                   "n_boundary", "n_interior", "refine", "by", "optimisation", "polish", "certification", "files")
+EXPORT_FILES = {
+    "robot.urdf": ("`urdf`: the mechanism as a tree (URDF, lengths in m), cut open at the platform joint; the "
+                   "closure frames `closedloop1_A` (leg 1, the platform point) and `closedloop1_B` (leg 2) are "
+                   "massless links on fixed joints; in Pinocchio close the loop with a `RigidConstraintModel` "
+                   "(`CONTACT_3D`) between them; placeholder inertias (a 1 kg cylinder per body)"),
+    "robot.yaml": ("`urdf`: `closed_loop`, `type` and `name_mot` (the motors) in the format of Gepetto's "
+                   "example-parallel-robots"),
+    "robot.xml": ("`mjcf`: MuJoCo, the loop closed by `<equality><connect site1=\"closedloop1_A\" "
+                  "site2=\"closedloop1_B\">`, position servos named as the motors, the design's ranges "
+                  "(`range`, `ctrlrange`), `framepos` sensors of both closure frames, the keyframe `home` at "
+                  "the task's centre"),
+    "link-<body>.dxf": ("`dxf`: one per rigid link (a body with two pins, the base when it carries two): "
+                        "hole circles (layer `HOLES`) at the pins, their centre distance the link length; "
+                        "the capsule outline (layer `OUTLINE`); in the design's unit (`$INSUNITS`); "
+                        "header property `MECHOPT_DESIGN_SHA256`"),
+    "mechanism.svg": "`svg`: the mechanism at the task's centre, the task and the path",
+    "path.csv": ("`csv`: one row per path sample (columns below); first line "
+                 "`# mechopt design sha256 <digest>`"),
+    "path.gif": ("`gif`: the mechanism following the path, one frame per k-th sample, "
+                 "`k = ceil(samples / 60)`, 20 frames/s; the GIF comment holds the digest"),
+    "export.json": "always: what was exported (keys below)",
+    "manifest.json": "the output folder's manifest, as for every command",
+}
+EXPORT_CSV = {
+    "t": ("arc-length fraction of the sample along the path, in [0, 1) (a region: its boundary at uniform "
+          "arc length from its first vertex, counter-clockwise; a point task: its points in order)", "-"),
+    "q1": ("the actuated joint of leg 1 (`theta1` or `q1`) from the inverse kinematics", "rad or unit"),
+    "q2": ("the actuated joint of leg 2", "rad or unit"),
+    "x": ("the platform point, task frame", "unit"),
+    "y": ("the platform point, task frame", "unit"),
+}
+EXPORT_JSON = {
+    "design_sha256": ("sha256 of design.json's canonical JSON (sorted keys, separators `,` `:`, ASCII): "
+                      "every exported file carries it", ""),
+    "design": ("the design.json exported", ""),
+    "mechanism": ("the mechanism's name", ""),
+    "repr": ("the mechanism as Python", ""),
+    "formats": ("the formats written", ""),
+    "unit": ("the design's length unit (DXF, SVG, CSV, GIF)", ""),
+    "simulator_unit": ("`m`: the URDF's and MJCF's length unit", ""),
+    "samples": ("path samples (`--samples`, or the points of a point task)", "-"),
+    "actuated_joints": ("the motors' joint names, leg 1 first", ""),
+    "closure_frames": ("`closedloop1_A`, `closedloop1_B`", ""),
+    "link_width": ("width of the links (DXF capsules, the inertias' cylinders): 0.1 x the longest pin "
+                   "distance", "unit"),
+    "home": ("`x`, `y`: the task's centre, where the SVG and the MJCF keyframe put the platform", "unit"),
+    "inertia": ("the placeholder mass model (a sentence)", ""),
+    "frames": ("with `gif`: frames of `path.gif`", "-"),
+    "frame_step": ("with `gif`: the sample step k between frames", "-"),
+    "files": ("`{file name: sha256}` of the exported files", ""),
+    "wall_time_s": ("time the export took", "s"),
+}
 ATLAS_CSV = {
     "r1": ("crank length", "L"),
     "r2": ("distal link length", "L"),
@@ -490,8 +532,12 @@ def _constraint_meaning(fam, c) -> str:
                 if f"{q}{'_min' if op == '>' else '_max'}" == c:
                     form = f"({t:g} - {q}) / {t:g}" if op == ">" else f"({q} - {t:g}) / {t:g}"
                     return f"constraint `{q} {op} {t:g}` (Liu 2006 sec. 3.1), relative: {form}"
-    if fam == "design" and c in REQUIREMENTS:
-        return f"constraint, normalised: {REQUIREMENTS[c][0]}"
+    if fam == "design":
+        from mechopt import requirements as _req
+
+        texts = {r.name: r.margin_text for r in _req.requirements()}
+        if c in texts:
+            return f"constraint, normalised: {texts[c]}"
     raise MissingGlossary(f"docs/gen_outputs.py: no meaning for constraint {c!r} of family {fam!r}")
 
 
@@ -580,17 +626,17 @@ def _sweep(problems) -> str:
 
 
 def _design() -> str:
-    from mechopt.analysis.task import MECHANISMS, OBJECTIVES, Requirements, get_spec
+    from mechopt import mechanisms as _mechanisms
+    from mechopt import requirements as _req
 
-    req_all = Requirements(min_lci=0.5, joint_limits=(0, 1), link_angle=(0, 1), max_stroke=1, min_speed=1,
-                           min_force=1, actuator_speed=1, actuator_torque=1, payload=1)
+    requirements = {r.name: r for r in _req.requirements()}
     names = []
     rows = []
-    for m in MECHANISMS:
-        spec = get_spec(m)
-        for n in req_all.names(spec):
-            if n not in names:
-                names.append(n)
+    for m in _mechanisms.designed():
+        spec = _mechanisms.design_spec(m)
+        for r in requirements.values():
+            if r.applies(spec) and r.name not in names:
+                names.append(r.name)
         if spec.angular:
             derived = [f"theta{i}_{e}_deg" for i in (1, 2) for e in ("min", "max")]
         else:
@@ -598,14 +644,18 @@ def _design() -> str:
         if spec.link_angles is not None:
             derived += [f"link{i}_angle_{e}_deg" for i in (1, 2) for e in ("min", "max")]
         rows.append((f"`{m}`", _codes(spec.lengths), _codes(spec.modes), _codes(derived)))
-    for n in names:
-        _lookup(REQUIREMENTS, n, "mechopt design requirement")
     out = ["## `mechopt design MECHANISM`\n",
            "Sizes a mechanism for a task region. It writes into `--out`, all at once when the run "
            "succeeds: `front.csv`, `design.json`, `run.json`, `history.csv` (as for `optimize`), "
            "`front.png` and `design.png` (the chosen mechanism at the task's centre with the task, its "
            "good-conditioning workspace, the type-II locus, the reachable boundary and the crank "
            "ranges). Lengths are in `--unit` (`unit` below).\n",
+           "`mechopt design any` (every mechanism, or `--mechanisms`) writes `front.csv` (the merged front: "
+           "a `mechanism` column first, then the columns below of each row's mechanism, empty where that "
+           "mechanism has none), `fronts.csv` (every mechanism's certified front, same columns), "
+           "`design.json` (the chosen design, its `mechanism_name`), `run.json` (`mechanisms`, `skipped` "
+           "with each reason, `objectives`, `front_size`, `per_mechanism` with each run's run.json, "
+           "`chosen`, `wall_time_s`), `front.png` (the fronts coloured by mechanism) and `design.png`.\n",
            "### `front.csv`\n",
            "One row per certified Pareto design: the mechanism's lengths, `D` (with `--shape`), "
            "`mode`, `task_x`, `task_y`, one column per objective, `margin_<requirement>` per "
@@ -627,14 +677,15 @@ def _design() -> str:
            ]),
            "Objectives (`--objectives`, each a column of its name):\n",
            _table(["objective", "sense", "meaning", "unit"],
-                  [(f"`{k}`", "max" if s < 0 else "min", d, u.format(L="unit", T="N m or N"))
-                   for k, (s, u, d) in OBJECTIVES.items()]),
+                  [(f"`{k}`", "max" if ob.sense < 0 else "min", ob.description, ob.unit.format(L="unit", T="N m or N"))
+                   for k, ob in _req.objectives().items()]),
            "Requirements: `margin_<name>` in `front.csv` and `margins` in `design.json` (natural units, "
            "> 0 satisfied), `g_<name>` of the search and `constraints_g` (normalised: lengths by the "
            "task diameter, angles by pi, LCI by its level, speed and force by their required values; "
            "<= 0 satisfied):\n",
            _table(["requirement", "margin", "unit of the margin"],
-                  [(f"`{n}` (`margin_{n}`, `g_{n}`)", REQUIREMENTS[n][0], REQUIREMENTS[n][1]) for n in names]),
+                  [(f"`{n}` (`margin_{n}`, `g_{n}`)", requirements[n].margin_text,
+                    requirements[n].margin_unit.format(L="unit")) for n in names]),
            "### `design.json`\n",
            "The chosen design (the knee of the front, or `--pick`), certified:\n",
            _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in DESIGN_JSON.items()]),
@@ -647,6 +698,75 @@ def _design() -> str:
            "`problems/design.py`) searches the lengths as `ln_<length> = ln(length + min_length)` "
            "(`ln_D` with a shape) and the placement as `task_x_rel`, `task_y_rel`; its `front.csv` is "
            "listed with the other problems above.\n"]
+    return "\n".join(out)
+
+
+def _export() -> str:
+    from mechopt.export import FORMATS
+
+    out = ["## `mechopt export DESIGN.json --to DIR`\n",
+           "Exports the design of a `mechopt design` run (its `design.json`, with the `run.json` beside it "
+           f"for the task) in the formats of `--format` ({_codes(FORMATS)}; default all), all at once, into "
+           "`--to`. Naming: the actuated joints carry the mechanism's actuator names (`theta1`, `theta2` for "
+           "cranks; `q1`, `q2` for sliders and struts), passive joints their role and leg (`elbow1`, "
+           "`pivot1`, `base1`, ...), the closure frames are `closedloop1_A` (leg 1: the platform point) "
+           "and `closedloop1_B` (leg 2). The tree of each mechanism is declared in its own module "
+           "(`kinematic_tree()`, `mechopt.core.kinematic_tree`).\n",
+           _table(["file", "content"], [(f"`{k}`", m) for k, m in EXPORT_FILES.items()]),
+           "### `path.csv`\n",
+           _table(["column", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in EXPORT_CSV.items()]),
+           "### `export.json`\n",
+           _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in EXPORT_JSON.items()])]
+    return "\n".join(out)
+
+
+#: mechopt accuracy --json (mechopt.workflows.accuracy.ACCURACY_KEYS)
+ACCURACY = {
+    "mechanism": ("the design's mechanism (its repr)", ""),
+    "unit": ("the task's length unit", ""),
+    "poses": ("task samples evaluated (192 boundary points and the 13 x 13 grid kept inside)", "-"),
+    "bound_um": ("proven worst-case position error: the largest bound over the samples", "um"),
+    "linear_um": ("its first-order part at that sample (the linear map's worst case, an upper bound)", "um"),
+    "remainder_um": ("its second-order remainder at that sample (bound_um - linear_um)", "um"),
+    "worst_x_um": ("largest first-order worst error along x over the samples", "um"),
+    "worst_y_um": ("largest first-order worst error along y over the samples", "um"),
+    "at": ("the task point [x, y] of bound_um", "unit"),
+    "mc_max_um": ("largest error of the Monte Carlo draws (exact perturbed forward kinematics)", "um"),
+    "ratio": ("bound_um / mc_max_um (>= 1 when the bound holds)", "-"),
+    "samples": ("Monte Carlo draws per task sample (--samples)", "-"),
+    "draw": ("where the draws lie in the tolerance box: vertices or uniform (--draw)", ""),
+    "seed": ("seed of the draws (--seed)", "-"),
+    "unbounded_poses": ("samples without a proof (unreachable, or next to a type-II singularity)", "-"),
+}
+#: the keys of an error model file (mechopt.analysis.accuracy.ErrorModel)
+ERROR_MODEL = {
+    "encoder_counts": ("counts per revolution of each crank's encoder (0: exact); +/- pi/counts rad", "-"),
+    "backlash_arcmin": ("lost motion of each crank's drive, full width (+/- half of it)", "arcmin"),
+    "resolution_um": ("one count of each slider's or strut's scale (+/- half of it)", "um"),
+    "backlash_um": ("lost motion of each slider's or strut's drive (+/- half of it)", "um"),
+    "clearance_um": ("radial clearance of each passive joint (the pin's centre within it of the bore's)", "um"),
+    "link_tol_um": ("tolerance on each link length, +/-", "um"),
+    "base_tol_um": ("tolerance on each coordinate of each base joint or guide, +/-", "um"),
+}
+
+
+def _accuracy() -> str:
+    from dataclasses import fields
+
+    from mechopt.analysis.accuracy import ErrorModel
+    from mechopt.workflows.accuracy import ACCURACY_KEYS
+
+    rows = [(f"`{k}`", *_lookup(ACCURACY, k, "accuracy")) for k in ACCURACY_KEYS]
+    model = [(f"`{f.name}`", *_lookup(ERROR_MODEL, f.name, "error model")) for f in fields(ErrorModel)]
+    out = ["## `mechopt accuracy DESIGN_DIR`\n",
+           "Reads a `mechopt design` folder (`design.json`, `run.json`) and an error model "
+           "(`--error-model FILE`, JSON or TOML, the keys below, each 0 when left out), prints the proven "
+           "worst-case position error over the design's task samples, the Monte Carlo maximum and their "
+           "ratio, and writes the error map `error_map.png` into `DESIGN_DIR` (or `--figure PATH`): the "
+           "bound over the task, colour bar in um. With `--json` it prints one JSON object:\n",
+           _table(["key", "meaning", "unit"], [(k, m, _unit(u)) for k, m, u in rows]),
+           "The error model file:\n",
+           _table(["key", "meaning", "unit"], [(k, m, _unit(u)) for k, m, u in model])]
     return "\n".join(out)
 
 
@@ -725,7 +845,8 @@ def _reproduce() -> str:
 
 def render() -> str:
     problems = _problem_columns()
-    parts = [_conventions(), _evaluate(), _optimize(problems), _sweep(problems), _design(), _atlas(),
+    parts = [_conventions(), _evaluate(), _optimize(problems), _sweep(problems), _design(), _export(), _accuracy(),
+             _atlas(),
              _reproduce()]
     text = "\n".join(p.rstrip("\n") + "\n" for p in parts)
     while "\n\n\n" in text:

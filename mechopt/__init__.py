@@ -24,7 +24,7 @@ _PUBLIC = {
     "global_indices": "mechopt.analysis.performance",
     "evaluate": "mechopt.analysis.evaluate",
     "Task": "mechopt.analysis.task",
-    "Requirements": "mechopt.analysis.task",
+    "Requirements": "mechopt.requirements",
     "design": "mechopt.workflows.design",
 }
 

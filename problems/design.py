@@ -1,8 +1,8 @@
 """Task-driven dimensional synthesis as a pymoo Problem (``mechopt design``).
 
 :class:`DesignProblem` is built from (mechanism, task, requirements, objectives);
-the kinematics, the requirements and their certification live in
-:mod:`mechopt.analysis.task` (:class:`~mechopt.analysis.task.DesignEvaluator`). Variables (pymoo's
+the kinematics and the evaluation live in :mod:`mechopt.analysis.design_eval`
+(:class:`~mechopt.analysis.design_eval.DesignEvaluator`), the requirements in :mod:`mechopt.requirements`. Variables (pymoo's
 ``X``): each length ``L`` of the mechanism as ``ln_L = ln(L + min_length)`` (or the
 scale ``ln_D`` of a fixed ``shape``), ``mode`` (an index into the mechanism's working
 modes) with ``mode="any"``, and the task placement relative to the design's reach,
@@ -20,7 +20,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechopt.analysis.task import OBJECTIVES, DesignEvaluator, Requirements, Sampling
+from mechopt.analysis.design_eval import DesignEvaluator
+from mechopt.analysis.sampling import Sampling
+from mechopt.requirements import Requirements
 
 from mechopt.run.problem import MechoptProblem, Objective
 
@@ -55,8 +57,7 @@ class DesignProblem(MechoptProblem):
                                               min_length, max_length, shape)
         self.sampling = sampling or Sampling()
         self.var_names = ev.var_names
-        units = ev.units()
-        self.objectives = tuple(Objective(o, OBJECTIVES[o][0], units[o]) for o in ev.objectives)
+        self.objectives = tuple(Objective(name, sense, unit, bounds) for name, sense, unit, bounds in ev.objective_specs())
         self.constr_names = ev.req.names(ev.spec)
         if len(self.objectives) == 1:
             self.default_algorithm = "ga"
@@ -80,8 +81,13 @@ class DesignProblem(MechoptProblem):
             extra["lci_min"][i] = res["values"]["lci_min"]
             extra["reach_margin"][i] = res["margin"]["reach"]
             extra["mode_index"][i] = ev.spec.modes.index(v["mode"])
-        if not (np.all(np.isfinite(F)) and np.all(np.isfinite(G))):
-            # never expected; a non-finite value would stall the algorithm's sorting
-            F = np.where(np.isfinite(F), F, 1e12)
-            G = np.where(np.isfinite(G), G, 1e3)
+        # a constraint that cannot be computed fails (NaN g: far from feasible)
+        G = np.where(np.isfinite(G), G, 1e3)
+        # an objective a design does not define (NaN: a torque without force capacity) is
+        # left undefined: only on rows a requirement makes infeasible, whose objectives
+        # pymoo's survival and tournaments never read (they rank them by constraint
+        # violation alone)
+        undefined = ~np.isfinite(F)
+        if np.any(undefined.any(axis=1) & np.all(G <= 0, axis=1)):
+            raise RuntimeError("an objective is undefined on a feasible design: a requirement is missing")
         return {"F": F, "G": G, "extra": extra}

@@ -6,7 +6,7 @@ Reads every module of ``mechopt`` (with ``mechopt.problems`` and
 inside functions (a function's import is a dependency too: it runs the first time the
 function does). The layers, lowest first (README, "Architecture")::
 
-    core  <  mechanisms  <  analysis  <  run  <  problems  <  workflows, experiments  <  cli
+    core  <  mechanisms  <  analysis, requirements  <  run  <  problems  <  workflows, experiments  <  cli
 
 The package root ``mechopt`` (the version and the lazily loaded public names) may be
 imported from anywhere and imports nothing at module level.
@@ -24,13 +24,13 @@ ROOT = Path(__file__).resolve().parents[1]
 LAYERS = {
     "mechopt.core": 0, "mechopt.data": 0,
     "mechopt.mechanisms": 1,
-    "mechopt.analysis": 2,
+    "mechopt.analysis": 2, "mechopt.requirements": 2,
     "mechopt.run": 3,
     "mechopt.problems": 4,
-    "mechopt.workflows": 5, "mechopt.experiments": 5,
+    "mechopt.workflows": 5, "mechopt.experiments": 5, "mechopt.export": 5,
     "mechopt.cli": 6,
 }
-LAYER_NAMES = {0: "core", 1: "mechanisms", 2: "analysis", 3: "run", 4: "problems",
+LAYER_NAMES = {0: "core", 1: "mechanisms", 2: "analysis/requirements", 3: "run", 4: "problems",
                5: "workflows/experiments", 6: "cli"}
 
 

@@ -24,7 +24,9 @@ import pytest
 
 from mechopt import Biglide, Bipod, FiveBar, dimensional_synthesis
 from mechopt.cli import main
-from mechopt.analysis.task import NoFeasibleDesign, Requirements, Task, certify, knee_index, parse_task
+from mechopt.analysis.design_eval import NoFeasibleDesign, certify, knee_index
+from mechopt.analysis.task import Task, parse_task
+from mechopt.requirements import Requirements
 from mechopt.workflows.design import design
 from mechopt.problems.design import DesignProblem
 

@@ -221,6 +221,12 @@ def runs(tmp_path_factory):
         with contextlib.redirect_stdout(io.StringIO()) as out:
             assert main(argv + ["--out", str(folders[name])]) == 0, name
         stdout[name] = out.getvalue()
+    # the design above exported (every format but the DXF, whose files are named by body)
+    folders["export"] = base / "export"
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        assert main(["export", str(folders["design"] / "design.json"), "--to", str(folders["export"]),
+                     "--format", "urdf,mjcf,svg,csv,gif", "--samples", "8"]) == 0
+    stdout["export"] = out.getvalue()
     evaluations = {}
     for mech, cls in registry().items():
         argv = ["evaluate", mech]
@@ -245,7 +251,7 @@ def test_evaluate_json_keys_are_listed(runs):
                                                          "quadrature": "area", "gamma": 0.5}
 
 
-@pytest.mark.parametrize("command", ["optimize", "optimize-infeasible", "sweep", "atlas", "design"])
+@pytest.mark.parametrize("command", ["optimize", "optimize-infeasible", "sweep", "atlas", "design", "export"])
 def test_every_file_column_and_key_a_command_writes_is_listed(runs, command):
     listed = _listed_names()
     folder = runs["folders"][command]
@@ -255,7 +261,7 @@ def test_every_file_column_and_key_a_command_writes_is_listed(runs, command):
     for f in files:
         path = folder / f
         if f.endswith(".csv"):
-            missing += [f"{f}: column {c}" for c in pd.read_csv(path, nrows=0).columns
+            missing += [f"{f}: column {c}" for c in pd.read_csv(path, nrows=0, comment="#").columns
                         if c.split(".")[0] not in listed]  # pandas suffixes a repeated name with .1
         elif f.endswith(".json"):
             missing += [f"{f}: key {k}" for k in sorted(_json_keys(json.loads(path.read_text())))

@@ -1,4 +1,4 @@
-"""The ``mechopt`` command: evaluate, reproduce, report, problems, optimize, sweep, design, atlas, explore.
+"""The ``mechopt`` command: evaluate, reproduce, report, problems, optimize, sweep, design, export, accuracy, atlas, explore.
 
 Each command is one module of this package with the same interface: ``NAME`` (the
 command), ``add_parser(subparsers)`` (registers it and its options) and ``run(args) ->
@@ -22,11 +22,11 @@ import os
 import sys
 
 from mechopt import __version__
-from mechopt.cli import atlas, design, evaluate, explore, optimize, problems, report, reproduce, sweep
+from mechopt.cli import accuracy, atlas, design, evaluate, explore, export, optimize, problems, report, reproduce, sweep
 from mechopt.cli._common import Parser, UsageError
 
 #: the command modules, in the order of ``mechopt --help``
-COMMANDS = (evaluate, reproduce, report, problems, optimize, sweep, design, atlas, explore)
+COMMANDS = (evaluate, reproduce, report, problems, optimize, sweep, design, export, accuracy, atlas, explore)
 
 EXIT_USAGE = 2
 #: exit statuses of a run stopped by SIGINT and SIGTERM (128 + signal number)

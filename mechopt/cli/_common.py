@@ -8,17 +8,59 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import re
 
 
 class UsageError(Exception):
     """A bad command line; :func:`mechopt.cli.main` prints it as one line, exit status 2."""
 
 
+#: an option's value that argparse would take for an option: a working mode made of
+#: signs (``-+``, ``--``) or a negative number or list (``-60,240``)
+_DASHED_VALUE = re.compile(r"[+-]{1,3}|-\.?\d[\d.,;eE+-]*")
+
+
 class Parser(argparse.ArgumentParser):
-    """argparse with one-line errors (no usage block) and exit status 2."""
+    """argparse with one-line errors (no usage block) and exit status 2, and option values
+    that start with a dash given as the next word (``--mode -+``, ``--joint-limits
+    -60,240``), which argparse alone refuses as "expected one argument"."""
 
     def error(self, message):
         raise UsageError(message)
+
+    def parse_known_args(self, args=None, namespace=None):
+        if args is not None:
+            args = self._join_dashed_values(list(args))
+        return super().parse_known_args(args, namespace)
+
+    def _get_values(self, action, arg_strings):
+        # argparse drops a value "--" (its end-of-options marker) even given as
+        # "--mode=--": the five-bar's working mode "--" is a value here
+        if action.nargs is None and action.option_strings and arg_strings == ["--"]:
+            value = self._get_value(action, "--")
+            self._check_value(action, value)
+            return value
+        return super()._get_values(action, arg_strings)
+
+    def _join_dashed_values(self, args):
+        """``[opt, value]`` -> ``["opt=value"]`` where ``opt`` takes one value and ``value``
+        starts with a dash but is no option of this parser."""
+        takes_value = {s for a in self._actions if a.nargs is None and a.option_strings
+                       and not isinstance(a, (argparse._StoreConstAction, argparse._HelpAction,
+                                              argparse._VersionAction, argparse._CountAction))
+                       for s in a.option_strings}
+        known = {s for a in self._actions for s in a.option_strings}
+        out, i = [], 0
+        while i < len(args):
+            a = args[i]
+            if (a in takes_value and i + 1 < len(args) and args[i + 1] not in known
+                    and _DASHED_VALUE.fullmatch(args[i + 1])):
+                out.append(f"{a}={args[i + 1]}")
+                i += 2
+            else:
+                out.append(a)
+                i += 1
+        return out
 
 
 def add_run_options(p, resumable=False):

@@ -77,6 +77,13 @@ class DesignSpec:
 
         return float(self.size(SimpleNamespace(**{n: v[n] for n in self.lengths}), {}))
 
+    def size_bound(self, lmax) -> float:
+        """An upper bound [L] of :meth:`size` over designs with every length <= ``lmax``
+        (the reference range of the ``size`` objective's hypervolume). Default: three times
+        ``lmax`` per design variable (every size here counts each length at most three
+        times, the bipod's struts, bounded by ``lmax``, included)."""
+        return 3.0 * len(self.lengths) * lmax
+
     # --- the mechanism ----------------------------------------------------------------
     def build(self, v, mode, strokes=None, pad=0.0):
         """The mechanism of the design ``v`` in working ``mode``; with

@@ -163,6 +163,11 @@ class PlanarMechanism(ABC):
     #: mechanism's own module; None: not offered by ``mechopt design``
     #: (:func:`mechopt.analysis.task.get_spec` lists those that are)
     design_spec: type | None = None
+    #: what of the mechanism is perturbable (actuator errors, link lengths, base
+    #: placement, joint clearances) and how it moves the pose: a subclass of
+    #: :class:`mechopt.core.error_spec.ErrorSpec` defined in the mechanism's own module
+    #: (:mod:`mechopt.analysis.accuracy` bounds the pose error with it); None: no model
+    error_spec: type | None = None
 
     @classmethod
     def from_parameters(cls, **values) -> "PlanarMechanism":

@@ -15,7 +15,7 @@ import importlib
 import pkgutil
 from functools import lru_cache
 
-__all__ = ["registry", "get"]
+__all__ = ["registry", "get", "designed", "design_spec"]
 
 
 @lru_cache(maxsize=1)
@@ -43,3 +43,18 @@ def get(name: str):
     from mechopt.core import validation as _v
 
     return registry()[_v.choice("mechanism", name, tuple(registry()))]
+
+
+def designed() -> tuple:
+    """Names of the mechanisms ``mechopt design`` sizes: every mechanism of
+    :func:`registry` (in its order) with a
+    :attr:`~mechopt.core.protocol.PlanarMechanism.design_spec`."""
+    return tuple(n for n, cls in registry().items() if cls.design_spec is not None)
+
+
+def design_spec(name: str):
+    """The design specification of mechanism ``name`` (one of :func:`designed`): a
+    :class:`~mechopt.core.design_spec.DesignSpec` instance."""
+    from mechopt.core import validation as _v
+
+    return registry()[_v.choice("mechanism", name, designed())].design_spec()

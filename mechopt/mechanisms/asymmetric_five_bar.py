@@ -94,6 +94,7 @@ class AsymmetricFiveBar(PlanarMechanism):
     joint_names = ("theta1", "theta2")
     angular_joints = True
     design_spec = AsymmetricFiveBarDesignSpec
+    error_spec = _fb.FiveBarErrorSpec
     #: the keys of :meth:`summary`, in order
     summary_keys = ("workspace_area", "mean_lci", "mean_tqi", "quadrature")
     #: the area scales as ``D^2``, the means of indices not at all
@@ -156,6 +157,15 @@ class AsymmetricFiveBar(PlanarMechanism):
 
     def assembly_of(self, x, y):
         return _fb.legs_assembly_of(x, y, self.r3, self._legs())
+
+    def kinematic_tree(self):
+        """Bodies and joints, the loop cut at the platform (the five-bar's
+        :func:`~mechopt.mechanisms.five_bar.model.legs_tree` with this mechanism's legs)."""
+        return _fb.legs_tree(self.cli_name, self.r3, self._legs())
+
+    def tree_configuration(self, x, y) -> dict:
+        """Every joint of :meth:`kinematic_tree` at ``(x, y)``."""
+        return _fb.legs_tree_configuration(x, y, self.r3, self._legs())
 
     # --- global numbers -----------------------------------------------------------
     def summary(self) -> dict:

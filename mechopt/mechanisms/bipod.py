@@ -63,11 +63,14 @@ import numpy as np
 from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
 from mechopt.core.design_spec import DesignSpec
+from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
+from mechopt.core.error_spec import ErrorSpec
 from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
 __all__ = [
     "Bipod",
     "BipodDesignSpec",
+    "BipodErrorSpec",
     "BRANCHES",
     "ASSEMBLY_MODES",
     "GTQI_METHODS",
@@ -182,6 +185,33 @@ class BipodDesignSpec(DesignSpec):
         return [[bases[0], (px, py)], [bases[1], (px, py)]], bases
 
 
+class BipodErrorSpec(ErrorSpec):
+    """The perturbable geometry of the Bipod (:mod:`mechopt.core.error_spec`): leg ``i``
+    holds ``P`` on the circle of centre the base joint ``A_i`` and radius the strut
+    length ``q_i``. Deviations: the strut coordinates ``q1``, ``q2`` (actuator) and
+    the struts' length offsets ``s1``, ``s2`` (the strut's length at a given reading:
+    link) [L]; the base joints' coordinates ``A1x, A1y, A2x, A2y`` [L]. Passive joints
+    with clearance: the base joints ``A1``, ``A2`` (leg ``i``'s centre moves) and the
+    platform joint ``P`` (the pin on strut 2 is the tool point; strut 1's bore moves
+    leg 1's centre). Every centre and radius is affine in the deviations."""
+
+    scalars = (("q1", "actuator"), ("q2", "actuator"), ("s1", "link"), ("s2", "link"),
+               ("A1x", "base"), ("A1y", "base"), ("A2x", "base"), ("A2y", "base"))
+    joints = (("A1", (0,)), ("A2", (1,)), ("P", (0,)))
+
+    def circles(self, mech, q1, q2, d):
+        g = lambda k: d.get(k, 0.0)  # noqa: E731
+        return (g("A1x") + 0.0 * q1, g("A1y") + 0.0 * q1, q1 + g("q1") + g("s1"),
+                mech.b + g("A2x") + 0.0 * q2, g("A2y") + 0.0 * q2, q2 + g("q2") + g("s2"))
+
+    def circle_jacobian(self, mech, q1, q2):
+        q1, _ = np.broadcast_arrays(np.asarray(q1, float), np.asarray(q2, float))
+        D = np.zeros(q1.shape + (6, 8))
+        D[..., 2, 0] = D[..., 5, 1] = D[..., 2, 2] = D[..., 5, 3] = 1.0  # radii: q_i, s_i
+        D[..., 0, 4] = D[..., 1, 5] = D[..., 3, 6] = D[..., 4, 7] = 1.0  # centres: A_i
+        return D
+
+
 class Bipod(PlanarMechanism):
     """Bipod (RPRPR) ``Bipod(b, q1_min, q1_max, q2_min=None, q2_max=None, branch="up")``.
 
@@ -202,6 +232,7 @@ class Bipod(PlanarMechanism):
 
     cli_name = "bipod"
     design_spec = BipodDesignSpec
+    error_spec = BipodErrorSpec
     cli_help = "Bipod RPRPR (Stan 2008): exact workspace area and global TQI"
     parameters = (
         Parameter("b", "length", "L", "base distance [L]"),
@@ -350,6 +381,33 @@ class Bipod(PlanarMechanism):
             [np.stack([x + nan, y + nan], -1), np.stack([x - self.b + nan, y + nan], -1)], -2
         )
         return A, np.stack([q1, q2], -1), ok
+
+    # --- the kinematic tree (mechopt.core.kinematic_tree; mechopt export) -----------------
+    def kinematic_tree(self):
+        """Per strut ``i`` the passive ``base<i>`` on the base at ``A_i`` (body
+        ``cylinder<i>``, x along the strut), the actuated prismatic ``q<i>`` along that x
+        axis from ``A_i`` (body ``rod<i>``, its origin at the strut's end: ``q_i`` is the
+        strut length, limited to the stroke) and the closure frame at the origin of
+        ``rod<i>``: the platform point."""
+        joints, closure = [], []
+        for i, ((ax, ay), lim) in enumerate(zip(self.base_joints, self.joint_limits), 1):
+            joints += [TreeJoint(f"base{i}", "revolute", BASE, f"cylinder{i}", (ax, ay)),
+                       TreeJoint(f"q{i}", "prismatic", f"cylinder{i}", f"rod{i}", (0.0, 0.0), (1.0, 0.0), True,
+                                 tuple(lim))]
+            closure.append(ClosureFrame(CLOSURE_NAMES[i - 1], f"rod{i}", (0.0, 0.0)))
+        return KinematicTree(self.cli_name, tuple(joints), tuple(closure))
+
+    def tree_configuration(self, x, y) -> dict:
+        """Every joint of :meth:`kinematic_tree` at ``(x, y)``: ``base<i>`` the strut's
+        angle ``atan2(y, x - x_Ai)`` [rad], ``q<i>`` its length from :meth:`ik`; NaN out
+        of reach."""
+        x, y = as_points(x, y)
+        q1, q2, ok = self.ik(x, y)
+        out = {}
+        for i, ((ax, ay), q) in enumerate(zip(self.base_joints, (q1, q2)), 1):
+            out[f"base{i}"] = np.where(ok, np.arctan2(y - ay, x - ax), np.nan)
+            out[f"q{i}"] = q
+        return out
 
     def serial_clearance(self, x, y):
         """Signed distance to the boundary of the reachable set, positive inside.

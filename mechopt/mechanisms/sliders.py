@@ -70,10 +70,12 @@ import numpy as np
 
 from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
+from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
+from mechopt.core.error_spec import ErrorSpec
 from mechopt.core.protocol import ASSEMBLY_MODES, PlanarMechanism, as_points
 from mechopt.core.quadrature import gauss_legendre
 
-__all__ = ["TwoSliderMechanism", "GuideDesignSpec", "ASSEMBLY_MODES", "GTQI_METHODS", "K_AV_READINGS"]
+__all__ = ["TwoSliderMechanism", "GuideDesignSpec", "SliderErrorSpec", "ASSEMBLY_MODES", "GTQI_METHODS", "K_AV_READINGS"]
 
 #: how :meth:`TwoSliderMechanism.gtqi` integrates: 1-D adaptive quadrature of exact
 #: chords, a fixed Gauss rule of them, or a raster
@@ -99,6 +101,45 @@ def _w(u, l):
         return np.sqrt(l * l - u * u)
 
 
+class SliderErrorSpec(ErrorSpec):
+    """The perturbable geometry of two sliders on vertical guides (the Biglide, the
+    gantry; :mod:`mechopt.core.error_spec`): leg ``i`` holds the link joint on the
+    circle of centre the slider joint ``S_i = (g_i, q_i)`` and radius the link length
+    ``L``. Deviations: the slider positions ``q1``, ``q2`` (actuator) and the link
+    lengths ``L1``, ``L2`` [L]; each guide's placement ``G1x, G1y, G2x, G2y`` [L] (its
+    x, and the y of its zero). Passive joints with clearance: the slider joints ``S1``,
+    ``S2`` (leg ``i``'s centre moves) and the platform joint ``P`` (leg 1's centre
+    moves). Every centre and radius is affine in the deviations.
+
+    The gantry's parallelogram keeps its platform level only with exact links: with
+    a platform of height ``l2 > 0`` a link error turns it and moves the reference
+    point, which this model does not cover (:meth:`check` refuses it; the designs of
+    ``mechopt design`` have ``l2 = 0``, where the platform joints and the reference
+    point coincide)."""
+
+    scalars = (("q1", "actuator"), ("q2", "actuator"), ("L1", "link"), ("L2", "link"),
+               ("G1x", "base"), ("G1y", "base"), ("G2x", "base"), ("G2y", "base"))
+    joints = (("S1", (0,)), ("S2", (1,)), ("P", (0,)))
+
+    def check(self, mech):
+        if mech._e != 0.0:
+            raise ValueError(f"the error model covers a platform of no height (l2 = 0: a link error turns a "
+                             f"taller platform), got l2 = {2.0 * mech._e!r}")
+
+    def circles(self, mech, q1, q2, d):
+        g = lambda k: d.get(k, 0.0)  # noqa: E731
+        (g1, g2), L = mech.guides, mech.length_scale
+        return (g1 + g("G1x") + 0.0 * q1, q1 + g("q1") + g("G1y"), L + g("L1") + 0.0 * q1,
+                g2 + g("G2x") + 0.0 * q2, q2 + g("q2") + g("G2y"), L + g("L2") + 0.0 * q2)
+
+    def circle_jacobian(self, mech, q1, q2):
+        q1, _ = np.broadcast_arrays(np.asarray(q1, float), np.asarray(q2, float))
+        D = np.zeros(q1.shape + (6, 8))
+        D[..., 1, 0] = D[..., 4, 1] = D[..., 2, 2] = D[..., 5, 3] = 1.0  # q_i, L_i
+        D[..., 0, 4] = D[..., 1, 5] = D[..., 3, 6] = D[..., 4, 7] = 1.0  # guides
+        return D
+
+
 class TwoSliderMechanism(PlanarMechanism):
     """Base of the two-slider mechanisms (module docstring); not offered by itself.
 
@@ -110,6 +151,7 @@ class TwoSliderMechanism(PlanarMechanism):
     assembly_modes = ASSEMBLY_MODES
     joint_names = ("q1", "q2")
     angular_joints = False
+    error_spec = SliderErrorSpec
 
     def _set_sliders(self, half_span, link, leg1_right, mode, strokes, stroke_lengths, offset):
         """Store the topology: guides at ``+-half_span`` (leg 1 at ``+half_span`` if
@@ -260,6 +302,38 @@ class TwoSliderMechanism(PlanarMechanism):
         A = np.where(ok[..., None, None], A, np.nan)
         b = np.where(ok[..., None], b, np.nan)
         return A, b, ok
+
+    # --- the kinematic tree (mechopt.core.kinematic_tree; mechopt export) -----------------
+    def kinematic_tree(self):
+        """Per leg ``i`` the actuated prismatic joint ``q<i>`` on the base at ``(g_i, 0)``
+        along y (body ``slider<i>``, limited to the stroke), the passive ``pivot<i>`` at
+        the slider (body ``link<i>``, x along the link) and the closure frame at
+        ``(L, 0)`` of ``link<i>``: the link joint. Only with the reported point at the
+        link joint (no platform offset ``e``): a gantry platform of height ``l2 > 0`` is
+        held level by a third, parallelogram link, which this tree does not describe
+        (ValueError); ``mechopt design`` builds gantries with ``l2 = 0``."""
+        if self._e != 0:
+            raise ValueError(f"{self.cli_name} with a platform offset ({self._e!r}: l2 > 0, a parallelogram "
+                             f"leg) has no kinematic tree for export; only l2 = 0 is exported")
+        joints, closure = [], []
+        for i, (g, lim) in enumerate(zip(self._g, self._lims), 1):
+            joints += [TreeJoint(f"q{i}", "prismatic", BASE, f"slider{i}", (g, 0.0), (0.0, 1.0), True,
+                                 tuple(lim)),
+                       TreeJoint(f"pivot{i}", "revolute", f"slider{i}", f"link{i}")]
+            closure.append(ClosureFrame(CLOSURE_NAMES[i - 1], f"link{i}", (self._L, 0.0)))
+        return KinematicTree(self.cli_name, tuple(joints), tuple(closure))
+
+    def tree_configuration(self, x, y) -> dict:
+        """Every joint of :meth:`kinematic_tree` at ``(x, y)``: ``q<i>`` from :meth:`ik`,
+        ``pivot<i>`` the angle of link ``i`` from the x axis, ``atan2(y - q_i, x - g_i)``
+        [rad]; NaN out of reach."""
+        x, y = as_points(x, y)
+        q1, q2, _ = self.ik(x, y)
+        out = {}
+        for i, (g, q) in enumerate(zip(self._g, (q1, q2)), 1):
+            out[f"q{i}"] = q
+            out[f"pivot{i}"] = np.arctan2(y - self._e - q, x - g)
+        return out
 
     def _left_right(self, q1, q2):
         """``(q_left, q_right)``: the slider positions ordered by the guides' x."""

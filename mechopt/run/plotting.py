@@ -80,8 +80,7 @@ def plot_front(problem, front, history, population=None, info=None, chosen=None)
     """The front of a 2-3 objective run (pairs of objectives for more), or the
     best-so-far curve of a single-objective run; with an empty front (no feasible
     design) and the final ``population``, :func:`plot_population` instead. ``chosen``
-    (a row position of ``front``, e.g. the design a design run picks) is starred in
-    every panel."""
+    (a row index of ``front``) is marked and labelled."""
     obs = problem.objectives
     if len(front) == 0 and population is not None:
         n_eval = (info or {}).get("evaluations")
@@ -108,8 +107,8 @@ def plot_front(problem, front, history, population=None, info=None, chosen=None)
         else:
             ax.scatter(front[obs[i].name], front[obs[j].name], s=14)
         if chosen is not None:
-            ax.scatter([front[obs[i].name].iloc[int(chosen)]], [front[obs[j].name].iloc[int(chosen)]], marker="*",
-                       s=160, color="C1", edgecolors="k", linewidths=0.5, zorder=4, label="chosen design")
+            ax.scatter([front[obs[i].name].iloc[chosen]], [front[obs[j].name].iloc[chosen]], s=90,
+                       facecolors="none", edgecolors="C3", linewidths=1.5, label="chosen design")
             ax.legend(fontsize=7)
         ax.set_xlabel(_label(obs[i]))
         ax.set_ylabel(_label(obs[j]))

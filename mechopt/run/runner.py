@@ -399,7 +399,8 @@ class _History:
             row["hypervolume"] = self.problem.hypervolume(F[feas]) if feas.any() else 0.0
             info = f"hv {row['hypervolume']:.5g}"
         elif F.shape[1] == 1:
-            info = f"best {self.problem.objectives[0].name} {row[f'best_{self.problem.objectives[0].name}']:.6g}"
+            name = self.problem.objectives[0].name
+            info = f"best {name} {row[f'best_{name}']:.6g}" if feas.any() else "no feasible design yet"
         self.rows.append(row)
         if self.progress is not None:
             if self.total is None:  # no generation limit: the termination's own progress

@@ -1,11 +1,11 @@
 """Size a mechanism for a task: the optimisation, its certification and its files.
 
-:func:`design` states the problem of :mod:`mechopt.analysis.task` (a
-:class:`~mechopt.analysis.task.Task`, :class:`~mechopt.analysis.task.Requirements`
-and objectives from :data:`~mechopt.analysis.task.OBJECTIVES`) as
+:func:`design` states the problem of :mod:`mechopt.analysis.design_eval` (a
+:class:`~mechopt.analysis.task.Task`, :class:`~mechopt.requirements.Requirements`
+and objectives from :func:`mechopt.requirements.objectives`) as
 :class:`mechopt.problems.design.DesignProblem`, runs it through
 :func:`mechopt.run.runner.optimize`, polishes the front, certifies every front design
-with a finer sampling (:func:`~mechopt.analysis.task.certify`) and returns a
+with a finer sampling (:func:`~mechopt.analysis.design_eval.certify`) and returns a
 :class:`DesignResult` (front as a DataFrame, :meth:`DesignResult.pick`,
 :meth:`DesignResult.knee`); with ``out`` it writes :data:`DESIGN_OUTPUTS`.
 """
@@ -21,8 +21,11 @@ import pandas as pd
 from mechopt.core import validation as _v
 from mechopt.core import indices as _ix
 from mechopt.core.numerics import golden_section_max
-from mechopt.analysis.task import (OBJECTIVES, DesignEvaluator, NoFeasibleDesign, Requirements, Sampling,
-                                   _parse_weights, certify, feasible, knee_index)
+from mechopt.analysis.design_eval import (DesignEvaluator, NoFeasibleDesign, certify, feasible, knee_index,
+                                          parse_pick, pick_index)
+from mechopt.analysis.sampling import Sampling
+from mechopt.requirements import Requirements
+from mechopt.requirements.singular import Singular
 
 __all__ = ["design", "DesignResult", "plot_design", "DESIGN_OUTPUTS"]
 
@@ -41,26 +44,22 @@ class DesignResult:
 
     def _F(self):
         ev = self.evaluator
-        return np.column_stack([OBJECTIVES[o][0] * self.front[o].to_numpy(float) for o in ev.objectives])
+        return np.column_stack([sense * self.front[o].to_numpy(float) for o, sense in ev.senses().items()])
 
     def knee(self) -> int:
         return knee_index(self._F())
 
     def pick(self, weights=None) -> dict:
         """The chosen design as a dict (variables, objectives, margins, mechanism):
-        the knee without ``weights``; otherwise the design minimising the weighted
-        sum of the normalised objectives (``{"size": 1, "min-lci": 2}`` or
-        ``"size=1,min-lci=2"``)."""
-        if weights is None:
-            i = self.knee()
-        else:
-            w = _parse_weights(weights, self.evaluator.objectives)
-            F = self._F()
-            lo, hi = F.min(0), F.max(0)
-            Z = (F - lo) / np.where(hi > lo, hi - lo, 1.0)
-            wv = np.array([w.get(o, 0.0) for o in self.evaluator.objectives])
-            i = int(np.argmin(Z @ wv))
-        return self.design_at(i)
+        the knee without ``weights`` (:func:`~mechopt.analysis.design_eval.knee_index`);
+        otherwise, on the objectives normalised to [0, 1] over the front, the design
+        minimising the weighted sum (``{"size": 1, "min-lci": 2}`` or
+        ``"size=1,min-lci=2"``), or with a prefix ``"asf:size=1,min-lci=2"`` the
+        achievement scalarizing function ``max_i Z_i / w_i`` (pymoo's ASF: it reaches
+        designs on non-convex parts of a front, which no weighted sum does), or
+        ``"pseudo:..."`` the design whose pseudo-weights are nearest (pymoo's
+        PseudoWeights, Deb 2001)."""
+        return self.design_at(pick_index(self._F(), self.evaluator.objectives, weights))
 
     def design_at(self, i) -> dict:
         row = self.front.iloc[int(i)].to_dict()
@@ -86,15 +85,7 @@ def _design_record(ev, v, res, index) -> dict:
            "mechanism": res["mechanism"], "repr": repr(res["mechanism"])}
     if "D" in v:
         rec["variables"]["D"] = v["D"]
-    d = res["derived"]
-    if "joint_ranges" in d:
-        rec["joint_ranges_deg"] = [[math.degrees(a), math.degrees(b)] for a, b in d["joint_ranges"]]
-    if "strokes" in d:
-        rec["strokes"] = [list(s) for s in d["strokes"]]
-        rec["stroke"] = d["stroke"]
-    for leg in (1, 2):
-        if f"link_angle{leg}" in d:
-            rec[f"link{leg}_angle_deg"] = [math.degrees(a) for a in d[f"link_angle{leg}"]]
+    rec.update(ev.record(res["derived"]))
     return rec
 
 
@@ -162,7 +153,7 @@ def _rows_eval(problem, X, j, sampling):
     evaluated with ``sampling`` (the polish uses the certification's, so what it accepts
     is feasible by :func:`certify`, not only by the search's coarser sampling)."""
     ev = problem.evaluator
-    sense = OBJECTIVES[ev.objectives[j]][0]
+    sense = ev.senses()[ev.objectives[j]]
     X = np.atleast_2d(np.asarray(X, float))
     f = np.empty(len(X))
     G = np.empty((len(X), len(problem.constr_names)))
@@ -603,7 +594,7 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
            algorithm=None, pop=None, gen=None, seed=1, n_jobs=1, client=None, out=None,
            progress=False, polish=True, pick=None, checkpoint_every=None, plot=True,
            overwrite=False) -> DesignResult:
-    """Size ``mechanism`` (one of :func:`mechopt.analysis.task.mechanisms`) for ``task``.
+    """Size ``mechanism`` (one of :func:`mechopt.analysis.design_eval.mechanisms`) for ``task``.
 
     Builds :class:`mechopt.problems.design.DesignProblem`, runs it with
     :func:`mechopt.run.runner.optimize` (seeded; ``n_jobs``/``client`` as there), polishes
@@ -633,7 +624,7 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
                        max_length=max_length, shape=shape)
     ev = problem.evaluator
     if pick is not None:
-        _parse_weights(pick, ev.objectives)
+        parse_pick(pick, ev.objectives)
     if checkpoint_every is not None:
         raise ValueError("design runs are not checkpointed; run mechopt.run.runner.optimize on the "
                          "registered 'design' problem to checkpoint one")
@@ -651,23 +642,32 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
 
 
 def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest):
-    """The run, polish and certification of :func:`design`, and its files with ``out``."""
+    """The run, polish and certification of :func:`design`, and its files with ``out``.
+    ``info["stage_times_s"]`` gives the wall time [s] of each stage (optimisation,
+    polish, certification, files) and ``info["wall_time_s"]`` their sum, the whole call."""
+    import time
+
     from mechopt.run import io as _io
     from mechopt.run.runner import optimize
 
+    t0 = time.perf_counter()
     run = optimize(problem, algorithm, pop, gen, seed, n_jobs, client, None, progress=progress,
                    plot=False)
     info = dict(run.info)
+    stages = {"optimisation": time.perf_counter() - t0}
     if not len(run.front):
         raise _no_design(problem, run)
     X = run.front[list(problem.var_names)].to_numpy(float)
     polished = []
+    t0 = time.perf_counter()
     if polish:
         new = _polish_front(problem, X, seed=seed, n_jobs=info.get("n_jobs") or n_jobs or 1, client=client)
         for j, rows_j in new.items():
             if rows_j:
                 X = np.vstack([X, *rows_j])
                 polished.append(ev.objectives[j])
+    stages["polish"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
     rows, kept, dropped = [], [], 0
     for x in X:
         v = ev.decode(x)
@@ -679,7 +679,7 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
         kept.append(ev.objective_values(res))
     if not rows:
         raise _no_design(problem, run, certified=True)
-    F = np.array(kept) * np.array([OBJECTIVES[o][0] for o in ev.objectives])
+    F = np.array(kept) * np.array(list(ev.senses().values()))
     nd = _non_dominated(F)
     front = pd.DataFrame([rows[i] for i in nd])
     keys = list(ev.objectives)
@@ -692,11 +692,16 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
     chosen = result.pick(pick)
     result.chosen_index = chosen["index"]
     info["chosen"] = {"index": chosen["index"], "by": "knee" if pick is None else f"weights {pick}"}
+    stages["certification"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
     if out is not None:
         from mechopt.run.plotting import plot_front
 
-        fig_front = plot_front(problem, front, run.history, run.population, info)
+        fig_front = plot_front(problem, front, run.history, run.population, info, chosen=chosen["index"])
         fig_design = plot_design(ev, chosen)
+        stages["files"] = time.perf_counter() - t0
+        info["stage_times_s"] = stages
+        info["wall_time_s"] = sum(stages.values())
         with _io.output_set(out, manifest) as stage:
             _io.write_csv(front, stage / "front.csv")
             _io.write_csv(run.history, stage / "history.csv")
@@ -704,6 +709,9 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
             _io.write_json(info, stage / "run.json")
             _io.save_figure(fig_front, stage / "front.png")
             _io.save_figure(fig_design, stage / "design.png")
+    else:
+        info["stage_times_s"] = stages
+        info["wall_time_s"] = sum(stages.values())
     return result
 
 
@@ -734,31 +742,35 @@ def _non_dominated(F):
 
 
 def _no_design(problem, run, certified=False) -> NoFeasibleDesign:
-    """``no design satisfies <requirement>`` from the least-violating design."""
+    """``no design satisfies <requirement>`` from the least-violating design of the final
+    population: the requirement it misses most (reach and singular first: without them
+    the other margins mean nothing), by how much in the requirement's own unit, how many
+    designs fail it."""
     ev = problem.evaluator
-    info = dict(run.info)
-    if certified or "constraint_violations" not in info:
-        names = problem.constr_names
-        G = run.population[[f"g_{n}" for n in names]].to_numpy(float)
-        k = int(np.argmin(np.maximum(G, 0).sum(1)))
-        per = {n: max(0.0, float(G[k, i])) for i, n in enumerate(names)}
-    else:
-        per = {k[2:]: v for k, v in info["constraint_violations"].items()}
-    # without reach (or across a singularity) the other margins mean nothing: name those first
+    names = problem.constr_names
+    pop = run.population
+    G = pop[[f"g_{n}" for n in names]].to_numpy(float)
+    k = int(np.argmin(np.maximum(G, 0).sum(1)))
+    per = {n: max(0.0, float(G[k, i])) for i, n in enumerate(names)}
     worst = next((n for n in ("reach", "singular") if per.get(n, 0.0) > 0), None) or max(per, key=per.get)
-    # how many designs of the final population fail each requirement
-    fails = {n: int((run.population[f"g_{n}"] > 0).sum()) for n in problem.constr_names}
-    unit = ev.unit
-    msg = (f"no design satisfies {ev.req.describe(worst, unit)} (of {len(run.population)} designs in the final "
-           f"population, {fails[worst]} fail it; least-violating design misses it by {per[worst]:.3g} "
-           f"normalised){' after certification' if certified else ''}; relax it or raise --max-length")
-    return NoFeasibleDesign(msg, {"violations": per, "fails": fails})
+    fails = {n: int((pop[f"g_{n}"] > 0).sum()) for n in names}
+    # the least-violating design's margin in natural units
+    res = ev.evaluate(ev.decode(pop[list(problem.var_names)].to_numpy(float)[k]), problem.sampling)
+    unit = next(r.margin_unit for r in ev.active if r.name == worst).format(L=ev.unit)
+    miss = -float(res["margin"][worst])
+    by = f"{miss:.4g} {unit}".rstrip(" -") if math.isfinite(miss) else f"{per[worst]:.3g} normalised"
+    msg = (f"no design satisfies {ev.req.describe(worst, ev.unit)} (of {len(pop)} designs in the final "
+           f"population, {fails[worst]} fail it; the least-violating design misses it by {by})"
+           f"{' after certification' if certified else ''}; relax it, or change the placement (--place) "
+           f"or the length bounds")
+    return NoFeasibleDesign(msg, {"violations": per, "fails": fails, "miss": miss, "unit": unit})
 
 
 # ------------------------------------------------------------------ figure
 def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
-    """The chosen mechanism at the task's reference pose, the task, the good-conditioning
-    workspace ``{LCI >= gamma}`` of its singularity-free piece, the type-II locus, the
+    """The chosen mechanism at the task's reference pose, the task (titled with where it
+    was placed), the good-conditioning workspace ``{LCI >= gamma}`` of its
+    singularity-free piece (only with a ``min_lci`` requirement), the type-II locus, the
     reachable boundary and the joint ranges, with units."""
     from matplotlib.figure import Figure
 
@@ -767,7 +779,7 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
     v = {**rec["variables"], **rec["task_placement"]}
     task = ev.task.moved_to(v["task_x"], v["task_y"])
     unit = ev.unit
-    gamma = ev.req.min_lci if ev.req.min_lci is not None else 0.5
+    gamma = ev.req.min_lci  # the good-conditioning zone is drawn only when asked for
     x0, x1, y0, y1 = task.bbox
     bb = mech.bounding_box()
     off = spec.to_mech(mech, 0.0, 0.0)[0]
@@ -778,10 +790,10 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
     gx, gy = np.meshgrid(np.linspace(X0 - pad, X1 + pad, n), np.linspace(Y0 - pad, Y1 + pad, n))
     mx, my = spec.to_mech(mech, gx, gy)
     f = mech.type2_function(mx, my)
-    rx, ry = task.reference if task.is_region else (task.pts[:, 0].mean(), task.pts[:, 1].mean())
-    s0 = np.sign(mech.type2_function(*spec.to_mech(mech, np.float64(rx), np.float64(ry)))) or 1.0
+    rx, ry = task.reference if task.is_region else task.pts[0]
+    s0 = Singular.sign(ev.context(v))  # the assembly mode the design was evaluated in
     lci = _ix.lci(mech.jacobian(mx, my))
-    good = (np.sign(f) == s0) & (lci >= gamma)
+    good = (np.sign(f) == s0) & (lci >= (gamma if gamma is not None else np.inf))
     from scipy import ndimage
 
     labels, _ = ndimage.label(np.sign(f) == s0)  # the singularity-free piece holding the task
@@ -791,12 +803,13 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
         good &= labels == labels[i, k]
     fig = Figure(figsize=(7.5, 6.5))
     ax = fig.add_subplot()
-    ax.contourf(gx, gy, good.astype(float), levels=[0.5, 1.5], colors=["#cfe8cf"])
+    if gamma is not None:
+        ax.contourf(gx, gy, good.astype(float), levels=[0.5, 1.5], colors=["#cfe8cf"])
     ax.contour(gx, gy, np.where(np.isfinite(f), f, np.nan), levels=[0.0], colors="tab:red", linewidths=1.0)
     clr = mech.serial_clearance(mx, my)
     ax.contour(gx, gy, clr, levels=[0.0], colors="0.4", linewidths=0.8, linestyles="--")
     ox, oy = task.outline()
-    if task.is_region:
+    if task.is_region or task.is_path:
         ax.plot(ox, oy, color="tab:blue", lw=2)
     else:
         ax.plot(ox, oy, ".", color="tab:blue", ms=3)
@@ -829,14 +842,18 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    ax.legend(handles=[Line2D([], [], color="tab:blue", lw=2, label="task"),
-                       Patch(color="#cfe8cf", label=f"GCW: LCI >= {gamma:g}, same type-II sign"),
-                       Line2D([], [], color="tab:red", lw=1, label="type-II singularity"),
-                       Line2D([], [], color="0.4", lw=0.8, ls="--", label="reachable boundary"),
-                       Line2D([], [], color="tab:purple", lw=1.5, label="crank ranges")],
-              loc="lower right", fontsize=7)
+    handles = [Line2D([], [], color="tab:blue", lw=2, label="task")]
+    if gamma is not None:
+        handles.append(Patch(color="#cfe8cf", label=f"GCW: LCI >= {gamma:g}, same type-II sign"))
+    handles += [Line2D([], [], color="tab:red", lw=1, label="type-II singularity"),
+                Line2D([], [], color="0.4", lw=0.8, ls="--", label="reachable boundary")]
+    if "joint_ranges_deg" in rec:
+        handles.append(Line2D([], [], color="tab:purple", lw=1.5, label="crank ranges"))
+    ax.legend(handles=handles, loc="lower right", fontsize=7)
     ax.set_aspect("equal")
     ax.set_xlabel(f"x [{unit}]")
     ax.set_ylabel(f"y [{unit}]")
-    ax.set_title(f"{spec.name} sized for {ev.task.label}")
+    # the task as placed (its label names the position it was given at)
+    ax.set_title(f"{spec.name} sized for {ev.task.label}\ntask centre placed at ({v['task_x']:.4g}, "
+                 f"{v['task_y']:.4g}) {unit}", fontsize=10)
     return fig

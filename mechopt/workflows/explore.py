@@ -13,7 +13,8 @@ design run (``mechopt design``: ``front.csv``, ``run.json``, ``design.json``)
     its type-II locus and, when ``--min-lci`` was asked, its good-conditioning
     workspace, with every variable, objective and margin of its front.csv row. A
     slider moves the platform along the task: the boundary of a region at uniform
-    arc length (:data:`N_POSES` positions), or the points of a point task (at most
+    arc length (:data:`N_POSES` positions), a path task end to end at uniform arc
+    length (:data:`N_POSES` positions), or the points of a point task (at most
     :data:`MAX_POINTS`, evenly taken). The drawings are computed here, when the page
     is built: the joint positions of every front design at every slider position
     from the design spec's ``sketch`` (the mechanism's own inverse kinematics), the
@@ -179,6 +180,8 @@ def _task_from(d: dict):
         return Task.circle(d["radius"], tuple(d["center"]), unit)
     if kind == "points":
         return Task.points(d["points"], unit)
+    if kind == "path":
+        return Task.path(d["points"], unit)
     if kind in ("rect", "polygon"):
         t = Task.polygon(d["vertices"], unit)
         return Task(kind, vertices=t.vertices, unit=t.unit, label=d.get("label", t.label))
@@ -203,6 +206,10 @@ def _path_positions(task):
         x, y = task.boundary_at(t)
         return np.asarray(x, float), np.asarray(y, float), t
     p = task.pts
+    if task.kind == "path":  # the polyline, end to end at uniform arc length
+        s = np.r_[0.0, np.cumsum(np.hypot(*np.diff(p, axis=0).T))]
+        t = np.linspace(0.0, 1.0, N_POSES)
+        return np.interp(t * s[-1], s, p[:, 0]), np.interp(t * s[-1], s, p[:, 1]), t
     idx = np.unique(np.linspace(0, len(p) - 1, min(len(p), MAX_POINTS)).round().astype(int))
     return p[idx, 0].astype(float), p[idx, 1].astype(float), idx / max(len(p) - 1, 1)
 
@@ -247,7 +254,7 @@ def _outlines(spec, mech, task, gamma, n=GRID) -> dict:
 
 
 def _design_data(d: Path) -> dict:
-    from mechopt.analysis.task import get_spec
+    from mechopt.analysis.design_eval import get_spec
 
     info = _read_json(d / "run.json")
     settings = info["design"]
@@ -279,18 +286,20 @@ def _design_data(d: Path) -> dict:
             "actuators": [[_list(a), _list(b)] for a, b in spec.actuator_paths(mech, strokes)],
             "outlines": _outlines(spec, mech, placed, gamma),
         })
-    from mechopt.analysis.task import OBJECTIVES
+    from mechopt.requirements import objectives as _objectives
+
+    declared = _objectives()
 
     lengths = [c for c in (*spec.lengths, "D") if c in front.columns]
     margins = [c for c in front.columns if c.startswith("margin_")]
     return {
         "kind": "design", "unit": unit, "mechanism": spec.name,
         "title": f"{spec.name} sized for {task.label}",
-        "task_kind": task.kind, "region": bool(task.is_region),
-        "path_t": _list(tpath), "n_task_points": 0 if task.is_region else int(len(task.pts)),
+        "task_kind": task.kind, "region": bool(task.is_region or task.kind == "path"),
+        "path_t": _list(tpath), "n_task_points": int(len(task.pts)) if task.kind == "points" else 0,
         "columns": list(map(str, front.columns)), "front": _columns(front),
         "objectives": objectives,
-        "senses": {o: ("max" if OBJECTIVES[o][0] < 0 else "min") for o in objectives if o in OBJECTIVES},
+        "senses": {o: ("max" if declared[o].sense < 0 else "min") for o in objectives if o in declared},
         "objective_units": (chosen.get("objective_units") or {}),
         "lengths": lengths, "margins": margins,
         "requirements": _jsonable(req), "gamma": gamma,
@@ -733,7 +742,7 @@ _JS = r"""
                     yaxis: {title: {text: "y [" + u + "]"}, scaleanchor: "x", scaleratio: 1, zeroline: false, exponentformat: "power"},
                     uirevision: String(cur.i)};
       var pose = D.designs[cur.i].poses[cur.k];
-      el("pose-label").textContent = (D.region ? "boundary at arc-length fraction " : "task point ") +
+      el("pose-label").textContent = (D.region ? (D.task_kind === "path" ? "path" : "boundary") + " at arc-length fraction " : "task point ") +
         (D.region ? fmt(D.path_t[cur.k]) : (cur.k + 1) + " of " + nPose) + " (position " + (cur.k + 1) + "/" + nPose + ")" +
         (pose ? "" : " - out of reach");
       var drawing = {i: cur.i, k: cur.k};

@@ -23,10 +23,13 @@ import numpy as np
 from mechopt.mechanisms.five_bar import lci as _fast_lci
 from mechopt.core import validation as _v
 from mechopt.core.design_spec import DesignSpec
+from mechopt.core.error_spec import ErrorSpec
+from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
-__all__ = ["FiveBar", "FiveBarDesignSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows", "legs_closure", "legs_reachable",
-           "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk", "legs_assembly_of"]
+__all__ = ["FiveBar", "FiveBarDesignSpec", "FiveBarErrorSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows",
+           "legs_closure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk",
+           "legs_assembly_of", "legs_tree", "legs_tree_configuration"]
 
 MODES = ("+-", "-+", "++", "--")
 _SIGN = {"+": 1.0, "-": -1.0}
@@ -174,6 +177,36 @@ def legs_assembly_of(x, y, r3, legs):
     return np.where(cross >= 0, "up", "down")
 
 
+def legs_tree(name, r3, legs) -> KinematicTree:
+    """The kinematic tree of a 5R (:mod:`mechopt.core.kinematic_tree`): per leg ``i`` the
+    actuated crank joint ``theta<i>`` on the base at ``A_i`` (body ``crank<i>``, its x
+    axis along the crank), the passive ``elbow<i>`` at ``(a_i, 0)`` of the crank (body
+    ``distal<i>``, x along the distal link) and the closure frame at ``(c_i, 0)`` of
+    ``distal<i>``: the platform point. Crank angles unlimited here (the design's
+    ranges are set by the exporter)."""
+    joints, closure = [], []
+    for i, (ax, (a, c, _)) in enumerate(zip((-r3, r3), legs), 1):
+        joints += [TreeJoint(f"theta{i}", "revolute", BASE, f"crank{i}", (ax, 0.0), actuated=True),
+                   TreeJoint(f"elbow{i}", "revolute", f"crank{i}", f"distal{i}", (a, 0.0))]
+        closure.append(ClosureFrame(CLOSURE_NAMES[i - 1], f"distal{i}", (c, 0.0)))
+    return KinematicTree(name, tuple(joints), tuple(closure))
+
+
+def legs_tree_configuration(x, y, r3, legs) -> dict:
+    """Joint values of :func:`legs_tree` with the platform at ``(x, y)``: ``theta<i>``
+    from :func:`legs_ik` (unwrapped), ``elbow<i>`` the angle from the crank to the distal
+    link ``B_i -> P`` [rad] in ``(-pi, pi]``, from :func:`legs_elbows`; NaN out of reach."""
+    x, y = as_points(x, y)
+    t1, t2, _ = legs_ik(x, y, r3, legs)
+    b1x, b1y, b2x, b2y, _ = legs_elbows(x, y, r3, legs)
+    out = {}
+    for i, (t, bx, by) in enumerate(((t1, b1x, b1y), (t2, b2x, b2y)), 1):
+        e = np.arctan2(y - by, x - bx) - t
+        out[f"theta{i}"] = t
+        out[f"elbow{i}"] = np.arctan2(np.sin(e), np.cos(e))
+    return out
+
+
 class FiveBarDesignSpec(DesignSpec):
     """``mechopt design five-bar``: the lengths ``r1, r2, r3`` [L] (``r3``, the half base,
     from 0), the modes :data:`MODES` (default ``"+-"``), cranks; the reachable set is the
@@ -221,6 +254,57 @@ class FiveBarDesignSpec(DesignSpec):
         return 0.35 * mech.r1
 
 
+class FiveBarErrorSpec(ErrorSpec):
+    """The perturbable geometry of a 5R with legs of any lengths (``FiveBar`` and
+    ``AsymmetricFiveBar``; :mod:`mechopt.core.error_spec`). Leg ``i`` holds ``P`` on
+    the circle of centre the elbow ``B_i = A_i + a_i (cos theta_i, sin theta_i)`` and
+    radius ``c_i``. Deviations: the crank angles ``theta1``, ``theta2`` [rad]; the four
+    link lengths ``a1, a2`` (cranks) and ``c1, c2`` (distal links) [L]; the base joints'
+    coordinates ``A1x, A1y, A2x, A2y`` [L]. Passive joints with clearance: the elbows
+    ``B1``, ``B2`` (the distal link's bore about the crank's pin: leg ``i``'s centre
+    moves) and the platform joint ``P`` (the pin on distal link 2 is the tool point,
+    the bore of distal link 1 about it moves leg 1's centre).
+
+    The centre rotates with the crank, so it is not affine in ``theta_i``: with
+    ``u = (cos theta, sin theta)`` and ``u'`` its derivative,
+    ``(a + da) u(theta + dt) - a u(theta) - da u - a dt u' = da (u(theta + dt) - u(theta))
+    + a (u(theta + dt) - u - dt u')``, of norm at most ``|da| |dt| + a dt^2 / 2``
+    (``|e^(i dt) - 1| <= |dt|``, and the Taylor remainder of ``e^(i t)``, whose second
+    derivative has modulus 1, is at most ``dt^2 / 2``).
+    """
+
+    scalars = (("theta1", "actuator"), ("theta2", "actuator"), ("a1", "link"), ("a2", "link"),
+               ("c1", "link"), ("c2", "link"), ("A1x", "base"), ("A1y", "base"), ("A2x", "base"),
+               ("A2y", "base"))
+    joints = (("B1", (0,)), ("B2", (1,)), ("P", (0,)))
+
+    def circles(self, mech, q1, q2, d):
+        (a1, c1, _), (a2, c2, _) = mech._legs()
+        g = lambda k: d.get(k, 0.0)  # noqa: E731
+        t1, t2 = q1 + g("theta1"), q2 + g("theta2")
+        k1, k2 = a1 + g("a1"), a2 + g("a2")
+        return (-mech.r3 + g("A1x") + k1 * np.cos(t1), g("A1y") + k1 * np.sin(t1), c1 + g("c1"),
+                mech.r3 + g("A2x") + k2 * np.cos(t2), g("A2y") + k2 * np.sin(t2), c2 + g("c2"))
+
+    def circle_jacobian(self, mech, q1, q2):
+        (a1, _, _), (a2, _, _) = mech._legs()
+        q1, q2 = np.broadcast_arrays(np.asarray(q1, float), np.asarray(q2, float))
+        D = np.zeros(q1.shape + (6, 10))
+        for leg, (q, a) in enumerate(((q1, a1), (q2, a2))):
+            c, s = np.cos(q), np.sin(q)
+            r = 3 * leg
+            D[..., r, leg], D[..., r + 1, leg] = -a * s, a * c  # theta_i
+            D[..., r, 2 + leg], D[..., r + 1, 2 + leg] = c, s  # a_i
+            D[..., r + 2, 4 + leg] = 1.0  # c_i
+            D[..., r, 6 + 2 * leg] = D[..., r + 1, 7 + 2 * leg] = 1.0  # A_i
+        return D
+
+    def centre_curvature(self, mech, q1, q2, half):
+        (a1, _, _), (a2, _, _) = mech._legs()
+        return tuple(half.get(f"a{i}", 0.0) * half.get(f"theta{i}", 0.0) + 0.5 * a * half.get(f"theta{i}", 0.0) ** 2
+                     for i, a in ((1, a1), (2, a2)))
+
+
 class FiveBar(PlanarMechanism):
     """Symmetric 5R mechanism ``FiveBar(r1, r2, r3, mode="+-")``.
 
@@ -261,6 +345,7 @@ class FiveBar(PlanarMechanism):
     joint_names = ("theta1", "theta2")
     angular_joints = True
     design_spec = FiveBarDesignSpec
+    error_spec = FiveBarErrorSpec
 
     def __init__(self, r1, r2, r3, mode: str = "+-"):
         self.r1 = _v.positive_length("r1", r1)
@@ -342,6 +427,14 @@ class FiveBar(PlanarMechanism):
     def assembly_of(self, x, y):
         """Which FK assembly mode (``"up"``/``"down"``) a pose of this working mode is in."""
         return legs_assembly_of(x, y, self.r3, self._legs())
+
+    def kinematic_tree(self):
+        """Bodies and joints, the loop cut at the platform (:func:`legs_tree`)."""
+        return legs_tree(self.cli_name, self.r3, self._legs())
+
+    def tree_configuration(self, x, y) -> dict:
+        """Every joint of :meth:`kinematic_tree` at ``(x, y)`` (:func:`legs_tree_configuration`)."""
+        return legs_tree_configuration(x, y, self.r3, self._legs())
 
     def type2_function(self, x, y):
         """``(a1 x a2) / (|a1| |a2|)`` with ``a_i = P - B_i``: the sine of the angle

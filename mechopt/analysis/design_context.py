@@ -1,0 +1,130 @@
+"""The sample context of one design evaluation: what every requirement and objective
+of :mod:`mechopt.requirements` reads.
+
+A :class:`DesignContext` holds the design's mechanism, the task's samples
+(:func:`mechopt.analysis.sampling.samples`), the values several members need
+(Jacobians, LCI, type-II function and serial clearance at the samples, each computed
+once, on first use), whether minima are refined (:attr:`DesignContext.refine`, set
+by the evaluator from the requirements' screens), the searches of
+:mod:`mechopt.analysis.sampling` bound to this design, and a memo through which two
+members share a refined value.
+"""
+from __future__ import annotations
+
+from functools import cached_property
+
+import numpy as np
+
+from mechopt.core import indices as _ix
+from mechopt.analysis import sampling as _s
+
+__all__ = ["DesignContext"]
+
+
+class DesignContext:
+    """One design's evaluation context (module docstring).
+
+    Attributes
+    ----------
+    spec : DesignSpec
+        The mechanism's design spec.
+    mech, check : PlanarMechanism
+        The design's mechanism in the task frame (:meth:`DesignSpec.to_mech` maps task
+        points into its frame); ``check`` the one whose serial clearance bounds the reach
+        (the mechanism itself, or with padded strokes for slider mechanisms).
+    samples : dict
+        The task's samples (:func:`mechopt.analysis.sampling.samples`).
+    req : Requirements
+        The checked requirements.
+    objectives : tuple
+        The chosen objectives' names.
+    unit : str
+        The task's length unit.
+    diameter : float
+        The task's diameter [L] (the scale of the normalised constraints).
+    max_length : float
+        The longest link allowed [L].
+    derived : dict
+        Derived values of the design (strokes, joint ranges, link angles).
+    refine : bool
+        Whether minima are refined by zooming (the sampling asks it and every active
+        requirement's screen passes).
+    """
+
+    def __init__(self, spec, mech, check, samples, req, objectives, unit, diameter, max_length, derived,
+                 refine=True):
+        self.spec, self.mech, self.check, self.samples = spec, mech, check, samples
+        self.req, self.objectives, self.unit = req, objectives, unit
+        self.diameter, self.max_length, self.derived = diameter, max_length, derived
+        self.refine = refine
+        self._memo = {}
+
+    # --- the samples ------------------------------------------------------------------
+    @property
+    def task(self):
+        """The task as placed for this evaluation."""
+        return self.samples["task"]
+
+    @property
+    def is_region(self) -> bool:
+        return self.task.is_region
+
+    @property
+    def n_boundary(self) -> int:
+        """Number of boundary samples (the first ones of ``allx, ally``)."""
+        return self.samples["bx"].size
+
+    def to_mech(self, x, y):
+        """Task points in the mechanism's frame."""
+        return self.spec.to_mech(self.mech, x, y)
+
+    # --- values at the samples, computed once --------------------------------------------
+    @cached_property
+    def clearance(self) -> np.ndarray:
+        """Serial clearance of ``check`` at every sample [L], unreachable samples ``-D``."""
+        s = self.samples
+        return _s.bad_to(self.check.serial_clearance(*self.spec.to_mech(self.check, s["allx"], s["ally"])),
+                         -self.diameter)
+
+    @cached_property
+    def type2_raw(self) -> np.ndarray:
+        """The type-II function (sine of the angle between the legs) at every sample."""
+        s = self.samples
+        return self.mech.type2_function(*self.to_mech(s["allx"], s["ally"]))
+
+    @cached_property
+    def jacobian(self) -> np.ndarray:
+        """The Jacobian ``q_dot = J p_dot`` at every sample, shape ``(N, 2, 2)``."""
+        s = self.samples
+        return self.mech.jacobian(*self.to_mech(s["allx"], s["ally"]))
+
+    @cached_property
+    def lci(self) -> np.ndarray:
+        """LCI at every sample (0 where unreachable)."""
+        return _s.bad_to(_ix.lci(self.jacobian), 0.0)
+
+    # --- searches over the task ------------------------------------------------------------
+    def region_min(self, f, vals) -> float:
+        """Minimum over the task of ``f(x, y)`` (values ``vals`` at the samples), refined
+        when :attr:`refine` (:func:`mechopt.analysis.sampling.region_mins`)."""
+        return self.region_mins(lambda x, y: f(x, y)[None], vals[None])[0]
+
+    def region_mins(self, F, vals) -> list:
+        """Minima over the task of the rows of ``F(x, y)`` (values ``vals`` at the samples)."""
+        return _s.region_mins(self.samples, F, self.refine, vals)
+
+    def leg_ranges(self, legs, bad=(np.inf, np.inf)) -> list:
+        """Ranges over the task's boundary of the two values of ``legs(x, y)``
+        (:func:`mechopt.analysis.sampling.leg_ranges`)."""
+        return _s.leg_ranges(self.samples, legs, self.refine, bad)
+
+    # --- sharing between members -----------------------------------------------------------
+    def memo(self, key, compute):
+        """``compute()``, computed once per evaluation under ``key``."""
+        if key not in self._memo:
+            self._memo[key] = compute()
+        return self._memo[key]
+
+    def has(self, key) -> bool:
+        """True when a member computed the value ``key`` (:meth:`memo`)."""
+        return key in self._memo

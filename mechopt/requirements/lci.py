@@ -1,0 +1,85 @@
+"""LCI: the local conditioning index over the task (Liu 2006 eq. 3), a requirement
+``min_T LCI >= gamma`` and the objectives ``min-lci`` and ``mean-lci``.
+
+The minimum over the task is attained on ``dT`` or at an interior critical point:
+both are located on the samples and refined by zooming
+(:mod:`mechopt.analysis.sampling`). The mean is over the interior grid (the points of a
+point task).
+"""
+from __future__ import annotations
+
+from mechopt.core import indices as _ix
+from mechopt.core import validation as _v
+from mechopt.analysis.sampling import bad_to
+from mechopt.requirements.base import Objective, Option, Requirement
+
+__all__ = ["MinLCI", "MinLCIObjective", "MeanLCIObjective", "lci_min", "lci_mean", "MEMBERS"]
+
+#: a design whose sampled LCI minimum is below ``SCREEN * gamma`` is not refined
+SCREEN = 0.9
+
+
+def lci_min(ctx) -> float:
+    """The minimum LCI over the task, refined (shared by the requirement and the objective)."""
+    return ctx.memo("lci_min", lambda: ctx.region_min(
+        lambda x, y: bad_to(_ix.lci(ctx.mech.jacobian(*ctx.to_mech(x, y))), 0.0), ctx.lci))
+
+
+def lci_mean(ctx) -> float:
+    """The mean LCI over the interior grid (over the points of a point task)."""
+    lci, nb = ctx.lci, ctx.n_boundary
+    return float(lci[nb:].mean() if ctx.samples["ix"].size else lci[:nb].mean())
+
+
+class MinLCI(Requirement):
+    name = "lci"
+    options = (Option("min_lci", "LCI >= this everywhere on the task (dimensionless, in (0, 1))",
+                      check=lambda v, spec: _v.open_unit_interval("min_lci", v)),)
+    needs = ("points", "jacobian")
+    margin_text = "`--min-lci`: minimum LCI over the task minus the required level"
+    certificate = ("boundary and interior critical points located on the samples and refined by zooming "
+                   "(mechopt.analysis.sampling)")
+
+    def describe(self, req, unit) -> str:
+        return f"LCI >= {req.min_lci} over the task"
+
+    def screen(self, ctx) -> bool:
+        return float(ctx.lci.min()) >= SCREEN * ctx.req.min_lci
+
+    def evaluate(self, ctx):
+        gamma, m = ctx.req.min_lci, lci_min(ctx)
+        return m - gamma, (gamma - m) / gamma
+
+    def report(self, ctx) -> dict:
+        # the refined minimum where a member asked for it, else the samples' minimum
+        low = lci_min(ctx) if ctx.has("lci_min") else float(ctx.lci.min())
+        return {"lci_min": low, "lci_mean": lci_mean(ctx)}
+
+
+class MinLCIObjective(Objective):
+    name = "min-lci"
+    sense = -1
+    description = "minimum LCI over the task"
+    needs = ("points", "jacobian")
+
+    def value(self, ctx) -> float:
+        return lci_min(ctx)
+
+    def invalid_value(self, ev, lengths) -> float:
+        return 0.0
+
+
+class MeanLCIObjective(Objective):
+    name = "mean-lci"
+    sense = -1
+    description = "mean LCI over the task (interior grid)"
+    needs = ("points", "jacobian")
+
+    def value(self, ctx) -> float:
+        return lci_mean(ctx)
+
+    def invalid_value(self, ev, lengths) -> float:
+        return 0.0
+
+
+MEMBERS = (MinLCI(), MinLCIObjective(), MeanLCIObjective())

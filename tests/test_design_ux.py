@@ -1,0 +1,137 @@
+"""What a designer types and reads (issue: a designer is never misled): working modes and
+negative values on the command line, values with units, the power condition refused
+before any run, the choice of a design, the printed time and placement."""
+from __future__ import annotations
+
+import math
+import re
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from mechopt import mechanisms as mechanism_package
+from mechopt.analysis.design_eval import DesignEvaluator, pick_index
+from mechopt.analysis.task import Task
+from mechopt.cli import build_parser, main
+from mechopt.requirements import Requirements
+
+
+# ---------------------------------------------------------------- the command line
+@pytest.mark.parametrize("mode", ["-+", "--", "+-", "++"])
+def test_every_mode_parses_as_the_next_word(mode):
+    args = build_parser().parse_args(["design", "five-bar", "--task", "rect:10,10@0,100", "--mode", mode,
+                                      "--out", "x"])
+    assert args.mode == mode
+    args = build_parser().parse_args(["evaluate", "five-bar", "--r1", "1", "--r2", "2", "--r3", "0.5",
+                                      "--mode", mode])
+    assert args.mode == mode
+
+
+def test_negative_values_parse_as_the_next_word():
+    args = build_parser().parse_args(["design", "five-bar", "--task", "rect:10,10@0,100", "--joint-limits",
+                                      "-60,240", "--out", "x"])
+    assert args.req_joint_limits == "-60,240"
+    # an option that follows is still an option, not a value
+    args = build_parser().parse_args(["design", "five-bar", "--task", "rect:10,10@0,100", "--mode", "-+",
+                                      "--place", "free-y", "--out", "x"])
+    assert args.mode == "-+" and args.place == "free-y"
+
+
+def test_values_with_units_equal_bare_values_in_the_task_unit():
+    spec = mechanism_package.design_spec("five-bar")
+    opts = build_parser()
+    with_units = opts.parse_args(["design", "five-bar", "--task", "rect:10,10@0,100", "--min-speed", "0.5m/s",
+                                  "--actuator-speed", "30rpm", "--min-force", "2kN", "--actuator-torque", "500Nmm",
+                                  "--out", "x"])
+    from mechopt import requirements as _req
+
+    parse = {n: o for n, (o, _) in _req.options().items()}
+    a = Requirements(**{n: parse[n].parse(getattr(with_units, f"req_{n}"))
+                        for n in ("min_speed", "actuator_speed", "min_force", "actuator_torque")}).checked(spec, "mm")
+    assert a.min_speed == 500.0 and a.min_force == 2000.0 and a.actuator_torque == 0.5
+    assert a.actuator_speed == pytest.approx(math.pi, rel=1e-15)  # 30 rpm = pi rad/s
+    b = Requirements(min_speed=500.0, actuator_speed=3.0).checked(spec, "mm")
+    assert a.min_speed == b.min_speed
+    # a task in metres: 500 mm/s is 0.5
+    assert Requirements(min_speed="500mm/s", actuator_speed=3.0).checked(spec, "m").min_speed == 0.5
+    with pytest.raises(ValueError, match="unknown unit 'kg' for a speed"):
+        Requirements(min_speed="3kg", actuator_speed=3.0).checked(spec, "mm")
+
+
+def test_a_speed_100_times_too_small_is_warned(tmp_path, capsys):
+    """``--min-speed 0.5`` on a task in mm is 0.5 mm/s: echoed with its unit and warned
+    (the run itself is refused here for another reason, before it starts)."""
+    code = main(["design", "five-bar", "--task", "rect:100,60@0,180", "--min-speed", "0.5", "--actuator-speed",
+                 "3", "--min-force", "1e9", "--actuator-torque", "1", "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert "min_speed 0.5 mm/s" in err and "warning: --min-speed 0.5 mm/s is over 100 times below" in err
+    assert code == 2
+
+
+def test_impossible_power_is_refused_before_the_run(tmp_path, capsys):
+    """0.5 m/s x 20 N = 10 W > 3 rad/s x 2 N m = 6 W: no geometry meets both (speed x force
+    <= w t s_min/s_max <= w t); one line, exit 2, no folder written."""
+    out = tmp_path / "never"
+    code = main(["design", "five-bar", "--task", "rect:300,200@0,250", "--place", "free-y", "--min-speed", "0.5m/s",
+                 "--min-force", "20", "--actuator-speed", "3", "--actuator-torque", "2", "--out", str(out)])
+    last = capsys.readouterr().err.strip().splitlines()[-1]
+    assert code == 2 and not out.exists()
+    assert "speed x force = 10 W exceeds the actuators' 3 rad/s x 2 N m = 6 W" in last
+
+
+def test_the_power_condition_holds_for_every_design():
+    """The necessary condition is a true bound: on random five-bars and poses, the
+    guaranteed speed x force (Liu eq. 10, 13) never exceeds w t."""
+    rng = np.random.default_rng(0)
+    from mechopt.mechanisms.five_bar import FiveBar
+
+    for _ in range(50):
+        r1, r2, r3 = rng.uniform(0.2, 2.0, 3)
+        fb = FiveBar(r1=r1, r2=r2, r3=r3, mode="+-")
+        x, y = rng.uniform(-1, 1, 200), rng.uniform(0.1, 2.5, 200)
+        J = fb.jacobian(x, y)
+        ok = np.all(np.isfinite(J), axis=(1, 2))
+        s = np.linalg.svd(J[ok], compute_uv=False)
+        w, t = 3.0, 2.0
+        assert np.all((w / s[:, 0]) * (t * s[:, 1]) <= w * t * (1 + 1e-12))
+
+
+# ---------------------------------------------------------------- the choice
+def test_asf_reaches_a_non_convex_part_of_a_front():
+    """On a front with a non-convex middle no weighted sum picks the middle design; the
+    achievement scalarizing function with equal weights does."""
+    F = np.array([[0.0, 1.0], [0.6, 0.6], [1.0, 0.0]])
+    for w in np.linspace(0.01, 0.99, 25):
+        assert pick_index(F, ("a", "b"), f"a={w},b={1 - w}") != 1
+    assert pick_index(F, ("a", "b"), "asf:a=1,b=1") == 1
+    assert pick_index(F, ("a", "b"), "asf:a=1,b=0") == 0
+    assert pick_index(F, ("a", "b"), "pseudo:a=0.5,b=0.5") == 1
+    with pytest.raises(ValueError, match="--pick method must be one of"):
+        pick_index(F, ("a", "b"), "best:a=1")
+
+
+# ---------------------------------------------------------------- what is printed
+def test_printed_time_covers_the_whole_command_and_the_placement_is_printed(tmp_path):
+    """The final line gives the command's wall time (optimisation, polish, certification
+    and files) and where the task was placed."""
+    out = tmp_path / "d"
+    argv = [sys.executable, "-m", "mechopt.cli", "design", "five-bar", "--task", "rect:60,40@0,150", "--min-lci",
+            "0.4", "--max-length", "200", "--pop", "16", "--gen", "10", "--n-jobs", "1",
+            "--out", str(out)]
+    t0 = time.perf_counter()
+    proc = subprocess.run(argv, capture_output=True, text=True, timeout=600)
+    wall = time.perf_counter() - t0
+    assert proc.returncode == 0, proc.stderr
+    line = proc.stdout.strip().splitlines()[-1]
+    m = re.search(r"\(([\d.]+) s: optimisation ([\d.]+), polish ([\d.]+), certification ([\d.]+), files ([\d.]+)\)$",
+                  line)
+    assert m, line
+    printed = float(m.group(1))
+    # the interpreter's start and imports come before the timer: a generous margin
+    assert printed <= wall and printed >= 0.6 * wall - 1.0
+    assert float(m.group(3)) > 0  # the polish ran and is counted
+    placed = re.search(r"task centre at \(([-\d.e]+), ([-\d.e]+)\) mm", line)
+    assert placed and (float(placed.group(1)), float(placed.group(2))) == (0.0, 150.0)
