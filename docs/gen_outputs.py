@@ -239,6 +239,11 @@ MANIFEST = {
     "started": ("start time, ISO 8601 with the UTC offset", ""),
     "finished": ("end time, ISO 8601 with the UTC offset", ""),
     "mechopt": ("mechopt version", ""),
+    "owned": ("files the run wrote outside its set (its `checkpoint.pkl`; for `reproduce`, `README.md` "
+              "and the paper folders)", ""),
+    "mac": ("HMAC-SHA256 of the other keys under the user's checkpoint key: only an authentic manifest "
+            "lets a later run (`--overwrite`) remove the files it lists, and only plain names of the "
+            "command's outputs that are regular files (a listed `files` entry also needs its sha256)", ""),
 }
 DESIGN_JSON = {
     "index": ("row of the design in `front.csv`", "-"),
@@ -279,6 +284,13 @@ DESIGN_RUN = {
                ""),
     "stage_times_s": ("wall time of each stage of the command: `optimisation`, `polish`, `certification`, "
                       "`files` (figures drawn); `wall_time_s` is their sum", "s"),
+    "no_design": ("without a feasible design: the message (the requirement missed most, by how much in its "
+                  "unit); the folder then holds run.json, history.csv, population.csv (the final population, "
+                  "least violating first, with its g_* columns) and front.png", ""),
+    "violations": ("without a feasible design: the least-violating design's normalised violation per "
+                   "requirement", ""),
+    "fails": ("without a feasible design: how many designs of the final population fail each requirement",
+              "-"),
 }
 DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
                    "max_length", "shape", "unit", "kind", "label", "vertices", "center", "radius", "points",
@@ -585,7 +597,7 @@ def _optimize(problems) -> str:
     out.append("### `run.json`\n")
     out.append(_table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in RUN_JSON.items()]))
     out.append("### `manifest.json`\n")
-    out.append("Written by `optimize`, `sweep` and `atlas` when the run starts (`\"status\": \"running\"`) "
+    out.append("Written by `optimize`, `sweep`, `atlas` and `design` when the run starts (`\"status\": \"running\"`) "
                "and rewritten last:\n")
     out.append(_table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in MANIFEST.items()]))
     return "\n".join(out)
@@ -804,7 +816,9 @@ def _reproduce() -> str:
     out = ["## `mechopt reproduce PAPER`\n",
            f"Reproduces {', '.join(f'`{p}`' for p in PAPERS)} (or `all`) into `--out` (default "
            "`results`), one folder per paper, and writes the summary `README.md` (the counts per paper "
-           "and why each computed quantity differs). Per paper:\n",
+           "and why each computed quantity differs) and `manifest.json` (kind `reproduce`: a folder holding a "
+           "`README.md` or a paper folder that no reproduction wrote is refused, never written into). "
+           "Per paper:\n",
            _table(["file", "content"], [
                ("`table.csv`", "one row per published number, claim or setting (columns below)"),
                ("`table.md`", "the same table in Markdown, under the paper's title"),

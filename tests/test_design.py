@@ -218,21 +218,30 @@ def test_bad_requirements_are_one_line_errors(capsys):
     assert not Path("/tmp/x-never").exists()
 
 
-def test_no_feasible_design_names_the_requirement_and_writes_nothing(tmp_path, capsys):
+def test_no_feasible_design_is_a_result_with_its_files(tmp_path, capsys):
+    """No feasible design is reported, not an error: exit 0, the binding requirement
+    named with the miss in its unit, run.json / population.csv / history.csv / front.png
+    written (least violating first); the Python call raises NoFeasibleDesign after
+    writing them."""
     out = tmp_path / "none"
     assert main(["design", "five-bar", "--task", "rect:100,60@0,180", "--min-lci", "0.99", "--max-length", "250",
-                 "--pop", "8", "--gen", "3", "--n-jobs", "1", "--out", str(out)]) == 2
-    err = capsys.readouterr().err.strip().splitlines()  # progress lines, then the error
-    assert err[-1].startswith("mechopt: error: no design satisfies LCI >= 0.99 over the task")
-    assert sum(line.startswith("mechopt: error") for line in err) == 1
-    assert not out.exists()
-    # an existing folder keeps what it had and gains nothing
-    out.mkdir()
-    (out / "keep.txt").write_text("mine")
+                 "--pop", "8", "--gen", "3", "--n-jobs", "1", "--out", str(out)]) == 0
+    captured = capsys.readouterr()
+    line = captured.out.strip().splitlines()[-1]
+    assert line.startswith("no design satisfies LCI >= 0.99 over the task") and "misses it by" in line
+    assert "mechopt: error" not in captured.err
+    assert sorted(p.name for p in out.iterdir()) == ["front.png", "history.csv", "manifest.json", "population.csv",
+                                                     "run.json"]
+    info = json.loads((out / "run.json").read_text())
+    assert info["front_size"] == 0 and info["no_design"].startswith("no design satisfies LCI >= 0.99")
+    pop = pd.read_csv(out / "population.csv")
+    viol = np.maximum(pop.filter(like="g_").to_numpy(float), 0).sum(1)
+    assert np.all(np.diff(viol) >= 0) and viol[0] > 0  # least violating first, none feasible
+    other = tmp_path / "api"
     with pytest.raises(NoFeasibleDesign, match="no design satisfies LCI >= 0.99"):
         design("five-bar", Task.rect(100, 60, (0, 180)), Requirements(min_lci=0.99), max_length=250,
-               pop=8, gen=3, n_jobs=1, out=out)
-    assert [p.name for p in out.iterdir()] == ["keep.txt"]
+               pop=8, gen=3, n_jobs=1, out=other)
+    assert (other / "run.json").exists()
 
 
 def test_points_task_from_csv(tmp_path):

@@ -71,7 +71,7 @@ def test_every_member_declares_the_protocol():
     names = [m.name for m in members if isinstance(m, Requirement)]
     assert len(names) == len(set(names)) and names[:2] == ["reach", "singular"]
     assert set(req_package.objectives()) == {"size", "footprint", "min-lci", "mean-lci", "speed", "force", "torque",
-                                             "error"}
+                                             "error", "clearance"}
     options = req_package.options()  # raises on an option declared twice
     assert "min_lci" in options and "singularity_margin" in options
     spec = mechanism_package.design_spec("five-bar")
@@ -150,10 +150,11 @@ def test_a_requirement_in_one_file_is_used_everywhere(toy_registry, tmp_path, ca
     assert res["margin"]["centre"] == pytest.approx(-50.0) and not res["feasible"]
     never = [a if a != "210" else "100" for a in argv[:-1]] + [str(tmp_path / "never")]
     capsys.readouterr()
-    assert main(never) == 2
-    last = capsys.readouterr().err.strip().splitlines()[-1]  # after the progress lines
-    assert last.startswith("mechopt: error: no design satisfies the task's centre within 100.0 mm of the base")
-    assert not (tmp_path / "never" / "front.csv").exists()
+    assert main(never) == 0  # no feasible design is a result
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert last.startswith("no design satisfies the task's centre within 100.0 mm of the base")
+    assert "misses it by 50 mm" in last  # the centre is 150 mm away: exactly 50 mm too far
+    assert not (tmp_path / "never" / "front.csv").exists() and (tmp_path / "never" / "population.csv").exists()
 
 
 def test_the_toy_is_gone_without_the_registry():
@@ -180,3 +181,14 @@ def test_torque_without_force_capacity_is_undefined_and_infeasible():
     J = fb.jacobian(x.ravel(), y.ravel())
     smin = np.linalg.svd(J, compute_uv=False)[:, -1].min()  # rad/mm
     assert ok["objectives"]["torque"] == pytest.approx(10.0 / (smin * 1e3), rel=1e-4)
+
+
+def test_bipod_footprint_counts_its_base_joints_at_half_the_base():
+    """The bipod's base joints sit at x = -+b/2: with a wide base they are the farthest
+    joints (the footprint once put one at x = -b, twice too far)."""
+    ev = DesignEvaluator("bipod", Task.circle(5, (0, 80)), Requirements(), ("size", "footprint"), max_length=400)
+    res = ev.evaluate(dict(b=300.0, mode="up", task_x=0.0, task_y=80.0))
+    assert res["objectives"]["footprint"] == pytest.approx(150.0, rel=1e-12)
+    narrow = ev.evaluate(dict(b=20.0, mode="up", task_x=0.0, task_y=80.0))
+    far = max(np.hypot(5 * np.cos(t), 80 + 5 * np.sin(t)) for t in np.linspace(0, 2 * np.pi, 20001))
+    assert narrow["objectives"]["footprint"] == pytest.approx(far, rel=1e-6)  # the task's top, 85 mm

@@ -38,10 +38,20 @@ def _tagged(tag):
     return found
 
 
+def _default_signals():
+    """In the child before exec: SIGINT and SIGTERM as a shell in the foreground gives
+    them. A suite started in the background (``cmd &``, nohup) runs with SIGINT
+    ignored, which every child inherits: Python then installs no KeyboardInterrupt
+    handler, and a run "interrupted" by SIGINT would just go on."""
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, signal.SIG_DFL)
+
+
 def _start(argv, out, tag, extra_env=None):
     env = {**os.environ, "MECHOPT_TEST_TAG": tag, **(extra_env or {})}
     return subprocess.Popen([sys.executable, "-m", "mechopt.cli", *argv, "--out", str(out)],
-                            env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=_default_signals)
 
 
 def _wait_for_workers(proc, tag, deadline=60.0):
@@ -70,14 +80,19 @@ def _kill_and_check(argv, out, sig, rng, extra_env=None):
     proc = _start(argv, out, tag, extra_env)
     assert _wait_for_workers(proc, tag), "the run ended before its workers started"
     time.sleep(rng.uniform(0.0, 1.5))
+    ended_before = proc.poll() is not None
     proc.send_signal(sig)
     _, err = proc.communicate(timeout=60)
     assert _no_survivors(tag), [p.cmdline() for p in _tagged(tag)]
     assert not list(out.rglob(".*.tmp")) if out.exists() else True
+    if ended_before:  # finished before the signal was sent: nothing to check of it
+        return proc.returncode
+    # the run was alive when the signal was sent: it must have ended by it (a run that
+    # ignored it and finished with 0 is a failure, not "finished before the signal")
+    assert proc.returncode == {signal.SIGINT: 130, signal.SIGTERM: 143, signal.SIGKILL: -9}[sig], \
+        (proc.returncode, err)
     if sig == signal.SIGKILL:
         return proc.returncode
-    if proc.returncode in (0,):  # finished before the signal landed
-        return 0
     lines = [l for l in err.strip().splitlines() if l.strip()]
     # the progress lines printed before the signal (on a pipe, one per step), then one
     # line saying the run was interrupted, and nothing else (no traceback)
@@ -162,6 +177,21 @@ def test_random_moments(tmp_path, request, what, sig, seed):
                        else (ATLAS, "atlas.csv", {"MECHOPT_NO_NUMBA": "1"}))
     reference = request.getfixturevalue(f"{what}_reference")
     _case(tmp_path, argv, sig, seed, reference, file, env)
+
+
+def test_the_runs_get_sigint_even_when_the_suite_ignores_it():
+    """The suite run as a background job (SIGINT ignored, inherited by children): the
+    runs it starts still get SIGINT as Python's KeyboardInterrupt."""
+    code = "import signal; print(signal.getsignal(signal.SIGINT) is signal.default_int_handler)"
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        inherited = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+        ours = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
+                              preexec_fn=_default_signals)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert inherited.stdout.strip() == "False"  # what a background suite gives a plain child
+    assert ours.stdout.strip() == "True"
 
 
 def test_a_second_signal_while_the_run_stops_is_ignored(tmp_path):

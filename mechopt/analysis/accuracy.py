@@ -21,7 +21,7 @@ legs it joins.
 The bound at a pose (:func:`pose_error`)
 ----------------------------------------
 With ``d_i = P - C_i`` (``|d_i| = R_i``), ``n_i = d_i / R_i`` and the perturbed pose
-``P + e``, the closure ``|d_i + e - dC_i| = R_i + dR_i`` is, exactly,
+``P + e``, the closure ``|d_i + e - dC_i| = R_i + dR_i`` is, exactly::
 
     n_i . e = b_i + r_i,   b_i = n_i . dC_i + dR_i,
     r_i = (dR_i^2 - |e - dC_i|^2) / (2 R_i),

@@ -7,8 +7,10 @@ int`` (does it, returns the exit status). :func:`build_parser` registers
 folder's lock and turns every way a run can end into one line and an exit status:
 
 * every bad input ends with one line ``mechopt: error: <message>`` on stderr and exit
-  status 2, never a traceback (a failed run removes the output folders it created,
-  unless they hold finished or resumable work);
+  status 2, never a traceback (a failed run removes the output folders it created if
+  they are empty, never anything else: :func:`mechopt.run.io.remove_created`);
+* a final line that cannot reach standard output (a closed pipe, a full device) is
+  one line on stderr and exit status 2; the run's files stay;
 * SIGINT/SIGTERM end a run with one line (and how to resume, where a run can) and exit
   status 130/143; signals that follow (a second Ctrl-C) are ignored while the run
   stops its workers and, from the command (:func:`console`), while the interpreter
@@ -47,31 +49,39 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def _first_missing(path):
-    """The outermost folder of ``path`` that does not exist yet (None if ``path`` exists)."""
-    try:
-        p = os.path.abspath(path)
-    except (TypeError, ValueError):
-        return None
-    if os.path.lexists(p):
-        return None
-    while not os.path.lexists(os.path.dirname(p)) and os.path.dirname(p) != p:
-        p = os.path.dirname(p)
-    return p
+class _StdoutLost(Exception):
+    """The final line could not be written to standard output (a closed pipe, a full
+    device): the run's files are in place and stay."""
 
 
-def _remove_if_we_made_it_empty(out_before):
-    """Nothing is left behind on failure: drop the output folder (and the parents)
-    this run created, unless it already holds finished work (a reproduced paper's
-    ``table.csv``, written last, is complete and is kept for the next run to skip)."""
-    if out_before:
-        import shutil
-        from pathlib import Path
+class _Stdout:
+    """Standard output for a command's final lines: a character the stream's encoding
+    cannot show is escaped (``\\xe9``) rather than failing, and an error of the stream
+    itself is :class:`_StdoutLost` (never taken for an error of the output folder)."""
 
-        if any(Path(out_before).rglob("table.csv")) or any(Path(out_before).rglob("checkpoint.pkl")) \
-                or any(Path(out_before).rglob(".atlas_chunks")):
-            return
-        shutil.rmtree(out_before, ignore_errors=True)
+    def __init__(self, stream):
+        self._stream = stream
+
+    def write(self, text):
+        try:
+            try:
+                n = self._stream.write(text)
+            except UnicodeEncodeError:
+                enc = getattr(self._stream, "encoding", None) or "ascii"
+                n = self._stream.write(text.encode(enc, "backslashreplace").decode(enc, "replace"))
+            self._stream.flush()
+            return n
+        except OSError as exc:
+            raise _StdoutLost(exc.strerror or type(exc).__name__) from None
+
+    def flush(self):
+        try:
+            self._stream.flush()
+        except OSError as exc:
+            raise _StdoutLost(exc.strerror or type(exc).__name__) from None
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
 
 
 class _Terminated(BaseException):
@@ -88,12 +98,15 @@ def _resume_hint(out) -> str:
     from pathlib import Path
 
     out = Path(out)
-    if (out / "checkpoint.pkl").exists():
-        return f"; resume with `mechopt optimize --resume {out}`"
-    if (out / ".atlas_chunks").is_dir():
-        return "; run the same command again to resume (finished chunks are kept)"
-    if any(out.glob("*/table.csv")):
-        return "; run the same command again to go on (finished papers are kept)"
+    try:
+        if (out / "checkpoint.pkl").exists():
+            return f"; resume with `mechopt optimize --resume {out}`"
+        if (out / ".atlas_chunks").is_dir():
+            return "; run the same command again to resume (finished chunks are kept)"
+        if any(out.glob("*/table.csv")):
+            return "; run the same command again to go on (finished papers are kept)"
+    except (OSError, ValueError):
+        pass
     return ""
 
 
@@ -141,6 +154,14 @@ def console():
     status = main()
     if status in (EXIT_SIGINT, EXIT_SIGTERM):
         _ignore_interrupts()
+    try:
+        sys.stdout.flush()
+    except (OSError, ValueError):  # a closed pipe: nothing more can reach it
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+        except (OSError, ValueError, AttributeError):
+            pass
     sys.exit(status)
 
 
@@ -149,22 +170,30 @@ def main(argv=None) -> int:
     import signal
     import threading
 
+    from mechopt.run import io as _io
+
     _quiet_resource_tracker()
     parser = build_parser()
-    out_before = out = None
+    out = None
+    created = len(_io.created_folders())  # the folders made before this command are not its own
     previous = None
     if threading.current_thread() is threading.main_thread():
         previous = (signal.getsignal(signal.SIGINT), signal.signal(signal.SIGTERM, _on_sigterm))
+    stdout = sys.stdout
+    sys.stdout = _Stdout(stdout)
     try:
         try:
             args = parser.parse_args(argv)
         except SystemExit as exc:  # --help and --version have printed; no exception escapes
             return exc.code if isinstance(exc.code, int) else 0
         out = getattr(args, "out", None) or getattr(args, "resume", None)
-        out_before = _first_missing(out) if out else None
         return _run_locked(args, out)
+    except _StdoutLost as exc:  # the results are written; only the last line was lost
+        print(f"mechopt: error: cannot write to standard output ({exc}); the run's files are in place",
+              file=sys.stderr)
+        return EXIT_USAGE
     except (UsageError, ValueError) as exc:
-        _remove_if_we_made_it_empty(out_before)
+        _io.remove_created(created)
         msg = " ".join(str(exc).split())
         print(f"mechopt: error: {msg}", file=sys.stderr)
         return EXIT_USAGE
@@ -173,18 +202,24 @@ def main(argv=None) -> int:
         from mechopt.run.parallel import stop_workers
 
         stop_workers()
-        _remove_if_we_made_it_empty(out_before)
+        _io.remove_created(created)
         print(f"mechopt: interrupted{_resume_hint(out)}", file=sys.stderr)
         return EXIT_SIGINT if isinstance(exc, KeyboardInterrupt) else EXIT_SIGTERM
     except OSError as exc:  # the disk, not the input: no space, quota, permission, name too long
         from mechopt.run.parallel import stop_workers
 
         stop_workers()
-        _remove_if_we_made_it_empty(out_before)
+        _io.remove_created(created)
         where = f" {exc.filename}" if exc.filename else (f" in {out}" if out else "")
         print(f"mechopt: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
         return EXIT_USAGE
+    except RecursionError:  # input nested too deep for a parser (JSON, a condition)
+        _io.remove_created(created)
+        print("mechopt: error: an input is nested too deeply to be read", file=sys.stderr)
+        return EXIT_USAGE
     finally:
+        if isinstance(sys.stdout, _Stdout):
+            sys.stdout = stdout
         if previous is not None:
             signal.signal(signal.SIGINT, previous[0])
             signal.signal(signal.SIGTERM, previous[1])

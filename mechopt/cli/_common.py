@@ -129,10 +129,10 @@ def dask_client(args):
         yield None
         return
     # here, not at the top: evaluate loads this module and must start without the run layer
-    from mechopt.run.parallel import connect
+    from mechopt.run.parallel import close_client, connect
 
     client = connect(args.dask, timeout=args.dask_timeout)
     try:
         yield client
     finally:
-        client.close()
+        close_client(client)

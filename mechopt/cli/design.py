@@ -123,12 +123,19 @@ def run(args) -> int:
     if args.mechanism == "any":
         return _run_any(args, task, req, objectives, shape, started)
     _echo_requirements(req, _mechanisms.design_spec(args.mechanism), task)
-    with _common.dask_client(args) as client:
-        res = design(args.mechanism, task, req, objectives, mode=args.mode, place=args.place,
-                     min_length=args.min_length, max_length=args.max_length, shape=shape,
-                     algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
-                     n_jobs=args.n_jobs, client=client, out=args.out, progress=True, pick=args.pick,
-                     polish=not args.no_polish, overwrite=args.overwrite)
+    from mechopt.analysis.design_eval import NoFeasibleDesign
+
+    try:
+        with _common.dask_client(args) as client:
+            res = design(args.mechanism, task, req, objectives, mode=args.mode, place=args.place,
+                         min_length=args.min_length, max_length=args.max_length, shape=shape,
+                         algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
+                         n_jobs=args.n_jobs, client=client, out=args.out, progress=True, pick=args.pick,
+                         polish=not args.no_polish, overwrite=args.overwrite)
+    except NoFeasibleDesign as exc:  # an empty result is a result: its files are written
+        print(f"{exc}; wrote {args.out}/run.json, population.csv (least violating first), history.csv, "
+              f"front.png ({time.perf_counter() - started:.1f} s)")
+        return 0
     chosen = json.loads((Path(args.out) / "design.json").read_text())
     obj = ", ".join(f"{k} {v:.5g} {chosen['objective_units'][k]}".rstrip(" -")
                     for k, v in chosen["objectives"].items())
@@ -175,13 +182,19 @@ def _run_any(args, task, req, objectives, shape, started) -> int:
 
     from mechopt.workflows.design_any import design_any
 
+    from mechopt.analysis.design_eval import NoFeasibleDesign
+
     names = [n.strip() for n in args.mechanisms.split(",") if n.strip()] if args.mechanisms else None
-    with _common.dask_client(args) as client:
-        res = design_any(task, req, objectives, mechanisms=names, pick=args.pick, out=args.out,
-                         overwrite=args.overwrite, progress=True, mode=args.mode, place=args.place,
-                         min_length=args.min_length, max_length=args.max_length, shape=shape,
-                         algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
-                         n_jobs=args.n_jobs, client=client, polish=not args.no_polish)
+    try:
+        with _common.dask_client(args) as client:
+            res = design_any(task, req, objectives, mechanisms=names, pick=args.pick, out=args.out,
+                             overwrite=args.overwrite, progress=True, mode=args.mode, place=args.place,
+                             min_length=args.min_length, max_length=args.max_length, shape=shape,
+                             algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
+                             n_jobs=args.n_jobs, client=client, polish=not args.no_polish)
+    except NoFeasibleDesign as exc:  # a result: no mechanism has a feasible design (no file written)
+        print(f"{exc} ({time.perf_counter() - started:.1f} s)")
+        return 0
     counts = res.front["mechanism"].value_counts()
     per = ", ".join(f"{m} {counts.get(m, 0)} of {len(r.front)}" for m, r in res.results.items())
     skipped = "; skipped: " + "; ".join(f"{m} ({why})" for m, why in res.skipped.items()) if res.skipped else ""

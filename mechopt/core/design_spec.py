@@ -16,7 +16,10 @@ frame), the ``size`` objective, the joints whose distance from the base midpoint
 the ``footprint``, the holes of the reachable set (the reach certificate of
 :mod:`mechopt.analysis.task` needs a base joint in every bounded component of the
 complement of the reachable set), bounds on the reach for the input checks, and the
-sketch of :func:`mechopt.workflows.design.plot_design`.
+sketch of :func:`mechopt.workflows.design.plot_design`, and the bodies of the mechanism
+as capsules (:meth:`DesignSpec.links`, :mod:`mechopt.core.bodies`) with the speeds of their
+joints (:meth:`DesignSpec.joint_speeds`) for the collision and keep-out checks of
+:mod:`mechopt.analysis.collisions`.
 
 Two kinds of actuators are covered: angular (cranks, :attr:`DesignSpec.angular`: joint
 ranges are reported, ``joint_limits`` apply) and prismatic with derived strokes
@@ -110,6 +113,25 @@ class DesignSpec:
         """``[(jx, jy), ...]`` arrays of every joint position [L, task frame] with the
         platform at task points ``(x, y)`` (the ``footprint`` objective)."""
         raise NotImplementedError(f"{type(self).__name__} defines no joints")
+
+    def links(self, mech, x, y, shapes=None) -> list:
+        """Every body of ``mech`` with the platform at task points ``(x, y)`` [L, task
+        frame]: a list of :class:`~mechopt.core.bodies.Body` (links, motor housings,
+        carriages, guides as capsules of the sizes of ``shapes``, a
+        :class:`~mechopt.core.bodies.Shapes`; default :meth:`Shapes.default()
+        <mechopt.core.bodies.Shapes.default>`, millimetres), their end points arrays of
+        the shape of ``x``; NaN where the pose is out of reach. Two bodies carrying a
+        common joint name are adjacent (:mod:`mechopt.core.bodies`)."""
+        raise NotImplementedError(f"{type(self).__name__} declares no links")
+
+    def joint_speeds(self, mech, x, y, radius=0.0) -> dict:
+        """``{name: bound}`` for every moving point named in the ``ends`` of
+        :meth:`links` (``"ground"`` excepted): an upper bound of its speed per unit
+        platform speed [L/L], over the platform positions within ``radius`` [L] of each
+        task point ``(x, y)`` (arrays; ``inf`` where no bound holds, e.g. a disc that
+        reaches a type-I singularity). With ``radius = 0`` it is the speed at the pose:
+        the norm of the point's Jacobian ``d(point)/d(platform)``."""
+        raise NotImplementedError(f"{type(self).__name__} declares no joint speeds")
 
     def holes(self, mech) -> list:
         """``[(x, y), ...]``: one point [L, task frame] in each bounded component of the

@@ -238,7 +238,10 @@ def weights(text: str):
                 raise ValueError(f"weights {text!r} give {n} weights, more than {MAX_WEIGHTS}")
             w = a + s * np.arange(n)
         else:
-            w = np.array([float(v) for v in text.split(",")])
+            items = text.split(",")
+            if len(items) > MAX_WEIGHTS:
+                raise ValueError(f"weights {text[:20]!r}... give {len(items)} weights, more than {MAX_WEIGHTS}")
+            w = np.array([float(v) for v in items])
     except (ValueError, TypeError, AttributeError, OverflowError) as exc:
         if str(exc).startswith("weights "):
             raise

@@ -62,6 +62,7 @@ import numpy as np
 
 from mechopt.core import geometry as _g
 from mechopt.core import validation as _v
+from mechopt.core.bodies import GROUND, Body, Shapes
 from mechopt.core.design_spec import DesignSpec
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.error_spec import ErrorSpec
@@ -173,6 +174,28 @@ class BipodDesignSpec(DesignSpec):
 
     def holes(self, mech):
         return [(-0.5 * mech.b, 0.0), (0.5 * mech.b, 0.0)]
+
+    def links(self, mech, x, y, shapes=None):
+        """The housings of the strut pivots (discs about ``A_i = (-+b/2, 0)`` in the task
+        frame, ``"housing1"``, ``"housing2"``) and the struts ``A_i P`` (``"strut1"``,
+        ``"strut2"``: one capsule each, cylinder and rod together), joints ``A1, A2, P``;
+        NaN where the pose is out of reach."""
+        shapes = shapes or Shapes.default()
+        x, y = as_points(x, y)
+        ok = mech.reachable(*self.to_mech(mech, x, y))
+        px, py = np.where(ok, x, np.nan), np.where(ok, y, np.nan)
+        out = []
+        for i, ax in enumerate((-0.5 * mech.b, 0.5 * mech.b), start=1):
+            a = f"A{i}"
+            out += [Body.make(f"housing{i}", "housing", (a,), (GROUND, GROUND), (ax, 0.0), (ax, 0.0),
+                              shapes, x.shape),
+                    Body.make(f"strut{i}", "distal", (a, "P"), (a, "P"), (ax, 0.0), (px, py), shapes)]
+        return out
+
+    def joint_speeds(self, mech, x, y, radius=0.0):
+        """The pivots ``A_i``: 0; the tool ``P``: 1."""
+        x, y = as_points(x, y)
+        return {"A1": np.zeros_like(x), "A2": np.zeros_like(x), "P": np.ones_like(x)}
 
     def reach_radius(self, lmax):
         return lmax

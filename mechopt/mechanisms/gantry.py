@@ -45,11 +45,13 @@ eq. (1)-(18), Table 1.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
 from mechopt.core import validation as _v
 from mechopt.core.protocol import Parameter, as_points
+from mechopt.core.bodies import Body, Shapes
 from mechopt.mechanisms.sliders import ASSEMBLY_MODES, K_AV_READINGS, GuideDesignSpec, TwoSliderMechanism
 
 __all__ = [
@@ -255,6 +257,34 @@ class GantryDesignSpec(GuideDesignSpec):
     def size(self, mech, derived):
         """``2 d1 + 3 l``: the column distance and the three equal links (Wu Fig. 1)."""
         return 2.0 * mech.d1 + 3.0 * mech.l
+
+    def links(self, mech, x, y, shapes=None):
+        """The two-slider bodies (:meth:`GuideDesignSpec.links`); with a platform of height
+        ``l2 > 0`` also the parallelogram of leg 1 (Wu Fig. 1): the third link ``"link3"``
+        from ``S3 = S1 + (0, l2)`` to ``A3 = A + (0, l2)``, the platform ``A A3``
+        (``"platform"``), carriage 1 spanning ``S1 S3`` and its guide ``l2`` longer. With
+        ``l2 = 0`` (the designed gantries) the third link lies on the first: not drawn."""
+        bodies = super().links(mech, x, y, shapes)
+        if mech.l2 == 0:
+            return bodies
+        shapes = shapes or Shapes.default()
+        h = mech.l2
+        by = {b.name: b for b in bodies}
+        g1, c1, l1 = by["guide1"], by["carriage1"], by["link1"]
+        bodies[bodies.index(g1)] = replace(g1, y1=g1.y1 + h)
+        bodies[bodies.index(c1)] = replace(c1, joints=("S1", "S3"), ends=("S1", "S3"), y1=c1.y1 + h)
+        bodies += [Body.make("link3", "distal", ("S3", "A3"), ("S3", "A3"), (l1.x0, l1.y0 + h),
+                             (l1.x1, l1.y1 + h), shapes),
+                   Body.make("platform", "platform", ("A", "A3"), ("A", "A3"), (l1.x1, l1.y1),
+                             (l1.x1, l1.y1 + h), shapes)]
+        return bodies
+
+    def joint_speeds(self, mech, x, y, radius=0.0):
+        """Those of :meth:`GuideDesignSpec.joint_speeds`; ``S3`` moves with ``S1`` and
+        ``A3`` with the platform."""
+        out = super().joint_speeds(mech, x, y, radius)
+        out.update(S3=out["S1"], A3=out["A"])
+        return out
 
 
 class Gantry(TwoSliderMechanism):

@@ -644,7 +644,8 @@ class TwoSliderMechanism(PlanarMechanism):
 
 
 # ------------------------------------------------------------ design specification
-from mechopt.core.design_spec import DesignSpec  # noqa: E402  (appended section: the design spec)
+from mechopt.core.bodies import GROUND, Body, Shapes  # noqa: E402  (appended section: the design spec)
+from mechopt.core.design_spec import DesignSpec  # noqa: E402
 
 
 class GuideDesignSpec(DesignSpec):
@@ -674,6 +675,47 @@ class GuideDesignSpec(DesignSpec):
         with np.errstate(invalid="ignore"):
             return (np.arcsin(np.clip(np.abs(x - g[0]) / L, 0, 1)),
                     np.arcsin(np.clip(np.abs(x - g[1]) / L, 0, 1)))
+
+    def links(self, mech, x, y, shapes=None):
+        """The guides (``"guide1"``, ``"guide2"``: fixed, along ``x = g_i`` over the
+        slider's stroke and half a carriage beyond each end), the carriages
+        (``"carriage1"``, ``"carriage2"``: centred on the slider joint ``S_i = (g_i, q_i)``,
+        ``carriage_length`` along the guide) and the links ``S_i A`` (``"link1"``,
+        ``"link2"``) to the link joint ``A = (x, y - e)``, named ``"P"`` (the tool) when
+        the reported point is the link joint itself (``e = 0``: the Biglide, the designed
+        gantries), else ``"A"``."""
+        shapes = shapes or Shapes.default()
+        mx, my = as_points(*self.to_mech(mech, *as_points(x, y)))
+        q1, q2, _, _, _ = mech.legs(mx, my)
+        ok = mech.reachable(mx, my)
+        tip = "P" if mech._e == 0 else "A"
+        ty = np.where(ok, my - mech._e, np.nan)
+        tx = np.where(ok, mx, np.nan)
+        half = 0.5 * shapes.carriage_length
+        out = []
+        for i, (g, q, (lo, hi)) in enumerate(zip(mech.guides, (q1, q2), mech.joint_limits), start=1):
+            s = f"S{i}"
+            q = np.where(ok, q, np.nan)
+            out += [Body.make(f"guide{i}", "guide", (s,), (GROUND, GROUND), (g, lo - half), (g, hi + half),
+                              shapes, mx.shape),
+                    Body.make(f"carriage{i}", "carriage", (s,), (s, s), (g, q - half), (g, q + half), shapes),
+                    Body.make(f"link{i}", "distal", (s, tip), (s, tip), (g, q), (tx, ty), shapes)]
+        return out
+
+    def joint_speeds(self, mech, x, y, radius=0.0):
+        """The slider ``S_i``: ``|J_i| = |(tan theta_i, 1)| = 1 / cos theta_i =
+        L / sqrt(L^2 - (x - g_i)^2)`` (the closure of the module docstring), largest over
+        the disc of ``radius`` where ``|x - g_i|`` is, at ``|x - g_i| + radius`` (infinite
+        from ``L``: a type-I singularity within reach); the link joint ``A`` or ``P``
+        translates with the platform: 1."""
+        mx, my = as_points(*self.to_mech(mech, *as_points(x, y)))
+        L = mech._L
+        out = {"P": np.ones_like(mx), "A": np.ones_like(mx)}
+        for i, g in enumerate(mech.guides, start=1):
+            u = np.abs(mx - g) + radius
+            with np.errstate(divide="ignore", invalid="ignore"):
+                out[f"S{i}"] = np.where(u < L, L / np.sqrt(np.maximum(L * L - u * u, 0.0)), np.inf)
+        return out
 
     def holes(self, mech):
         return []

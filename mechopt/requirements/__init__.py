@@ -9,22 +9,20 @@ Each module declares its members on the protocol of :mod:`mechopt.requirements.b
 line read the registry alone: a new requirement is one new module added to
 :data:`MODULES` (or, in a test, to a monkeypatched copy of it).
 
-==============  =========================================  ====================================
-module          requirement (option)                       objectives
-==============  =========================================  ====================================
-reach           reach (always)
-singular        singular (always; ``singularity_margin``)
-lci             lci (``--min-lci``)                        min-lci, mean-lci
-joints          joints (``--joint-limits``, cranks)
-link_angle      link_angle (``--link-angle``)
-stroke          stroke (``--max-stroke``, sliders)
-lengths         lengths (bipod struts, always)
-speed           speed (``--min-speed``, ``--actuator-speed``)  speed
-force           force (``--min-force``, ``--actuator-torque``)  force
-torque          (``--payload``)                            torque
-accuracy        error (``--max-error``)                    error
-size            size, footprint
-==============  =========================================  ====================================
+- ``reach``: requirement reach (always)
+- ``singular``: requirement singular (always; ``singularity_margin``)
+- ``lci``: requirement lci (``--min-lci``); objectives min-lci, mean-lci
+- ``joints``: requirement joints (``--joint-limits``, cranks)
+- ``link_angle``: requirement link_angle (``--link-angle``)
+- ``stroke``: requirement stroke (``--max-stroke``, sliders)
+- ``lengths``: requirement lengths (bipod struts, always)
+- ``speed``: requirement speed (``--min-speed``, ``--actuator-speed``); objective speed
+- ``force``: requirement force (``--min-force``, ``--actuator-torque``); objective force
+- ``torque``: objective torque (``--payload``)
+- ``accuracy``: requirement error (``--max-error``); objective error
+- ``size``: objectives size, footprint
+- ``collisions``: requirements clearance (``--min-clearance``), joint_angle (``--min-joint-angle``),
+  keep_out (``--keep-out``), base (``--min-base``, ``--motor-diameter``); objective clearance
 
 :class:`Requirements` holds the values of every declared option (a requirement is
 off while its first option is None).
@@ -40,7 +38,7 @@ __all__ = ["MODULES", "Requirements", "registry", "requirements", "objectives", 
 #: the member modules, in the order of the constraint columns (``g_<name>``, ``margin_<name>``)
 MODULES = tuple(f"mechopt.requirements.{m}" for m in (
     "reach", "singular", "lci", "joints", "link_angle", "stroke", "lengths", "speed", "force", "torque", "accuracy",
-    "size"))
+    "size", "collisions"))
 
 
 def registry() -> tuple:

@@ -24,11 +24,10 @@ def footprint(ctx) -> float:
         s = ctx.samples
         allx, ally = s["allx"], s["ally"]
         fp = 0.0
-        mx, my = ctx.to_mech(allx, ally)
-        for jx, jy in ctx.spec.joints(ctx.mech, mx, my):
-            jx, jy = np.asarray(jx), np.asarray(jy)
-            ox = jx - (mx - allx)  # back to the task frame
-            r = np.hypot(ox, jy)
+        # DesignSpec.joints takes task points and gives joints in the task frame (the
+        # bipod's base joints at -+b/2; mechanism-frame points put them at -b and 0)
+        for jx, jy in ctx.spec.joints(ctx.mech, allx, ally):
+            r = np.hypot(np.asarray(jx), np.asarray(jy))
             fp = max(fp, float(np.nanmax(r)) if np.any(np.isfinite(r)) else 0.0)
         return max(fp, float(np.hypot(allx, ally).max()))
     return ctx.memo("footprint", compute)

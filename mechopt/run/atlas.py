@@ -228,17 +228,23 @@ class _ChunkStore:
     """
 
     def __init__(self, folder, settings: dict, warn=None):
-        import json
+        import os
+        import stat
 
         from mechopt.run import io as _io
 
         self.folder, self.settings = folder, settings
         self.warn = warn if warn is not None else (lambda msg: None)
-        folder.mkdir(parents=True, exist_ok=True)
+        try:  # its own folder, never a link planted to write elsewhere
+            folder.mkdir()
+        except FileExistsError:
+            if not stat.S_ISDIR(os.lstat(folder).st_mode):
+                raise ValueError(f"{str(folder)!r} is not a folder of atlas chunks (a link or a file); "
+                                 f"remove it") from None
         meta = folder / "settings.json"
-        if meta.exists():
+        if os.path.lexists(meta):
             try:
-                old = json.loads(meta.read_text())
+                old = _io.read_json(meta)
             except (OSError, ValueError):
                 old = None
             if old != settings:
@@ -264,13 +270,17 @@ class _ChunkStore:
     def load(self, i, designs, n_cols):
         """The saved values of chunk ``i`` (the designs ``designs``, an ``(n, 3)`` array),
         or None when there is none or it fails a check (then it is recomputed)."""
+        import io
         import json
+
+        from mechopt.run import io as _io
 
         path = self.path(i)
         if not path.exists():
             return None
         try:
-            with np.load(path, allow_pickle=False) as z:
+            data = _io.read_bytes(path, 1 << 30, path.name)  # a regular file, not a FIFO or a giant
+            with np.load(io.BytesIO(data), allow_pickle=False) as z:
                 values = z["values"]
                 header = json.loads(str(z["header"][()]))
         except Exception as exc:  # noqa: BLE001 - any corruption: zip, json, keys, dtype
@@ -351,10 +361,9 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
     grid = design_grid(step)
     n = len(grid)
     if client is not None:
-        try:
-            workers = max(1, sum(client.nthreads().values()))
-        except Exception:  # pragma: no cover - very old clients
-            workers = 2
+        from mechopt.run.parallel import cluster_threads
+
+        workers = cluster_threads(client)
     else:
         workers = int(_v.finite_number("n_jobs", n_jobs))
         if workers < 1 or workers != n_jobs:
@@ -682,7 +691,9 @@ def _run_atlas(out, run, step, groups, cols, quadrature, mode, n_jobs, dask, das
         raise
     finally:
         if client is not None:
-            client.close()
+            from mechopt.run.parallel import close_client
+
+            close_client(client)
     with _io.output_set(out, run) as stage:
         _write_atlas(stage, table, groups, cols, cond, where, quadrature, figures, t0, t_compute, step,
                      mode, dask, n_jobs, local=local, triangulation=tri)

@@ -4,18 +4,22 @@ A checkpoint holds a pickled pymoo algorithm (its population, random generator,
 termination and history): the only faithful way to continue a run byte for byte.
 Unpickling runs code, so the file is authenticated before it is unpickled::
 
-    MECHOPT-CHECKPOINT 1\\n
-    <HMAC-SHA256, hex>\\n
+    MECHOPT-CHECKPOINT 2\\n
+    <HMAC-SHA256 of the first line and the header, hex>\\n
     <header: one line of JSON (run id, problem, options, payload length and sha256)>\\n
     <payload: the pickle>
 
-The HMAC covers the header and the payload and is keyed by a secret kept in the
-user's configuration folder (:func:`key_path`: ``$MECHOPT_CONFIG_DIR``, else
-``$XDG_CONFIG_HOME/mechopt``, else ``~/.config/mechopt``; the file
-``checkpoint.key`` is created with mode 0600 on first use). A file crafted or
-edited by anyone without that key fails the check and is never unpickled; to
-resume on another machine, copy the key along. Every failure is one
-:class:`UnreadableCheckpoint` (a ValueError) naming the cause.
+The HMAC is keyed by the user's secret (:mod:`mechopt.run.keys`: ``checkpoint.key``
+in ``$MECHOPT_CONFIG_DIR``, else ``$XDG_CONFIG_HOME/mechopt``, else
+``~/.config/mechopt``; made with mode 0600 on first use; an empty, short, linked or
+group/world-readable key is refused). Reading is bounded and authenticated in
+order: the file must be a regular file (no link, FIFO or device); the header line
+(at most 1 MiB) is read and its HMAC checked; only then is the file's size compared
+with the payload length the header states, the payload read and its sha256
+compared. A file crafted or edited by anyone without the key fails before its
+payload is read, and is never unpickled; to resume on another machine, copy the key
+along. Every failure is one :class:`UnreadableCheckpoint` (a ValueError) naming the
+cause.
 """
 from __future__ import annotations
 
@@ -24,59 +28,30 @@ import hmac
 import json
 import os
 import pickle
-import secrets
 from pathlib import Path
 
+from mechopt.core.reading import open_regular
 from mechopt.run import io as _io
+from mechopt.run import keys as _keys
 
-__all__ = ["MAGIC", "UnreadableCheckpoint", "key_path", "write", "read", "read_header"]
+__all__ = ["MAGIC", "UnreadableCheckpoint", "key_path", "write", "read", "read_header", "MAX_PAYLOAD"]
 
-MAGIC = b"MECHOPT-CHECKPOINT 1\n"
-#: a header line longer than this is not ours (read before anything is trusted)
+MAGIC = b"MECHOPT-CHECKPOINT 2\n"
+_OLD_MAGIC = b"MECHOPT-CHECKPOINT 1\n"
+#: a header line longer than this is not ours (read before anything is trusted) [bytes]
 _MAX_HEADER = 1 << 20
-_KEY_NAME = "checkpoint.key"
+#: the largest payload read [bytes] (a population of a million designs pickles to far less)
+MAX_PAYLOAD = 8 << 30
+
+key_path = _keys.key_path
 
 
 class UnreadableCheckpoint(ValueError):
     """The checkpoint is missing a part, was edited, or was written with another key."""
 
 
-def key_path() -> Path:
-    """Where the checkpoint key lives (see the module docstring)."""
-    base = os.environ.get("MECHOPT_CONFIG_DIR")
-    if not base:
-        xdg = os.environ.get("XDG_CONFIG_HOME")
-        base = os.path.join(xdg, "mechopt") if xdg else os.path.join(os.path.expanduser("~"), ".config",
-                                                                      "mechopt")
-    return Path(base) / _KEY_NAME
-
-
-def _key(create: bool) -> bytes | None:
-    path = key_path()
-    try:
-        return bytes.fromhex(path.read_text().strip())
-    except FileNotFoundError:
-        if not create:
-            return None
-    except (OSError, ValueError) as exc:
-        raise ValueError(f"the checkpoint key {str(path)!r} is unreadable ({type(exc).__name__}); "
-                         f"remove it (existing checkpoints then cannot be resumed)") from None
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
-        fd = os.open(path, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o600)
-    except FileExistsError:  # another run made it meanwhile
-        return _key(create=False)
-    except OSError as exc:
-        raise ValueError(f"cannot create the checkpoint key {str(path)!r}: {exc.strerror}; set "
-                         f"MECHOPT_CONFIG_DIR to a writable folder") from None
-    key = secrets.token_bytes(32)
-    with os.fdopen(fd, "w") as fh:
-        fh.write(key.hex() + "\n")
-    return key
-
-
-def _mac(key: bytes, header: bytes, payload: bytes) -> str:
-    return hmac.new(key, MAGIC + header + b"\n" + payload, hashlib.sha256).hexdigest()
+def _mac(key: bytes, header: bytes) -> str:
+    return _keys.mac(key, MAGIC, header)
 
 
 def write(path, obj, header: dict) -> Path:
@@ -84,51 +59,67 @@ def write(path, obj, header: dict) -> Path:
     plain pickle refuses) and write it atomically with ``header`` and the HMAC."""
     import cloudpickle
 
+    key = _keys.load_key(create=True)
     payload = cloudpickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
     head = json.dumps({**header, "payload_bytes": len(payload),
                        "payload_sha256": hashlib.sha256(payload).hexdigest()},
                       sort_keys=True, default=str).encode()
-    mac = _mac(_key(create=True), head, payload)
+    mac = _mac(key, head)
     with _io.atomic_path(path) as tmp, open(tmp, "wb") as fh:
         fh.write(MAGIC + mac.encode() + b"\n" + head + b"\n" + payload)
     return Path(path)
 
 
-def _split(data: bytes):
-    if not data.startswith(MAGIC):
-        raise UnreadableCheckpoint("not a mechopt checkpoint")
-    rest = data[len(MAGIC):]
-    mac, sep, rest = rest.partition(b"\n")
-    if not sep or len(mac) != 64:
-        raise UnreadableCheckpoint("truncated")
-    end = rest.find(b"\n", 0, _MAX_HEADER)
-    if end < 0:
-        raise UnreadableCheckpoint("truncated")
-    return mac.decode("ascii", "replace"), rest[:end], rest[end + 1:]
-
-
 def read_header(path) -> dict:
-    """The checkpoint's header, authenticated (its payload is not unpickled)."""
-    return _read(path)[0]
+    """The checkpoint's header, authenticated (its payload is not read)."""
+    return _read(path, payload=False)[0]
 
 
-def _read(path):
+def _read(path, payload: bool = True):
+    """``(header, payload bytes or None)``, authenticated as the module docstring says."""
     try:
-        data = Path(path).read_bytes()
-    except IsADirectoryError:
-        raise UnreadableCheckpoint("a folder, not a file") from None
-    mac, head, payload = _split(data)
-    key = _key(create=False)
-    if key is None or not hmac.compare_digest(mac, _mac(key, head, payload)):
-        raise UnreadableCheckpoint("authentication failed: edited, or written with another user's "
-                                   f"checkpoint key ({key_path()})")
+        fd, size = open_regular(path, "it", MAX_PAYLOAD + _MAX_HEADER + 200)
+    except FileNotFoundError:
+        raise UnreadableCheckpoint("missing") from None
+    except ValueError as exc:
+        raise UnreadableCheckpoint(str(exc)) from None
     try:
-        header = json.loads(head)
-    except ValueError:
-        raise UnreadableCheckpoint("bad header") from None
-    if not isinstance(header, dict) or header.get("payload_bytes") != len(payload):
-        raise UnreadableCheckpoint("truncated")
-    return header, payload
+        with os.fdopen(fd, "rb") as fh:
+            first = fh.read(len(MAGIC) + 65)
+            if first.startswith(_OLD_MAGIC):
+                raise UnreadableCheckpoint("written by an older mechopt (format 1); start the run again")
+            if not first.startswith(MAGIC):
+                raise UnreadableCheckpoint("not a mechopt checkpoint")
+            mac = first[len(MAGIC):]
+            if len(mac) != 65 or mac[64:] != b"\n":
+                raise UnreadableCheckpoint("truncated")
+            head = fh.readline(_MAX_HEADER + 1)
+            if not head.endswith(b"\n"):
+                raise UnreadableCheckpoint("truncated" if len(head) <= _MAX_HEADER else "header too long")
+            head = head[:-1]
+            key = _keys.load_key(create=False)
+            if key is None or not hmac.compare_digest(mac[:64].decode("ascii", "replace"), _mac(key, head)):
+                raise UnreadableCheckpoint("authentication failed: edited, or written with another user's "
+                                           f"checkpoint key ({key_path()})")
+            try:
+                header = json.loads(head)
+            except (ValueError, RecursionError):
+                raise UnreadableCheckpoint("bad header") from None
+            n = header.get("payload_bytes") if isinstance(header, dict) else None
+            if not isinstance(n, int) or isinstance(n, bool) or not 0 <= n <= MAX_PAYLOAD \
+                    or not isinstance(header.get("payload_sha256"), str):
+                raise UnreadableCheckpoint("bad header")
+            if size != len(MAGIC) + 65 + len(head) + 1 + n:
+                raise UnreadableCheckpoint("truncated" if size < len(MAGIC) + 65 + len(head) + 1 + n
+                                           else "trailing bytes")
+            if not payload:
+                return header, None
+            data = fh.read(n + 1)
+    except OSError as exc:
+        raise UnreadableCheckpoint(f"unreadable ({exc.strerror or type(exc).__name__})") from None
+    if len(data) != n or not hmac.compare_digest(hashlib.sha256(data).hexdigest(), header["payload_sha256"]):
+        raise UnreadableCheckpoint("the payload does not match its header (edited or truncated)")
+    return header, data
 
 
 def read(path):

@@ -15,7 +15,7 @@ from typing import Callable, Iterable, Sequence
 from mechopt.core import validation as _v
 
 __all__ = ["parallel_map", "map_async", "start_workers", "chunks", "connect", "check_cluster",
-           "kernel_path", "stop_workers", "DEFAULT_STALL_S"]
+           "kernel_path", "stop_workers", "DEFAULT_STALL_S", "close_client", "cluster_threads"]
 
 #: most local worker processes (a typo such as --n-jobs 1e9 would overflow joblib)
 MAX_JOBS = 1024
@@ -49,16 +49,75 @@ def _worker_facts() -> dict:
     return {"mechopt": __version__, "kernel": kernel_path()}
 
 
+class _NoAnswer(ValueError):
+    """A Dask call that did not return in time (:func:`_within`)."""
+
+
+def _within(seconds: float, what: str, func, *args, **kw):
+    """``func(*args, **kw)`` if it returns within ``seconds``, else a one-line ValueError:
+    a Dask endpoint that accepts a connection and never answers would block a
+    synchronous call for ever (the call goes on in a daemon thread, which does not keep
+    the process alive)."""
+    box = {}
+
+    def call():
+        try:
+            box["value"] = func(*args, **kw)
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller
+            box["error"] = exc
+
+    t = threading.Thread(target=call, daemon=True, name="mechopt-dask-call")
+    t.start()
+    t.join(seconds)
+    if t.is_alive():
+        raise _NoAnswer(f"{what}: no answer within {seconds:g} s")
+    if "error" in box:
+        raise box["error"]
+    return box["value"]
+
+
+def close_client(client, timeout: float | None = None) -> None:
+    """Close a Dask client, waiting at most ``timeout`` seconds (default: its
+    :func:`connect` timeout); a scheduler that does not answer is left behind."""
+    seconds = timeout if timeout is not None else _STALL.get(id(client), DEFAULT_STALL_S)
+    try:
+        _within(seconds, "closing the Dask client", client.close, timeout=seconds)
+    except Exception:  # noqa: BLE001 - the run's result or error matters, not the goodbye
+        pass
+    _STALL.pop(id(client), None)
+
+
+def cluster_threads(client) -> int:
+    """The number of worker threads of the cluster (at least 1), asked within the
+    client's stall timeout (ValueError, one line, otherwise)."""
+    seconds = _STALL.get(id(client), DEFAULT_STALL_S)
+    return max(1, sum(_within(seconds, "the Dask scheduler", client.nthreads).values()))
+
+
+#: the longest wait for the workers to import mechopt and report their version and
+#: kernel path (:func:`check_cluster`) [s]: at least this, or 6 times the timeout (an
+#: import on a loaded machine takes far longer than a scheduler's answer)
+FACTS_MIN_S = 60.0
+
+
 def check_cluster(client, timeout: float = 10.0) -> dict:
     """Before the first chunk: the cluster has workers, and each imports the same
-    mechopt version and kernel path as this process. ValueError (one line) otherwise,
-    within ``timeout`` seconds. Returns the common facts."""
+    mechopt version and kernel path as this process. ValueError (one line) otherwise:
+    no worker within ``timeout`` seconds, or no facts from the workers within
+    ``max(FACTS_MIN_S, 6 timeout)`` seconds. Returns the common facts."""
+    seconds = max(FACTS_MIN_S, 6.0 * timeout)
+    return _within(timeout + seconds + 1.0, "the Dask cluster", _check_cluster, client, timeout, seconds)
+
+
+def _check_cluster(client, timeout, seconds):
     try:
-        client.wait_for_workers(1, timeout=timeout)
+        _within(timeout + 1.0, "the Dask cluster", client.wait_for_workers, 1, timeout=timeout)
     except Exception:  # noqa: BLE001 - distributed raises its own TimeoutError types
         raise ValueError(f"the Dask cluster has no workers after {timeout:g} s") from None
     try:
-        facts = client.run(_worker_facts)
+        facts = _within(seconds, "the Dask workers", client.run, _worker_facts)
+    except _NoAnswer:
+        raise
     except Exception as exc:  # noqa: BLE001 - e.g. ModuleNotFoundError on a worker
         raise ValueError(f"a Dask worker cannot run mechopt: {type(exc).__name__}: "
                          f"{str(exc).splitlines()[0] if str(exc) else ''}".rstrip(": ")) from None
@@ -96,20 +155,23 @@ def connect(address: str, timeout: float = 10.0):
     except ImportError:
         raise ValueError("--dask needs the 'dask' extra: pip install 'mechopt[dask]'") from None
     try:
-        client = Client(address, timeout=timeout)
-    except (OSError, TimeoutError) as exc:
-        raise ValueError(f"cannot reach the Dask scheduler at {address!r}: {type(exc).__name__}") from None
+        client = _within(timeout + 1.0, f"cannot reach the Dask scheduler at {address!r}", Client, address,
+                         timeout=timeout)
+    except _NoAnswer:
+        raise
     except ValueError as exc:  # a malformed address
         raise ValueError(f"bad Dask scheduler address {address!r}: {exc}") from None
+    except (OSError, TimeoutError) as exc:
+        raise ValueError(f"cannot reach the Dask scheduler at {address!r}: {type(exc).__name__}") from None
     except Exception as exc:  # noqa: BLE001 - e.g. an AssertionError inside distributed
         raise ValueError(f"cannot reach the Dask scheduler at {address!r}: "
                          f"{type(exc).__name__} {exc}") from None
+    _STALL[id(client)] = timeout
     try:
         check_cluster(client, timeout)
     except ValueError:
-        client.close()
+        close_client(client)
         raise
-    _STALL[id(client)] = timeout
     return client
 
 

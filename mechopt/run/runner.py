@@ -565,10 +565,15 @@ def resume(out, n_jobs: int | None = None, client=None, progress: bool = True, p
     """
     from mechopt.run import checkpoint as _ck
 
+    from mechopt.run import keys as _keys
+
     n_jobs = _n_jobs(n_jobs)
     out = Path(out)
     where = f"--resume {str(out)!r}"
+    _keys.load_key(create=True)  # an unsafe key is refused before anything is read
     manifest = _io.read_manifest(out)
+    if manifest is not None and not _io.authentic(manifest):
+        manifest = None  # vouches for nothing: the authenticated checkpoint decides
     path = out / CHECKPOINT
     if not os.path.lexists(path):
         if manifest is not None and manifest["status"] == "complete":
@@ -630,10 +635,8 @@ def _manifest_for(out: Path, where: str, manifest, header: dict) -> dict:
         if manifest["status"] == "complete":
             raise ValueError(f"{where}: this run is complete (its result is front.csv); nothing to resume")
         return manifest
-    import json
-
     try:
-        done = json.loads((out / "run.json").read_text())
+        done = _io.read_json(out / "run.json")
     except (OSError, ValueError):
         done = None
     if isinstance(done, dict) and done.get("problem") not in (None, header.get("problem")):
@@ -641,7 +644,7 @@ def _manifest_for(out: Path, where: str, manifest, header: dict) -> dict:
                          f"{done.get('problem')}; remove the one you do not want")
     manifest = {"kind": "optimize", "key": header.get("key") or {}, "status": "running",
                 "run_id": header.get("run_id") or os.urandom(16).hex(), "owned": [CHECKPOINT]}
-    _io.write_json(manifest, out / MANIFEST)
+    _io.write_manifest(manifest, out)
     return manifest
 
 
@@ -760,7 +763,7 @@ def _drive(algo, state, n_jobs, client, out, progress, plot, manifest=None) -> R
                 from mechopt.run.plotting import plot_front
 
                 _io.save_figure(plot_front(problem, front, history, population, info), stage / "front.png")
-        if (out / CHECKPOINT).exists():
+        if os.path.isfile(out / CHECKPOINT) and not os.path.islink(out / CHECKPOINT):
             (out / CHECKPOINT).unlink()  # the run is complete: nothing to resume
     return RunResult(front, history, info, population, least)
 
@@ -856,13 +859,17 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | Non
         raise ValueError(f"weights must be a sequence of numbers in [0, 1], got {_v.show(weights)}") from None
     if not weights or not all(0.0 <= w <= 1.0 for w in weights):
         raise ValueError(f"weights must be numbers in [0, 1], got {_v.show(weights)}")
+    if len(weights) > _v.MAX_WEIGHTS:
+        raise ValueError(f"a sweep takes at most {_v.MAX_WEIGHTS} weights, got {len(weights)}")
     _check_sizes(problem.default_pop if pop is None else pop, problem.default_gen if gen is None else gen)
     _v.integer("seed", seed, 0)
     _n_jobs(n_jobs)
     run_kw = dict(tol=tol, crossover_prob=crossover_prob, mutation_prob=mutation_prob,
                   crossover_eta=crossover_eta, mutation_eta=mutation_eta)
     make_algorithm("nsga2", 2, 2, **{k: v for k, v in run_kw.items() if k != "tol"})  # checks them
-    _termination(problem, None, gen, tol)
+    term = _termination(problem, None, gen, tol)
+    _check_sweep_budget(problem, len(weights) + 1, problem.default_pop if pop is None else pop,
+                        _max_gen(term))
     if out is None:
         return _sweep(problem, weights, pop, gen, seed, n_jobs, client, None, progress, run_kw, None)
     out = _io.prepare_out_dir(out)
@@ -870,6 +877,29 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | Non
            "pop": pop, "gen": gen, "seed": seed, **run_kw}
     with _io.run_in(out, "sweep", key, RUN_OUTPUTS, overwrite) as manifest:
         return _sweep(problem, weights, pop, gen, seed, n_jobs, client, out, progress, run_kw, manifest)
+
+
+def _check_sweep_budget(problem, n_runs: int, pop: int, max_gen: int | None):
+    """The sweep's ``n_runs`` runs (the NSGA-II front and one per weight) budgeted as a
+    whole (:mod:`mechopt.run.budget`): refused if together they cannot fit in memory or
+    would take longer than 30 days; a line printed if above an hour."""
+    import sys
+
+    from mechopt.run import budget
+
+    if max_gen is None:
+        return None
+    one = budget.estimate(problem, int(pop), int(pop), int(max_gen))
+    total = budget.Estimate(one.memory_bytes, one.seconds * n_runs, one.evaluations * n_runs,
+                            one.seconds_per_evaluation)
+    try:
+        line = budget.check(total)
+    except ValueError as exc:
+        raise ValueError(f"the sweep ({n_runs} runs): {exc}") from None
+    if line:
+        line = f"{line} (the whole sweep: {n_runs} runs)"
+        print(line, file=sys.stderr)
+    return line
 
 
 def _sweep(problem, weights, pop, gen, seed, n_jobs, client, out, progress, run_kw, manifest):

@@ -41,6 +41,8 @@ class DesignResult:
     evaluator: DesignEvaluator
     run: object = None
     chosen_index: int = 0
+    #: the :class:`NoFeasibleDesign` of a run without a feasible design (``front`` empty)
+    error: object = None
 
     def _F(self):
         ev = self.evaluator
@@ -611,7 +613,9 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     another run is refused unless ``overwrite``.
 
     Raises :class:`NoFeasibleDesign` (a ValueError) naming the requirement that
-    fails most when no design is feasible.
+    fails most when no design is feasible; with ``out`` the run's files are written
+    first (run.json with ``no_design``, history.csv, population.csv, front.png: an
+    empty result is a result).
     """
     from mechopt.run import io as _io
     from mechopt.problems import get as _problem
@@ -636,9 +640,14 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
                "max_length": max_length, "shape": shape, "algorithm": repr(algorithm), "pop": pop, "gen": gen,
                "seed": seed, "polish": polish, "pick": pick}
         with _io.run_in(out, "design", key, DESIGN_OUTPUTS, overwrite) as manifest:
-            return _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress,
-                           polish, manifest)
-    return _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, None, progress, polish, None)
+            result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress,
+                             polish, manifest)
+    else:
+        result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, None, progress, polish,
+                         None)
+    if result.error is not None:  # the files are written: the empty result is reported
+        raise result.error
+    return result
 
 
 def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest):
@@ -656,7 +665,7 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
     info = dict(run.info)
     stages = {"optimisation": time.perf_counter() - t0}
     if not len(run.front):
-        raise _no_design(problem, run)
+        return _empty_result(problem, ev, run, info, stages, out, manifest, _no_design(problem, run))
     X = run.front[list(problem.var_names)].to_numpy(float)
     polished = []
     t0 = time.perf_counter()
@@ -678,7 +687,7 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
         rows.append(ev.row(v, res))
         kept.append(ev.objective_values(res))
     if not rows:
-        raise _no_design(problem, run, certified=True)
+        return _empty_result(problem, ev, run, info, stages, out, manifest, _no_design(problem, run, certified=True))
     F = np.array(kept) * np.array(list(ev.senses().values()))
     nd = _non_dominated(F)
     front = pd.DataFrame([rows[i] for i in nd])
@@ -715,6 +724,35 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
     return result
 
 
+def _empty_result(problem, ev, run, info, stages, out, manifest, exc):
+    """No feasible design: a result, not an error. With ``out``, writes ``run.json``
+    (``no_design``: the message; ``violations``), ``history.csv``, ``population.csv``
+    (the final population with its ``g_*`` columns, least violating first) and
+    ``front.png`` (the population coloured by its violation); returns an empty
+    :class:`DesignResult` whose ``info["no_design"]`` :func:`design` raises as
+    :class:`NoFeasibleDesign`."""
+    from mechopt.run import io as _io
+    from mechopt.run.plotting import plot_front
+
+    info.update(design=ev.settings(), problem="design", front_size=0, no_design=str(exc),
+                violations=exc.info.get("violations", {}), fails=exc.info.get("fails", {}))
+    info["stage_times_s"] = stages
+    info["wall_time_s"] = sum(stages.values())
+    pop = run.population
+    G = pop[[f"g_{n}" for n in problem.constr_names]].to_numpy(float)
+    pop = pop.iloc[np.argsort(np.maximum(G, 0).sum(1), kind="mergesort")].reset_index(drop=True)
+    if out is not None:
+        fig = plot_front(problem, pd.DataFrame(), run.history, run.population, info)
+        with _io.output_set(out, manifest) as stage:
+            _io.write_csv(pop, stage / "population.csv")
+            _io.write_csv(run.history, stage / "history.csv")
+            _io.write_json(info, stage / "run.json")
+            _io.save_figure(fig, stage / "front.png")
+    result = DesignResult(pd.DataFrame(), info, ev, run)
+    result.error = exc
+    return result
+
+
 def _task_digest(task) -> str:
     """sha256 of everything that defines ``task`` (its arrays byte for byte): a run
     manifest's record of the task, whatever its size."""
@@ -729,7 +767,7 @@ def _task_digest(task) -> str:
 
 
 #: the names a design run writes (such files no run manifest accounts for are refused)
-DESIGN_OUTPUTS = ("front.csv", "history.csv", "design.json", "run.json", "front.png", "design.png")
+DESIGN_OUTPUTS = ("front.csv", "history.csv", "design.json", "run.json", "front.png", "design.png", "population.csv")
 
 
 def _non_dominated(F):

@@ -89,11 +89,11 @@ def page_kind(folder) -> str:
 
 def _read_json(path: Path) -> dict:
     try:
-        obj = json.loads(path.read_text())
+        obj = _io.read_json(path)  # a regular file, bounded, one-line errors
     except FileNotFoundError:
         return {}
-    except (OSError, ValueError) as exc:
-        raise ValueError(f"cannot read {path}: {exc}") from None
+    except OSError as exc:
+        raise ValueError(f"cannot read {path}: {exc.strerror or exc}") from None
     return obj if isinstance(obj, dict) else {}
 
 

@@ -20,7 +20,6 @@ character references), whatever the locale.
 from __future__ import annotations
 
 import base64
-import json
 import math
 import re
 import struct
@@ -149,9 +148,15 @@ def _png_size(data: bytes) -> tuple[int, int] | None:
 _MIME = {".png": "image/png", ".svg": "image/svg+xml", ".jpg": "image/jpeg", ".jpeg": "image/jpeg"}
 
 
-def _image(path: Path, alt: str) -> tuple[str, bool]:
-    """The ``<img>`` tag of ``path`` as a data URI, and whether the image is wide."""
-    data = path.read_bytes()
+#: the largest image embedded [bytes]
+_MAX_IMAGE = 64 << 20
+
+
+def _image(path: Path, alt: str, root: Path) -> tuple[str, bool]:
+    """The ``<img>`` tag of ``path`` as a data URI, and whether the image is wide. Only a
+    regular file inside ``root`` (the results folder) is embedded: a link, a FIFO or a
+    file reached through a linked folder is a one-line ValueError."""
+    data = _io.read_bytes(path, _MAX_IMAGE, root=root)
     size = _png_size(data)
     dims = f' width="{size[0]}" height="{size[1]}"' if size else ""
     uri = f"data:{_MIME.get(path.suffix.lower(), 'image/png')};base64,{base64.b64encode(data).decode('ascii')}"
@@ -171,17 +176,31 @@ def _fig_order(p: Path):
 
 def _read_json(path: Path) -> dict:
     try:
-        obj = json.loads(path.read_text())
+        obj = _io.read_json(path)
     except (OSError, ValueError):
         return {}
     return obj if isinstance(obj, dict) else {}
 
 
+def _csv(path: Path, **kw) -> pd.DataFrame:
+    """A CSV of the results read as a regular file of bounded size (no link, no FIFO)."""
+    import io
+
+    return pd.read_csv(io.BytesIO(_io.read_bytes(path, _io.MAX_JSON_BYTES * 8)), **kw)
+
+
 def _rows(path: Path) -> int | None:
     try:
-        return len(pd.read_csv(path))
+        return len(_csv(path))
     except (OSError, ValueError):
         return None
+
+
+def _count(v) -> int | None:
+    """``v`` as a whole number if it is one (run.json as written), else None."""
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v != int(v):
+        return None
+    return int(v)
 
 
 def _check_dir(results_dir) -> Path:
@@ -203,7 +222,7 @@ def _check_dir(results_dir) -> Path:
 def _read_table(d: Path, paper: str) -> pd.DataFrame:
     f = d / paper / "table.csv"
     try:
-        df = pd.read_csv(f)
+        df = _csv(f)
     except (OSError, ValueError) as exc:
         raise ValueError(f"cannot read {f}: {exc}") from None
     missing = [c for c in TABLE_COLUMNS if c not in df.columns]
@@ -354,7 +373,7 @@ def _differs_html(df: pd.DataFrame) -> str:
 
 def _figure_html(path: Path, ref: str | None, desc: str, rel: str) -> str:
     title = f"{ref} redrawn" if ref else "mechopt figure (not a figure of the paper)"
-    img, wide = _image(path, f"{title}: {desc}")
+    img, wide = _image(path, f"{title}: {desc}", path.parent.parent)
     cls = ' class="wide"' if wide else ""
     return (f"<figure{cls}>{img}<figcaption><strong>{escape(title)}</strong>: {escape(desc)}. "
             f"<code>{escape(rel)}</code></figcaption></figure>")
@@ -367,7 +386,7 @@ def _plural(n: int, word: str) -> str:
 def _objectives(folder: Path) -> list[str]:
     """The objective names of a run, from the ``best_<objective>`` columns of its history.csv."""
     try:
-        cols = pd.read_csv(folder / "history.csv", nrows=0).columns
+        cols = _csv(folder / "history.csv", nrows=0).columns
     except (OSError, ValueError):
         return []
     return [c[len("best_"):] for c in cols if c.startswith("best_")]
@@ -384,8 +403,8 @@ def _run_caption(folder: Path, png: Path) -> tuple[str, str]:
         bits.append(str(alg["name"]).upper())
     if alg.get("pop") is not None:
         bits.append(f"population {alg['pop']}")
-    if alg.get("gen") is not None:
-        bits.append(_plural(int(alg["gen"]), "generation"))
+    if _count(alg.get("gen")) is not None:
+        bits.append(_plural(_count(alg["gen"]), "generation"))
     if info.get("seed") is not None:
         bits.append(f"seed {info['seed']}")
     if png.stem == "sweep":
@@ -421,13 +440,13 @@ def _runs_html(d: Path, paper: str, shown: dict) -> str:
     for sub in sorted((p for p in (d / paper).iterdir() if p.is_dir()), key=lambda p: _natural(p.name)):
         for png in sorted(sub.glob("*.png"), key=lambda p: (p.stem != "front", p.name)):
             rel = f"{paper}/{sub.name}/{png.name}"
-            digest = hashlib.sha256(png.read_bytes()).hexdigest()
+            digest = hashlib.sha256(_io.read_bytes(png, _MAX_IMAGE, root=png.parents[2])).hexdigest()
             if digest in shown:
                 same.append(f"<code>{escape(rel)}</code> is the same image as <code>{escape(shown[digest])}</code>")
                 continue
             shown[digest] = rel
             head, desc = _run_caption(sub, png)
-            img, wide = _image(png, f"{head}: {desc}")
+            img, wide = _image(png, f"{head}: {desc}", png.parents[2])
             cls = ' class="wide"' if wide else ""
             figs.append(f"<figure{cls}>{img}<figcaption><strong>{escape(head)}</strong>: {escape(desc)}. "
                         f"<code>{escape(rel)}</code></figcaption></figure>")
@@ -448,7 +467,8 @@ def _paper_html(d: Path, paper: str) -> tuple[str, int]:
     pngs = sorted((d / paper).glob("*.png"), key=_fig_order)
     figs, shown = [], {}
     for png in pngs:
-        shown.setdefault(hashlib.sha256(png.read_bytes()).hexdigest(), f"{paper}/{png.name}")
+        shown.setdefault(hashlib.sha256(_io.read_bytes(png, _MAX_IMAGE, root=png.parent.parent)).hexdigest(),
+                         f"{paper}/{png.name}")
         ref, desc = figure_caption(paper, png.name)
         figs.append(_figure_html(png, ref, desc, f"{paper}/{png.name}"))
     runs = _runs_html(d, paper, shown)

@@ -105,6 +105,21 @@ def reproduce(paper: str, out="results", quick: bool = False, force: bool = Fals
         n_jobs = _v.integer("n_jobs", n_jobs, 1)
     out = _io.prepare_out_dir(out)
     papers = PAPERS if paper == "all" else (paper,)
+    # the folder is claimed like a run's (mechopt.run.io.claim_out): README.md and the
+    # paper folders are written only where no other program's files of those names are
+    with _io.run_in(out, "reproduce", {}, REPRODUCE_OUTPUTS) as manifest:
+        for name in ("README.md", *papers):
+            _io.own(out, manifest, name)
+        return _reproduce(papers, out, quick, force, log, n_jobs, progress)
+
+
+#: the names ``reproduce`` writes into its folder (refused where no manifest of a
+#: reproduction accounts for them)
+REPRODUCE_OUTPUTS = ("README.md", *PAPERS)
+
+
+def _reproduce(papers, out, quick, force, log, n_jobs, progress) -> pd.DataFrame:
+    """The papers of :func:`reproduce` into the claimed folder ``out``."""
     n = len(papers)
     stamp = {"quick": bool(quick), "mechopt": __version__}
     tables = {}
@@ -116,7 +131,7 @@ def reproduce(paper: str, out="results", quick: bool = False, force: bool = Fals
             old = _read_stamp(folder)
             if old == stamp:
                 log(f"[{i}/{n}] {name}: done before, skipped (use --force to redo)")
-                tables[name] = pd.read_csv(table_csv).assign(paper=name)
+                tables[name] = _read_csv(table_csv).assign(paper=name)
                 continue
             log(f"[{i}/{n}] {name}: the finished run was "
                 f"{_describe_stamp(old)}, this one is {_describe_stamp(stamp)}: recomputing")
@@ -127,6 +142,14 @@ def reproduce(paper: str, out="results", quick: bool = False, force: bool = Fals
     table = pd.concat([tables[name] for name in papers], ignore_index=True)
     write_summary(out)
     return table
+
+
+def _read_csv(path) -> pd.DataFrame:
+    """A table written by a reproduction, read as a regular file of bounded size
+    (:func:`mechopt.run.io.read_bytes`)."""
+    import io
+
+    return pd.read_csv(io.BytesIO(_io.read_bytes(path, _io.MAX_JSON_BYTES)))
 
 
 #: the work unit of a paper's table without its parts (parallel reproduction)
@@ -223,10 +246,8 @@ STAMP = "reproduce.json"
 
 
 def _read_stamp(folder) -> dict | None:
-    import json
-
     try:
-        return json.loads((folder / STAMP).read_text())
+        return _io.read_json(folder / STAMP)
     except (OSError, ValueError):
         return None
 
@@ -251,7 +272,7 @@ def summary_table(out) -> pd.DataFrame:
     for name in PAPERS:
         f = out / name / "table.csv"
         if f.exists():
-            rows.append({"paper": TITLES[name], **counts(pd.read_csv(f))})
+            rows.append({"paper": TITLES[name], **counts(_read_csv(f))})
     if rows:
         total = {k: sum(r[k] for r in rows) for k in rows[0] if k != "paper"}
         rows.append({"paper": "total", **total})
@@ -267,7 +288,7 @@ def write_summary(out) -> Path:
         f = out / name / "table.csv"
         if not f.exists():
             continue
-        df = pd.read_csv(f)
+        df = _read_csv(f)
         kind = df["kind"] if "kind" in df else "computed"
         for rec in df[(df["status"] == "differs") & (kind == "computed")].itertuples():
             reasons.append({"paper": name, "quantity": rec.quantity, "paper value": rec.paper,

@@ -22,6 +22,7 @@ import numpy as np
 
 from mechopt.mechanisms.five_bar import lci as _fast_lci
 from mechopt.core import validation as _v
+from mechopt.core.bodies import GROUND, Body, Shapes
 from mechopt.core.design_spec import DesignSpec
 from mechopt.core.error_spec import ErrorSpec
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
@@ -234,6 +235,44 @@ class FiveBarDesignSpec(DesignSpec):
 
     def holes(self, mech):
         return [(-mech.r3, 0.0), (mech.r3, 0.0)]
+
+    def links(self, mech, x, y, shapes=None):
+        """The motor housings (discs about ``A1 = (-r3, 0)``, ``A2 = (r3, 0)``), the cranks
+        ``A_i B_i`` (``"crank1"``, ``"crank2"``) and the distal links ``B_i P``
+        (``"distal1"``, ``"distal2"``) at task points ``(x, y)``: joints ``A1, A2, B1, B2,
+        P`` (the asymmetric five-bar's too, each leg with its own lengths)."""
+        shapes = shapes or Shapes.default()
+        x, y = as_points(x, y)
+        b1x, b1y, b2x, b2y, _ = legs_elbows(x, y, mech.r3, mech._legs())
+        r3 = mech.r3
+        out = []
+        for i, (ax, bx, by) in enumerate(((-r3, b1x, b1y), (r3, b2x, b2y)), start=1):
+            a, b = f"A{i}", f"B{i}"
+            out += [Body.make(f"housing{i}", "housing", (a,), (GROUND, GROUND), (ax, 0.0), (ax, 0.0),
+                              shapes, x.shape),
+                    Body.make(f"crank{i}", "proximal", (a, b), (a, b), (ax, 0.0), (bx, by), shapes),
+                    Body.make(f"distal{i}", "distal", (b, "P"), (b, "P"), (bx, by), (x, y), shapes)]
+        return out
+
+    def joint_speeds(self, mech, x, y, radius=0.0):
+        """``A_i``: 0; ``P``: 1; the elbow ``B_i``: ``a_i |J_i| = 1 / |sin gamma_i|`` with
+        ``gamma_i`` the angle between the crank and the distal link (``J_i = a_i^T /
+        (a c sin gamma_i)``, the closure of :func:`legs_closure`). ``cos gamma_i = (d^2 -
+        a^2 - c^2) / (2 a c)`` depends on ``d = |P - A_i|`` alone, monotonically, and ``d``
+        is 1-Lipschitz in ``P``: over the disc of ``radius`` about a task point ``d`` lies in
+        ``[d0 - radius, d0 + radius]``, where ``|cos gamma_i|`` is largest at an end; the
+        bound is infinite when that interval leaves the leg's annulus
+        ``[|a - c|, a + c]`` (a type-I singularity within reach)."""
+        x, y = as_points(x, y)
+        out = {"A1": np.zeros_like(x), "A2": np.zeros_like(x), "P": np.ones_like(x)}
+        for i, (ax, (a, c, _)) in enumerate(zip((-mech.r3, mech.r3), mech._legs()), start=1):
+            d = np.hypot(x - ax, y)
+            worst = np.zeros_like(d)
+            for dd in (np.maximum(d - radius, 0.0), d + radius):
+                worst = np.maximum(worst, np.abs((dd * dd - a * a - c * c) / (2.0 * a * c)))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                out[f"B{i}"] = np.where(worst < 1.0, 1.0 / np.sqrt(1.0 - np.minimum(worst, 1.0) ** 2), np.inf)
+        return out
 
     def reach_radius(self, lmax):
         return 2.0 * lmax
@@ -463,6 +502,13 @@ class FiveBar(PlanarMechanism):
         intersection and the closed-form 2x2 LCI in one pass, numba-compiled when
         numba is importable). Same values as the generic
         ``indices.lci(self.jacobian(x, y))`` to rounding (tested to 1e-12).
+
+        A NaN coordinate is not a point: its LCI is NaN (not 0, which would read as
+        "unreachable"). A finite or infinite coordinate beyond reach gives 0.
         """
-        x, y = as_points(x, y)
-        return _fast_lci.five_bar_lci(x, y, self.r1, self.r2, self.r3, self._s1, self._s2)
+        px, py = as_points(x, y)
+        out = _fast_lci.five_bar_lci(px, py, self.r1, self.r2, self.r3, self._s1, self._s2)
+        nan = np.isnan(np.asarray(x, dtype=float)) | np.isnan(np.asarray(y, dtype=float))
+        if np.any(nan):
+            out = np.where(np.broadcast_to(nan, np.shape(out)), np.nan, out)
+        return out

@@ -1,0 +1,275 @@
+"""Collisions: links that keep clear of each other, joints that do not fold, a machine that
+stays out of a zone, a base wide enough for its motors; the objective ``clearance``.
+
+The bodies are the capsules each design spec declares (:meth:`DesignSpec.links
+<mechopt.core.design_spec.DesignSpec.links>`), sized by ``--link-width``,
+``--motor-diameter`` and ``--carriage-length`` (defaults: 20 mm links, 60 mm motor
+housings, 60 mm carriages, :data:`mechopt.core.bodies.MM_DEFAULTS`, in the task's unit);
+the measures are those of :mod:`mechopt.analysis.collisions`.
+
+clearance (``--min-clearance C`` [L])
+    The smallest capsule clearance of two bodies that share no joint (and are not both
+    fixed) stays >= C over the task: margin = minimum over the task - C.
+joint_angle (``--min-joint-angle A`` [deg])
+    Two links that share a joint (the five-bar's crank and distal link at the elbow,
+    the two distal links at the tool) keep an angle >= A between them.
+keep_out (``--keep-out task|polygon:x1,y1;...|above:Y|below:Y``)
+    Every body's capsule stays outside the zone (``task``: the task itself, sparing the
+    links that carry the tool); margin = the smallest signed distance [L].
+base (``--min-base B`` [L] and/or ``--motor-diameter D`` [L])
+    The distance between the fixed bodies' axes (the five-bar's ``2 r3``, the
+    Biglide's ``2 l1``) >= B; with ``--motor-diameter`` the housings clear each other by
+    ``--min-clearance`` (0 if not given): ``2 r3 >= D + C``. Exact: no pose enters.
+
+The minima over the task are located on the samples and refined by zooming, as the
+LCI's (:mod:`mechopt.analysis.sampling`); the reported ``clearance_bound`` (and
+``keep_out_bound``, ``joint_angle_bound``) is the certified lower bound of
+:func:`mechopt.analysis.collisions.lipschitz_bound` from the same samples: sampled
+values less the bodies' speed bounds times the covering radius (the argument is in
+:mod:`mechopt.analysis.collisions`).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mechopt.analysis import collisions as _c
+from mechopt.analysis.sampling import bad_to
+from mechopt.core import validation as _v
+from mechopt.core.bodies import Shapes
+from mechopt.requirements.base import Objective, Option, Requirement
+
+__all__ = ["Clearance", "JointAngle", "KeepOut", "Base", "ClearanceObjective", "shapes_of", "collisions",
+           "clearance_min", "joint_angle_min", "keep_out_min", "MEMBERS"]
+
+#: a design whose sampled margin is below ``-SCREEN * D`` is not refined (far from feasible)
+SCREEN = 0.05
+
+
+def _nonneg(name):
+    return lambda v, spec: _v.nonnegative_length(name, v)
+
+
+def _pos(name):
+    return lambda v, spec: _v.positive_length(name, v)
+
+
+def _zone_text(value, spec):
+    """The ``--keep-out`` text, its syntax checked (``task`` is resolved per evaluation)."""
+    if not isinstance(value, str):
+        raise ValueError(f"keep_out must be task, polygon:x1,y1;..., above:Y or below:Y, got {_v.show(value)}")
+    if value.strip().lower() != "task":
+        _c.parse_zone(value)
+    return value.strip()
+
+
+def _angle(value, spec):
+    a = _v.finite_number("min_joint_angle", value)
+    if not 0.0 < a < math.pi:
+        raise ValueError(f"min_joint_angle must lie in (0, pi) rad (0 to 180 deg), got {_v.show(value)}")
+    return a
+
+
+def shapes_of(req, unit) -> Shapes:
+    """The bodies' sizes [unit] of the requirements ``req``: the given ``link_width``,
+    ``motor_diameter`` and ``carriage_length``, the others :meth:`Shapes.default
+    <mechopt.core.bodies.Shapes.default>`."""
+    given = {k: getattr(req, o) for k, o in (("link_width", "link_width"), ("housing_diameter", "motor_diameter"),
+                                              ("carriage_length", "carriage_length"))
+             if getattr(req, o) is not None}
+    return Shapes.default(unit, **given)
+
+
+def collisions(ctx) -> _c.Collisions:
+    """The design's :class:`~mechopt.analysis.collisions.Collisions` (once per evaluation)."""
+    return ctx.memo("collisions", lambda: _c.Collisions(ctx.spec, ctx.mech, shapes_of(ctx.req, ctx.unit)))
+
+
+def _radius(ctx) -> float:
+    """The covering radius [L] of the evaluation's samples."""
+    s = ctx.samples
+    return _c.covering_radius_of(ctx.task, s["gap"], s["tb"].size, s["step"])
+
+
+def _at_samples(ctx, key, rows):
+    """``rows(x, y)`` at the evaluation's samples, computed once (the screen and the
+    minimum share them)."""
+    s = ctx.samples
+    return ctx.memo(key + "_samples", lambda: rows(s["allx"], s["ally"]))
+
+
+def _minimum(ctx, key, rows, rates):
+    """``(refined minimum, certified bound)`` over the task of the smallest row of
+    ``rows(x, y)`` (shape ``(m, N)``), ``rates(x, y, radius)`` their Lipschitz bounds."""
+    def compute():
+        s = ctx.samples
+        x, y = s["allx"], s["ally"]
+        vals = _at_samples(ctx, key, rows)
+        if vals.size == 0:
+            return math.inf, math.inf
+        bound = _c.lipschitz_bound(vals, rates(x, y, _radius(ctx)), _radius(ctx))
+
+        def low(px, py):
+            return bad_to(np.min(rows(px, py), axis=0), -ctx.diameter)[None]
+
+        sampled = bad_to(np.min(vals, axis=0), -ctx.diameter)[None]  # low(x, y)
+        m = ctx.region_mins(low, sampled)[0] if ctx.is_region else float(sampled.min())
+        return float(m), min(bound, float(m))
+    return ctx.memo(key, compute)
+
+
+def clearance_min(ctx):
+    """``(minimum, certified bound)`` [L] of the capsule clearance over the task."""
+    col = collisions(ctx)
+    return _minimum(ctx, "clearance_min", col.pair_clearances, col.clearance_lipschitz)
+
+
+def joint_angle_min(ctx):
+    """``(minimum, certified bound)`` [rad] of the adjacent links' joint angles over the task."""
+    col = collisions(ctx)
+    return _minimum(ctx, "joint_angle_min", col.joint_angles, col.angle_lipschitz)
+
+
+def keep_out_min(ctx):
+    """``(minimum, certified bound)`` [L] of the bodies' margins to the ``--keep-out`` zone."""
+    col = collisions(ctx)
+    zone = ctx.memo("keep_out_zone", lambda: _c.parse_zone(ctx.req.keep_out, ctx.task))
+    return _minimum(ctx, "keep_out_min", lambda x, y: col.keep_out(x, y, zone),
+                    lambda x, y, r: col.keep_out_lipschitz(x, y, zone, r))
+
+
+class Clearance(Requirement):
+    name = "clearance"
+    options = (Option("min_clearance", "smallest clearance between links that share no joint [unit] "
+                      "(capsules; 0: they may touch)", check=_nonneg("min_clearance")),
+               Option("link_width", "width of every link's capsule [unit] (default 20 mm)",
+                      check=_pos("link_width")),
+               Option("carriage_length", "length of a slider's carriage along its guide [unit] "
+                      "(default 60 mm)", check=_nonneg("carriage_length")))
+    needs = ("points",)
+    margin_text = "`--min-clearance`: the smallest capsule clearance over the task minus the required one"
+    margin_unit = "{L}"
+    certificate = ("minimum located on the samples and refined by zooming (mechopt.analysis.sampling); "
+                   "clearance_bound: sampled clearance - (k_a + k_b) rho (Lipschitz, mechopt.analysis.collisions)")
+
+    def describe(self, req, unit) -> str:
+        return f"clearance >= {req.min_clearance} {unit} between links"
+
+    def screen(self, ctx) -> bool:
+        c = _at_samples(ctx, "clearance_min", collisions(ctx).pair_clearances)
+        return float(np.nanmin(c, initial=math.inf)) >= ctx.req.min_clearance - SCREEN * ctx.diameter
+
+    def evaluate(self, ctx):
+        m = clearance_min(ctx)[0] - ctx.req.min_clearance
+        return m, -m / ctx.diameter
+
+    def report(self, ctx) -> dict:
+        if not ctx.has("clearance_min"):
+            return {}
+        m, bound = clearance_min(ctx)
+        return {"clearance_min": m, "clearance_bound": bound}
+
+
+class JointAngle(Requirement):
+    name = "joint_angle"
+    options = (Option("min_joint_angle", "smallest angle between two links that share a joint [deg]",
+                      check=_angle, parse=lambda t: math.radians(_v.finite_number("--min-joint-angle", t)),
+                      metavar="DEG"),)
+    needs = ("points",)
+    margin_text = "`--min-joint-angle`: the smallest angle between adjacent links over the task minus the limit"
+    margin_unit = "rad"
+    certificate = ("minimum located on the samples and refined by zooming; joint_angle_bound: sampled angle - "
+                   "rate bound x rho (Lipschitz, mechopt.analysis.collisions)")
+
+    def describe(self, req, unit) -> str:
+        return f"angle >= {math.degrees(req.min_joint_angle):g} deg between adjacent links"
+
+    def evaluate(self, ctx):
+        m = joint_angle_min(ctx)[0] - ctx.req.min_joint_angle
+        return m, -m / math.pi
+
+    def report(self, ctx) -> dict:
+        if not ctx.has("joint_angle_min"):
+            return {}
+        m, bound = joint_angle_min(ctx)
+        return {"joint_angle_min": m, "joint_angle_bound": bound}
+
+
+class KeepOut(Requirement):
+    name = "keep_out"
+    options = (Option("keep_out", "a zone no body may enter: task (the task; the links carrying the tool "
+                      "excepted), polygon:x1,y1;x2,y2;... [unit], above:Y or below:Y [unit]",
+                      check=_zone_text, parse=str, metavar="ZONE"),)
+    needs = ("points",)
+    margin_text = "`--keep-out`: the smallest distance of a body's capsule to the zone over the task"
+    margin_unit = "{L}"
+    certificate = ("minimum located on the samples and refined by zooming; keep_out_bound: sampled margin - "
+                   "body speed x rho (Lipschitz, mechopt.analysis.collisions)")
+
+    def describe(self, req, unit) -> str:
+        return f"no body in the zone {req.keep_out}"
+
+    def evaluate(self, ctx):
+        m = keep_out_min(ctx)[0]
+        return m, -m / ctx.diameter
+
+    def report(self, ctx) -> dict:
+        if not ctx.has("keep_out_min"):
+            return {}
+        m, bound = keep_out_min(ctx)
+        return {"keep_out_min": m, "keep_out_bound": bound}
+
+
+class Base(Requirement):
+    name = "base"
+    options = (Option("min_base", "smallest distance between the base joints or guides [unit] "
+                      "(the five-bar's 2 r3)", check=_nonneg("min_base")),
+               Option("motor_diameter", "diameter of each motor housing at a base joint [unit] (default 60 mm; "
+                      "given, the housings must clear each other by --min-clearance)",
+                      check=_nonneg("motor_diameter")))
+    proven = True
+    margin_text = ("`--min-base`, `--motor-diameter`: the base distance minus the required one, or the "
+                   "housings' clearance minus `--min-clearance`, whichever is smaller")
+    margin_unit = "{L}"
+    certificate = "exact: the fixed bodies do not move"
+
+    def active(self, req, spec) -> bool:
+        return req.min_base is not None or req.motor_diameter is not None
+
+    def describe(self, req, unit) -> str:
+        parts = ([f"base >= {req.min_base} {unit}"] if req.min_base is not None else []) + \
+                ([f"housings of {req.motor_diameter} {unit} clear"] if req.motor_diameter is not None else [])
+        return " and ".join(parts)
+
+    def evaluate(self, ctx):
+        col, req = collisions(ctx), ctx.req
+        m = math.inf
+        if req.min_base is not None:
+            m = min(m, col.base_distance() - req.min_base)
+        if req.motor_diameter is not None:
+            m = min(m, col.base_margin() - (req.min_clearance or 0.0))
+        return m, -m / ctx.diameter
+
+
+class ClearanceObjective(Objective):
+    name = "clearance"
+    sense = -1
+    unit = "{L}"
+    description = "smallest clearance between links that share no joint, over the task (capsules)"
+    needs = ("points",)
+
+    def value(self, ctx) -> float:
+        return clearance_min(ctx)[0]
+
+    def bounds(self, ev):
+        return (-ev.max_length, ev.max_length)
+
+    def invalid_value(self, ev, lengths) -> float:
+        return -ev.max_length
+
+    def report(self, ctx) -> dict:
+        return Clearance.report(self, ctx)
+
+
+MEMBERS = (Clearance(), JointAngle(), KeepOut(), Base(), ClearanceObjective())
