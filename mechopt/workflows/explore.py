@@ -294,7 +294,9 @@ def _design_data(d: Path) -> dict:
     margins = [c for c in front.columns if c.startswith("margin_")]
     return {
         "kind": "design", "unit": unit, "mechanism": spec.name,
-        "title": f"{spec.name} sized for {task.label}",
+        "title": f"{spec.name} sized for {task.label}" + (
+            "" if settings.get("place", "fixed") == "fixed" else
+            f" as given; placed per design ({settings['place']}: task_x, task_y)"),
         "task_kind": task.kind, "region": bool(task.is_region or task.kind == "path"),
         "path_t": _list(tpath), "n_task_points": int(len(task.pts)) if task.kind == "points" else 0,
         "columns": list(map(str, front.columns)), "front": _columns(front),
