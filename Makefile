@@ -12,7 +12,7 @@ PIP := $(BIN)/python -m pip install --quiet -c constraints.txt
 $(STAMP): pyproject.toml constraints.txt
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(PIP) -e '.[test,dask,export]'
+	$(PIP) -e '.[test,dask,export,explore]'
 	touch $(STAMP)
 
 run: $(STAMP)

@@ -906,7 +906,20 @@ def _reproduce() -> str:
            "## `mechopt report [RESULTS_DIR]`\n",
            "Writes one self-contained HTML page, `RESULTS_DIR/report.html` (or `--out FILE`): the "
            "summary counts, each paper's `table.csv` (sortable, statuses coloured), every figure, "
-           "front and sweep, all embedded. It prints the path.\n",
+           "front and sweep, all embedded (an image that another already shows, a sweep's copy of its "
+           "front, is named, not repeated). It prints the path.\n",
+           "## `mechopt explore DIR`\n",
+           "Writes one self-contained, interactive HTML page of a run folder, `DIR/explore.html` (or "
+           "`--out PAGE.html`), and prints its path; `--serve` then serves it on 127.0.0.1 and opens "
+           "it in the browser. Plotly and the data are embedded (gzip, base64) and inflated by the "
+           "browser: the page works offline. A design run (`front.csv`, `run.json`, `design.json`): the "
+           "front on any two columns, parallel coordinates, the mechanism of any front design over its "
+           "placed task (reachable boundary, type-II locus, the GCW when `--min-lci` was asked) with "
+           "its row, and a slider moving the platform along the task (72 boundary points at uniform "
+           "arc length, or at most 200 task points). An optimisation run (`front.csv`, `history.csv`, "
+           "`sweep.csv`): the front, the hypervolume per generation, the sweep. An atlas (`atlas.csv`): "
+           "the design triangle coloured by any index, each `--where` condition as a region. Drawings "
+           "and atlas values are rounded to 6 significant digits; it writes no other file.\n",
            "## `mechopt problems`\n",
            "Prints one line per registered problem (`name  summary`); it writes no file.\n"]
     return "\n".join(out)

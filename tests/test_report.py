@@ -11,7 +11,7 @@ import base64
 import os
 import re
 import shutil
-from html import escape
+from html import escape, unescape
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -93,9 +93,16 @@ def test_every_figure_embedded_with_caption(results, report):
     _, html = report
     pngs = sorted(results.rglob("*.png"))
     srcs = re.findall(r'<img src="data:image/png;base64,([^"]*)"', html)
-    assert len(srcs) == len(pngs)
-    embedded = {base64.b64decode(s) for s in srcs}
+    contents = {p.read_bytes() for p in pngs}
+    assert len(srcs) == len(contents) < len(pngs)  # the quick run's sweep repeats its front.png
+    embedded = [base64.b64decode(s) for s in srcs]
+    assert len(set(embedded)) == len(embedded)  # no figure twice
     assert all(p.read_bytes() in embedded for p in pngs)
+    n = len(contents)
+    assert f"{n} figures, fronts and sweeps</p>" in html  # the header counts what is shown
+    # the copy is named beside the one shown
+    assert ("<code>wu2008/sweep/front.png</code> is the same image as <code>wu2008/front/front.png</code>"
+            in html)
     for p in (results / "wu2008").glob("*.png"):
         ref, desc = figure_caption("wu2008", p.name)
         title = f"{ref} redrawn" if ref else "mechopt figure (not a figure of the paper)"
@@ -135,7 +142,67 @@ def test_differs_rows_have_their_reason(results, report):
     section = html.split('id="wu2008-differs"')[1].split("</ol>")[0]
     for rec in differs.itertuples():
         assert escape(rec.quantity) in section
-        assert f'<p class="why">{escape(rec.note)}</p>' in section
+        short = re.search(r'<p class="why-short">([^<]*)</p>', section.split(escape(rec.quantity), 1)[1]).group(1)
+        short = unescape(short)
+        assert len(short) <= 184  # a short item: the reason's first clauses ...
+        assert rec.note.startswith(short.removesuffix(" ..."))
+        if len(rec.note) > len(short):  # ... and the whole note folded below it
+            assert f'<summary>the whole note</summary><p class="why">{escape(rec.note)}</p>' in section
+
+
+def test_reason_names_the_check():
+    from mechopt.workflows.report import _reason
+
+    note = ("our a_MAX at the paper's rho* = 1.9721 (l0 by eq. 24, MIC centre); the bottom-corner LCI binds "
+            "there; tol 5e-05 l1 (max of half last digit 5e-05, 1e-05 l1)")
+    short, check = _reason(note)
+    assert check == "tol 5e-05 l1 (max of half last digit 5e-05, 1e-05 l1)"
+    assert short == "our a_MAX at the paper's rho* = 1.9721 (l0 by eq. 24, MIC centre); the bottom-corner LCI binds there"
+    short, check = _reason("A. " + "word " * 100)
+    assert check == "" and len(short) <= 184 and short.endswith(" ...")
+
+
+def test_setting_rows_are_neutral(results, tmp_path):
+    copy = tmp_path / "results"
+    shutil.copytree(results / "wu2008", copy / "wu2008")
+    df = pd.read_csv(copy / "wu2008" / "table.csv")
+    df.loc[0, ["kind", "status"]] = ["setting", "match"]
+    df.loc[1, ["kind", "status"]] = ["setting", "differs"]
+    df.to_csv(copy / "wu2008" / "table.csv", index=False)
+    rows = build_report(copy).split('id="table-wu2008"')[1].split("</tbody>")[0].split("<tr")[2:4]
+    for row, status in zip(rows, ("match", "differs")):
+        assert f'<td class="status st-setting" data-sort="{status}">{status}</td>' in row
+        assert "st-good" not in row and "st-bad" not in row
+
+
+def test_front_figures_read_plainly():
+    """A one-design front is a marker labelled with its value; no axis carries an offset
+    (``1e-5+1.329``) or a scientific factor."""
+    from mechopt.problems import get
+    from mechopt.run.plotting import plot_front
+
+    problem = get("wu2008")
+    a, b = (o.name for o in problem.objectives)
+    fig = plot_front(problem, pd.DataFrame({a: [1.78606], b: [616.621]}), pd.DataFrame())
+    fig.draw_without_rendering()
+    ax = fig.axes[0]
+    assert [t.get_text() for t in ax.texts] == ["(1.78606, 616.621)"]
+    assert ax.get_legend() is None
+    # the chosen design of a front is starred
+    two = plot_front(problem, pd.DataFrame({a: [1.5, 1.7, 1.9], b: [500.0, 600.0, 700.0]}), pd.DataFrame(), chosen=1)
+    star = [c for c in two.axes[0].collections if c.get_label() == "chosen design"]
+    assert len(star) == 1 and star[0].get_offsets().tolist() == [[1.7, 600.0]]
+    assert ax.get_xlim() == pytest.approx((1.78606 * 0.95, 1.78606 * 1.05))
+    assert ax.get_ylim() == pytest.approx((616.621 * 0.95, 616.621 * 1.05))
+    le = get("le2013")
+    name = le.objectives[0].name
+    fig = plot_front(le, pd.DataFrame(), pd.DataFrame({"generation": [1, 2, 3],
+                                                         f"best_{name}": [1.3291565, 1.3291565, 1.3292093]}))
+    fig.draw_without_rendering()
+    ax = fig.axes[0]
+    assert ax.yaxis.get_offset_text().get_text() == "" and ax.xaxis.get_offset_text().get_text() == ""
+    labels = [t.get_text() for t in ax.get_yticklabels() if t.get_text()]
+    assert labels and all(lab.startswith("1.329") for lab in labels), labels
 
 
 def test_text_is_escaped(results, tmp_path):
@@ -266,7 +333,7 @@ def test_in_browser(browser, report, artifacts):
         "  return i.decode().then(function () { return i.naturalWidth; }, function () { return 0; });"
         "})).then(done);")
     assert widths and all(w > 0 for w in widths), widths
-    assert len(widths) == len(list(path.parent.rglob("*.png")))
+    assert len(widths) == len({p.read_bytes() for p in path.parent.rglob("*.png")})  # each image once
 
     # the tables sort: numbers numerically (empty cells last), text alphabetically, twice reverses
     tid = "table-wu2008"
@@ -300,3 +367,46 @@ def test_in_browser(browser, report, artifacts):
     assert full.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     shutil.copy(path, artifacts / "report.html")
     print(f"screenshots: {top}, {full}")
+
+
+def test_tables_fit_at_1280_px(browser, results, tmp_path, artifacts):
+    """At a 1280 px window no table is wider than its frame or the window (with every
+    folded note opened too), settings are not green, and no image is shown twice."""
+    copy = tmp_path / "results"
+    shutil.copytree(results / "wu2008", copy / "wu2008")
+    df = pd.read_csv(copy / "wu2008" / "table.csv")
+    df.loc[0, ["kind", "status"]] = ["setting", "match"]
+    df.to_csv(copy / "wu2008" / "table.csv", index=False)
+    path = write_report(copy, out=copy / "report.html")
+    browser.set_window_size(1280, 1000)
+    try:
+        browser.get(path.resolve().as_uri())
+        widths = ("var W = document.documentElement.clientWidth;"
+                  "return Array.prototype.map.call(document.querySelectorAll('table'), function (t) {"
+                  "  var f = t.parentNode, r = t.getBoundingClientRect();"
+                  "  return [t.id, Math.ceil(r.right), W, f.scrollWidth, f.clientWidth]; });")
+        for opened in (False, True):
+            if opened:
+                browser.execute_script("document.querySelectorAll('details').forEach(function (d) { d.open = true; });")
+            for tid, right, window, scroll, frame in browser.execute_script(widths):
+                assert right <= window and scroll <= frame, (tid, opened, right, window, scroll, frame)
+        colours = browser.execute_script(
+            "var t = document.getElementById('table-wu2008'), h = Array.prototype.map.call(t.tHead.rows[0].cells,"
+            "  function (c) { return c.textContent.trim(); }), k = h.indexOf('kind'), s = h.indexOf('status');"
+            "return Array.prototype.map.call(t.tBodies[0].rows, function (r) {"
+            "  return [r.cells[k].textContent.trim(), r.cells[s].textContent.trim(),"
+            "          getComputedStyle(r.cells[s]).backgroundColor]; });")
+        rgb = lambda c: [int(v) for v in re.findall(r"\d+", c)[:3]]  # noqa: E731
+        settings = [rgb(c) for kind, _, c in colours if kind == "setting"]
+        matched = [rgb(c) for kind, st, c in colours if kind != "setting" and st == "match"]
+        assert settings and matched
+        for r, g, b in settings:
+            assert not (g > r + 15 and g > b + 15), (r, g, b)  # not green
+        assert all(m[1] > m[0] + 15 for m in matched)  # a computed match is (the check can tell)
+        srcs = browser.execute_script("return Array.prototype.map.call(document.images, function (i) { return i.src; });")
+        assert len(srcs) == len(set(srcs))
+        browser.execute_script("document.getElementById('table-wu2008').scrollIntoView();")
+        shot = artifacts / "report-1280.png"
+        assert browser.save_screenshot(str(shot))
+    finally:
+        browser.set_window_size(1400, 1000)

@@ -42,6 +42,36 @@ def labelled_colorbar(fig, mappable, ax, label: str, **kw):
     return cb
 
 
+def _plain_ticks(ax):
+    """Tick labels as plain numbers: no offset (``1e-5+1.329``) nor scientific factor
+    above the axis; a reader reads the value at a tick directly."""
+    for axis in (ax.xaxis, ax.yaxis):
+        fmt = axis.get_major_formatter()
+        if hasattr(fmt, "set_useOffset"):
+            fmt.set_useOffset(False)
+
+
+def _single_point(ax, x, y):
+    """A front of one design: a large marker labelled with its value, and axes of
+    +-5 % about it (a one-point autoscale is degenerate)."""
+    ax.scatter([x], [y], s=60, color="C0", zorder=3)
+    ax.annotate(f"({x:.6g}, {y:.6g})", (x, y), xytext=(6, 6), textcoords="offset points", fontsize=8)
+    _widen(ax, [x], [y])
+
+
+def _widen(ax, xs, ys):
+    """Axes of +-5 % about a coordinate whose values all coincide to 1e-4 of their size
+    (one design, or a sweep whose optima are one point up to the search's resolution),
+    where an autoscale would be degenerate or spread a single point over the axes."""
+    for v, setter in ((xs, ax.set_xlim), (ys, ax.set_ylim)):
+        v = np.asarray(v, float)
+        v = v[np.isfinite(v)]
+        if v.size and np.ptp(v) <= 1e-4 * np.abs(v).max():
+            c = 0.5 * (v.min() + v.max())
+            h = 0.05 * abs(c) if c else 1.0
+            setter(c - h, c + h)
+
+
 def _label(ob):
     return f"{ob.name} [{ob.unit}] ({'max' if ob.sense < 0 else 'min'})"
 
@@ -61,21 +91,30 @@ def plot_front(problem, front, history, population=None, info=None, chosen=None)
         ax = fig.add_subplot()
         ax.plot(history["generation"], history[f"best_{obs[0].name}"], marker="o")
         ax.set_xlabel("generation [-]")
+        from matplotlib.ticker import MaxNLocator
+
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
         ax.set_ylabel(_label(obs[0]))
         ax.set_title(problem.name)
+        _plain_ticks(ax)
         return fig
     pairs = [(0, 1)] if len(obs) == 2 else [(i, j) for i in range(len(obs)) for j in range(i + 1, len(obs))][:6]
     fig = Figure(figsize=(4.5 * min(len(pairs), 3), 3.8 * ((len(pairs) + 2) // 3)))
     for k, (i, j) in enumerate(pairs):
         ax = fig.add_subplot((len(pairs) + 2) // 3, min(len(pairs), 3), k + 1)
-        ax.scatter(front[obs[i].name], front[obs[j].name], s=14)
+        if len(front) == 1:
+            _single_point(ax, float(front[obs[i].name].iloc[0]), float(front[obs[j].name].iloc[0]))
+        else:
+            ax.scatter(front[obs[i].name], front[obs[j].name], s=14)
         if chosen is not None:
             ax.scatter([front[obs[i].name].iloc[chosen]], [front[obs[j].name].iloc[chosen]], s=90,
                        facecolors="none", edgecolors="C3", linewidths=1.5, label="chosen design")
             ax.legend(fontsize=7)
         ax.set_xlabel(_label(obs[i]))
         ax.set_ylabel(_label(obs[j]))
-    fig.suptitle(f"{problem.name}: {len(front)} non-dominated designs")
+        _plain_ticks(ax)
+    many = f"{len(front)} non-dominated designs" if len(front) != 1 else "one non-dominated design"
+    fig.suptitle(f"{problem.name}: {many}")
     fig.tight_layout()
     return fig
 
@@ -102,9 +141,12 @@ def plot_sweep(problem, front, sweep, population=None, info=None) -> Figure:
     for w, x, y in zip(best["weight"], best[a.name].astype(float), best[b.name].astype(float)):
         if np.isfinite(x) and np.isfinite(y):
             ax.annotate(f"{w:g}", (x, y), fontsize=7, xytext=(3, 3), textcoords="offset points")
+    _widen(ax, np.r_[front[a.name].astype(float), best[a.name].astype(float)],
+           np.r_[front[b.name].astype(float), best[b.name].astype(float)])
     ax.set_xlabel(_label(a))
     ax.set_ylabel(_label(b))
     ax.legend(fontsize=8)
+    _plain_ticks(ax)
     title = f"{problem.name}: weighting sweep"
     if not ok.all():
         title += "\nno feasible design for w = " + ", ".join(f"{w:g}" for w in sweep["weight"][~ok])

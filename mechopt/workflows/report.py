@@ -248,7 +248,15 @@ def _num(v, digits: int = 6) -> str:
     return str(v)
 
 
-def _cell(col: str, v) -> str:
+def _status_class(status, kind=None) -> str:
+    """The colour class of a row's status: a setting (an input we echo) is neutral,
+    whatever its status; the others by :data:`STATUS_CLASSES`."""
+    if str(kind) == "setting":
+        return "setting"
+    return STATUS_CLASSES.get(str(status), "")
+
+
+def _cell(col: str, v, kind=None) -> str:
     if _is_missing(v):
         return '<td data-sort=""></td>'
     if col in _NUMERIC and isinstance(v, (int, float)) and not isinstance(v, bool):
@@ -256,13 +264,13 @@ def _cell(col: str, v) -> str:
         return f'<td class="num" data-sort="{float(v)!r}">{escape(shown)}</td>'
     text = str(v)
     if col == "status":
-        cls = STATUS_CLASSES.get(text, "")
+        cls = _status_class(text, kind)
         return f'<td class="status st-{cls}" data-sort="{escape(text)}">{escape(text)}</td>'
     if col == "note" and len(text) > 140:
         head = text[:120].rsplit(" ", 1)[0]
         return (f'<td class="note" data-sort="{escape(text)}"><details><summary>{escape(head)} ...'
                 f'</summary>{escape(text)}</details></td>')
-    cls = ' class="note"' if col == "note" else (' class="src"' if col == "source" else "")
+    cls = {"note": ' class="note"', "source": ' class="src"', "quantity": ' class="qty"'}.get(col, "")
     return f'<td{cls}>{escape(text)}</td>'
 
 
@@ -270,9 +278,9 @@ def _table_html(df: pd.DataFrame, table_id: str) -> str:
     head = "".join(f'<th scope="col" title="click to sort">{escape(str(c))}</th>' for c in df.columns)
     body = []
     for rec in df.itertuples(index=False):
-        status = getattr(rec, "status", "")
-        cls = STATUS_CLASSES.get(str(status), "")
-        cells = "".join(_cell(c, v) for c, v in zip(df.columns, rec))
+        status, kind = getattr(rec, "status", ""), getattr(rec, "kind", None)
+        cls = _status_class(status, kind)
+        cells = "".join(_cell(c, v, kind) for c, v in zip(df.columns, rec))
         body.append(f'<tr class="row-{cls}">{cells}</tr>' if cls else f"<tr>{cells}</tr>")
     long = " long" if len(df) > 25 else ""
     return (f'<div class="scroll{long}"><table class="sortable results" id="{escape(table_id)}">'
@@ -313,6 +321,29 @@ def _summary_html(summary: pd.DataFrame) -> str:
             f"</thead><tbody>{''.join(body)}</tbody>{foot}</table></div>")
 
 
+#: the tolerance a note names (``tol 5e-05 l1 (max of half last digit ...)``): the check a status rests on
+_TOL_RE = re.compile(r"(?:^|;\s*)(tol [^;]*)$")
+
+
+def _reason(note: str, limit: int = 180) -> tuple[str, str]:
+    """``(short reason, check)`` of a note: its first clause (up to the first ``;`` or
+    sentence end, at most ``limit`` characters, cut at a word) and the tolerance it
+    names (empty when none)."""
+    note = " ".join(note.split())
+    m = _TOL_RE.search(note)
+    check = m.group(1) if m else ""
+    body = note[:m.start()] if m else note
+    clauses = [c.strip() for c in re.split(r";\s|\.\s(?=[A-Z])", body) if c.strip()]
+    first = ""
+    for c in clauses:  # whole clauses while the reason is short (a bare "GA (seed 1) on le2013" says little)
+        first = f"{first}; {c}" if first else c
+        if len(first) >= limit // 2:
+            break
+    if len(first) > limit:
+        first = first[:limit].rsplit(" ", 1)[0] + " ..."
+    return first, check
+
+
 def _differs_html(df: pd.DataFrame) -> str:
     rows = df[df["status"] == "differs"]
     if not len(rows):
@@ -329,10 +360,14 @@ def _differs_html(df: pd.DataFrame) -> str:
         vals = (f"paper <strong>{escape(_num(rec['paper']) + unit)}</strong>, reproduced "
                 f"<strong>{escape(_num(rec['reproduced']) + unit)}</strong>{escape(rel_txt + extra)}")
         note = "" if _is_missing(rec.get("note")) else str(rec["note"])
+        short, check = _reason(note)
+        check_html = f'<p class="why-check">check: {escape(check)}</p>' if check else ""
+        more = (f'<details><summary>the whole note</summary><p class="why">{escape(note)}</p></details>'
+                if note and short != note else "")
         items.append(f'<li><p class="why-head"><code>{escape(str(rec["quantity"]))}</code> '
                      f'<span class="kind">{escape(str(rec["kind"]))}</span> {vals}</p>'
-                     f'<p class="why-src">{escape(str(rec["source"]))}</p>'
-                     f'<p class="why">{escape(note) or "(no note)"}</p></li>')
+                     f'<p class="why-short">{escape(short) or "(no note)"}</p>{check_html}{more}'
+                     f'<p class="why-src">{escape(str(rec["source"]))}</p></li>')
     return f'<ol class="reasons">{"".join(items)}</ol>'
 
 
@@ -395,17 +430,28 @@ def _run_caption(folder: Path, png: Path) -> tuple[str, str]:
     return title, desc
 
 
-def _runs_html(d: Path, paper: str) -> str:
-    figs = []
+def _runs_html(d: Path, paper: str, shown: dict) -> str:
+    """The fronts and sweeps of ``paper``; ``shown`` maps the sha256 of each image already
+    on the page to its path: an identical image (a sweep run's copy of its front) is
+    named, not shown twice."""
+    import hashlib
+
+    figs, same = [], []
     for sub in sorted((p for p in (d / paper).iterdir() if p.is_dir()), key=lambda p: _natural(p.name)):
         for png in sorted(sub.glob("*.png"), key=lambda p: (p.stem != "front", p.name)):
+            rel = f"{paper}/{sub.name}/{png.name}"
+            digest = hashlib.sha256(_io.read_bytes(png, _MAX_IMAGE, root=png.parents[2])).hexdigest()
+            if digest in shown:
+                same.append(f"<code>{escape(rel)}</code> is the same image as <code>{escape(shown[digest])}</code>")
+                continue
+            shown[digest] = rel
             head, desc = _run_caption(sub, png)
             img, wide = _image(png, f"{head}: {desc}", png.parents[2])
             cls = ' class="wide"' if wide else ""
-            rel = f"{paper}/{sub.name}/{png.name}"
             figs.append(f"<figure{cls}>{img}<figcaption><strong>{escape(head)}</strong>: {escape(desc)}. "
                         f"<code>{escape(rel)}</code></figcaption></figure>")
-    return f'<div class="figs">{"".join(figs)}</div>' if figs else "<p>No front or sweep was written.</p>"
+    note = f'<p class="same">{"; ".join(same)} (not repeated).</p>' if same else ""
+    return (f'<div class="figs">{"".join(figs)}</div>' if figs else "<p>No front or sweep was written.</p>") + note
 
 
 def _paper_html(d: Path, paper: str) -> tuple[str, int]:
@@ -416,12 +462,17 @@ def _paper_html(d: Path, paper: str) -> tuple[str, int]:
     kind = ""
     if stamp:
         kind = (f" {'Quick' if stamp.get('quick') else 'Full'} run, mechopt {stamp.get('mechopt', '?')}.")
+    import hashlib
+
     pngs = sorted((d / paper).glob("*.png"), key=_fig_order)
-    figs = []
+    figs, shown = [], {}
     for png in pngs:
+        shown.setdefault(hashlib.sha256(_io.read_bytes(png, _MAX_IMAGE, root=png.parent.parent)).hexdigest(),
+                         f"{paper}/{png.name}")
         ref, desc = figure_caption(paper, png.name)
         figs.append(_figure_html(png, ref, desc, f"{paper}/{png.name}"))
-    n_fronts = sum(1 for _ in (d / paper).glob("*/*.png"))
+    runs = _runs_html(d, paper, shown)
+    n_fronts = runs.count("<figure")  # each image once: a copy of another is named, not counted
     html = [f'<section id="{escape(paper)}"><h2>{escape(paper_name(paper))}</h2>',
             f'<p class="title">{escape(TITLES.get(paper, paper))}</p>',
             f'<p class="counts">{escape(counts_line(counts(df)))}.{escape(kind)} '
@@ -432,13 +483,14 @@ def _paper_html(d: Path, paper: str) -> tuple[str, int]:
             f'<h3 id="{escape(paper)}-figures">Figures ({len(pngs)})</h3>',
             f'<div class="figs">{"".join(figs)}</div>' if figs else "<p>No figure was written.</p>",
             f'<h3 id="{escape(paper)}-fronts">Fronts and sweeps ({n_fronts})</h3>',
-            _runs_html(d, paper), "</section>"]
-    return "\n".join(html), len(pngs) + n_fronts
+            runs, "</section>"]
+    return "\n".join(html), len(figs) + n_fronts
 
 
 _CSS = """
 :root { --good-bg: #dcf2e0; --good-fg: #11561f; --bad-bg: #fadcda; --bad-fg: #8c1d18;
-        --none-bg: #e8e8e8; --none-fg: #4a4a4a; --line: #d0d4da; }
+        --none-bg: #e8e8e8; --none-fg: #4a4a4a; --setting-bg: #e6ebf2; --setting-fg: #34495e;
+        --line: #d0d4da; }
 * { box-sizing: border-box; }
 body { font: 15px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, "DejaVu Sans", sans-serif;
        color: #1d2228; background: #fff; margin: 0; }
@@ -471,13 +523,16 @@ thead th[aria-sort="descending"]::after { content: " \\25BC"; color: #1d2228; }
 tbody tr:nth-child(even) { background: #fafbfc; }
 tfoot td { font-weight: bold; background: #f1f3f5; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
-td.src { min-width: 12em; }
-td.note { min-width: 22em; max-width: 44em; color: #39424d; }
+td.src, td.qty, td.note { overflow-wrap: anywhere; }
+td.src { min-width: 8em; }
+td.qty { min-width: 8em; }
+td.note { min-width: 14em; max-width: 36em; color: #39424d; }
 td.note summary { cursor: pointer; }
 td.status { font-weight: 600; white-space: nowrap; text-align: center; }
 .st-good { background: var(--good-bg); color: var(--good-fg); }
 .st-bad { background: var(--bad-bg); color: var(--bad-fg); }
 .st-none { background: var(--none-bg); color: var(--none-fg); }
+.st-setting { background: var(--setting-bg); color: var(--setting-fg); font-weight: normal; }
 .cnt-good { color: var(--good-fg); font-weight: 600; }
 .cnt-bad { color: var(--bad-fg); font-weight: 600; }
 .cnt-none { color: var(--none-fg); }
@@ -486,7 +541,10 @@ ol.reasons { padding-left: 24px; }
 ol.reasons li { margin-bottom: 10px; }
 ol.reasons p { margin: 0; }
 p.why-src { font-size: 13px; color: #5a6573; font-style: italic; }
-p.why { color: #39424d; font-size: 14px; max-width: 70em; }
+p.why, p.why-short { color: #39424d; font-size: 14px; max-width: 70em; }
+p.why-check { font-size: 13px; color: #1f4f8a; }
+ol.reasons details summary { cursor: pointer; font-size: 13px; color: #5a6573; }
+p.same { font-size: 13px; color: #5a6573; }
 span.kind { font-weight: normal; font-size: 12px; background: var(--bad-bg); color: var(--bad-fg);
             padding: 0 6px; border-radius: 3px; }
 .figs { display: grid; grid-template-columns: repeat(auto-fill, minmax(560px, 1fr)); gap: 18px; }
@@ -539,8 +597,8 @@ _JS = """
 
 _LEGEND = ('<p class="legend">Status: <span class="st-good">match</span><span class="st-good">holds</span>'
            '<span class="st-bad">differs</span><span class="st-bad">fails</span>'
-           '<span class="st-none">not-reported</span> Click a column header to sort its table, '
-           'again to reverse.</p>')
+           '<span class="st-none">not-reported</span><span class="st-setting">setting</span> (an input we '
+           'echo, whatever its status) Click a column header to sort its table, again to reverse.</p>')
 
 _COUNTS_TEXT = ("Counts: match and differs are over the quantities the paper computed and we recompute "
                 "(computed); readings are rows shown on purpose under another reading of the paper or "
