@@ -3,7 +3,7 @@
     python benchmarks/bench_collisions.py
 
 For one design of each mechanism, on the samples of one design evaluation (192
-boundary points + a 13 x 13 interior grid, :class:`mechopt.analysis.task.Sampling`),
+boundary points + a 13 x 13 interior grid, :class:`mechopt.analysis.sampling.Sampling`),
 prints the best of 30 runs, in ms, of
 
 * the bodies (``DesignSpec.links``) and every checked pair's clearance;

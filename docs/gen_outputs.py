@@ -341,7 +341,7 @@ DESIGN_RUN = {
 }
 DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
                    "max_length", "shape", "unit", "kind", "label", "vertices", "center", "radius", "points",
-                   "n_boundary", "n_interior", "refine", "by", "optimisation", "polish", "certification", "files")
+                   "n_boundary", "n_interior", "refine", "sampling", "by", "optimisation", "polish", "certification", "files")
 EXPORT_FILES = {
     "robot.urdf": ("`urdf`: the mechanism as a tree (URDF, lengths in m), cut open at the platform joint; the "
                    "closure frames `closedloop1_A` (leg 1, the platform point) and `closedloop1_B` (leg 2) are "

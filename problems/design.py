@@ -18,6 +18,8 @@ minimising size and maximising the minimum LCI.
 """
 from __future__ import annotations
 
+from dataclasses import asdict
+
 import numpy as np
 
 from mechopt.analysis.design_eval import DesignEvaluator
@@ -62,7 +64,8 @@ class DesignProblem(MechoptProblem):
         if len(self.objectives) == 1:
             self.default_algorithm = "ga"
         self.summary = f"design {ev.spec.name} for {task.label}"
-        self.settings = ev.settings()
+        # every option recorded (run.json, the manifest key): the evaluation's sampling too
+        self.settings = {**ev.settings(), "sampling": asdict(self.sampling)}
         super().__init__(ev.xl, ev.xu, **kwargs)
 
     def evaluate_designs(self, X):

@@ -28,10 +28,8 @@ ALTERNATIVES = {
 #: options whose alternative is set together with another (a shape needs its mechanism's
 #: length count; the five-bar has three)
 PAIRED = {("design", "shape"): {"shape": (1.0, 2.0, 0.5)}}
-#: options a problem takes but does not record yet: the design problem is being
-#: refactored by the lead (problems/design.py), its evaluation sampling is not in
-#: DesignEvaluator.settings()
-NOT_RECORDED = {("design", "sampling")}
+#: options a problem takes but does not record (none)
+NOT_RECORDED = set()
 
 
 def _accepted(name):
@@ -67,11 +65,11 @@ def test_each_option_builds_and_is_recorded(name, option):
     value = ALTERNATIVES[name][option]
     opts = PAIRED.get((name, option), {option: value})
     if option == "sampling":
-        from mechopt.analysis.task import Sampling
+        from mechopt.analysis.sampling import Sampling
 
         opts = {"sampling": Sampling(64, 7, False)}
     if option == "requirements":
-        from mechopt.analysis.task import Requirements
+        from mechopt.requirements import Requirements
 
         opts = {"requirements": Requirements(min_lci=0.2)}
     p = get(name, **opts)
