@@ -44,13 +44,11 @@ def _declares_bounds(name) -> bool:
     return all(ob.bounds is not None for ob in get(name).objectives)
 
 
-def test_every_paper_problem_declares_its_objective_bounds():
-    """The paper formulations do; of the others only ``design`` does not (its objectives'
-    ranges depend on the task: its history.csv has no hypervolume)."""
-    from mechopt.problems import _REGISTRY
-
-    assert [n for n in names() if _REGISTRY[n][0] in PAPERS and not _declares_bounds(n)] == []
-    assert [n for n in names() if not _declares_bounds(n)] == ["design"]
+def test_every_problem_declares_its_objective_bounds():
+    """Every registered problem does, ``design`` too (each objective module declares its
+    reference range from the task and the length bounds: its history.csv has a
+    hypervolume)."""
+    assert [n for n in names() if not _declares_bounds(n)] == []
 
 
 @pytest.mark.parametrize("name", [n for n in names() if _declares_bounds(n)])
@@ -99,7 +97,9 @@ def test_default_run_against_a_small_brute_force_front(name, grid, refine, level
     F, wall, info = B.default_run(name, n_jobs=None)
     m = B.compare(get(name), ref["F"], F)
     assert m["igd_plus"] <= B.IGD_MAX and m["hv_ratio"] >= B.HV_MIN, m
-    assert info["algorithm"]["name"] == get(name).default_algorithm and info["n_jobs"] == 1
+    # n_jobs is chosen by timing the first generations (1 or 2, by the machine's load);
+    # the front does not depend on it
+    assert info["algorithm"]["name"] == get(name).default_algorithm and info["n_jobs"] in (1, 2)
 
 
 def test_bench_helpers():
