@@ -102,7 +102,7 @@ def test_front_design_evaluates_to_the_same_numbers(tmp_path, capsys, quadrature
                  "--n-jobs", "1", "--quadrature", quadrature, "--out", str(out)]) == 0
     capsys.readouterr()
     info = json.loads((out / "run.json").read_text())
-    assert info["settings"] == {"quadrature": quadrature}
+    assert info["settings"] == {"quadrature": quadrature, "region": "w-gci"}  # every option recorded
     front = pd.read_csv(out / "front.csv")
     assert len(front) > 0
     # knee: the design closest to the ideal point of the normalised front
