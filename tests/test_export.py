@@ -5,7 +5,7 @@ own forward kinematics.
 The designs are hand-built design.json records, one per mechanism ``mechopt design``
 sizes: the lengths a small design run found (``mechopt design ... --gen 5 --pop 12
 --no-polish``, the tasks of tests/test_design.py), certified and written by the design
-workflow's own record functions (``_design_record``, ``_json_record``; the fine
+workflow's own record functions (``_design_record``, ``json_record``; the fine
 certification sampling, as ``mechopt design`` writes design.json), with the run.json
 settings of their evaluator. That costs about 0.1 s per mechanism instead of a design
 run's 15 s.
@@ -68,7 +68,7 @@ GIF_SAMPLES, GIF_MAX_FRAMES = 12, 5
 
 def write_design(folder: Path, name: str) -> Path:
     """design.json and run.json of the design ``name`` in ``folder`` (module docstring)."""
-    from mechopt.workflows.design import _design_record, _json_record
+    from mechopt.workflows.design import _design_record, json_record
 
     task, v, lmax = DESIGNS[name]
     ev = DesignEvaluator(name, task, Requirements(min_lci=0.3), ("size", "min-lci"), max_length=lmax)
@@ -76,7 +76,7 @@ def write_design(folder: Path, name: str) -> Path:
     res = certify(ev, vv)
     assert res["feasible"], name
     folder.mkdir(parents=True, exist_ok=True)
-    write_json(_json_record(_design_record(ev, vv, res, 0)), folder / "design.json")
+    write_json(json_record(_design_record(ev, vv, res, 0)), folder / "design.json")
     write_json({"problem": "design", "design": ev.settings()}, folder / "run.json")
     return folder / "design.json"
 
@@ -572,7 +572,7 @@ def test_point_task_path_is_its_points(tmp_path):
     its boundary, through every vertex when the samples fall on them."""
     import pandas as pd
 
-    from mechopt.workflows.design import _design_record, _json_record
+    from mechopt.workflows.design import _design_record, json_record
 
     pts = np.array([[-20.0, 170.0], [0.0, 180.0], [30.0, 180.0], [30.0, 200.0]])
     for task, n in ((Task.points(pts), 7), (Task.polygon([(-30, 160), (30, 160), (0, 200)]), 12)):
@@ -580,7 +580,7 @@ def test_point_task_path_is_its_points(tmp_path):
         v = {**DESIGNS["five-bar"][1], "task_x": task.reference[0], "task_y": task.reference[1]}
         folder = tmp_path / task.kind
         folder.mkdir()
-        write_json(_json_record(_design_record(ev, v, certify(ev, v), 0)), folder / "design.json")
+        write_json(json_record(_design_record(ev, v, certify(ev, v), 0)), folder / "design.json")
         write_json({"problem": "design", "design": ev.settings()}, folder / "run.json")
         export(folder / "design.json", folder / "out", "csv", samples=n)
         df = pd.read_csv(folder / "out" / "path.csv", comment="#")

@@ -28,6 +28,7 @@ import errno
 import fnmatch
 import hashlib
 import json
+import math
 import os
 import shutil
 import socket
@@ -40,7 +41,7 @@ from pathlib import Path
 # bounded reads live in the core layer (user inputs, such as a task's points, are read there too)
 from mechopt.core.reading import read_bytes
 
-__all__ = ["atomic_path", "write_text", "write_csv", "write_json", "save_figure", "prepare_out_dir",
+__all__ = ["plain_json", "atomic_path", "write_text", "write_csv", "write_json", "save_figure", "prepare_out_dir",
            "out_lock", "sweep_temporaries", "LOCK_NAME", "MANIFEST", "read_manifest", "claim_out",
            "output_set", "own", "run_in", "sha256_file", "differences", "read_bytes", "read_json",
            "run_tag", "remove_created", "created_folders", "write_manifest", "authentic",
@@ -121,6 +122,24 @@ def write_csv(df, path, **kw) -> Path:
     with atomic_path(path) as tmp:
         df.to_csv(tmp, **kw)
     return Path(path)
+
+
+def plain_json(x):
+    """``x`` as plain JSON data: mappings with string keys, lists for tuples, NumPy
+    scalars as Python numbers, NaN and infinities as None (JSON has none)."""
+    import numpy as np
+
+    if isinstance(x, dict):
+        return {str(k): plain_json(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [plain_json(v) for v in x]
+    if isinstance(x, (float, np.floating)):
+        return float(x) if math.isfinite(x) else None
+    if isinstance(x, np.integer):
+        return int(x)
+    if isinstance(x, np.bool_):
+        return bool(x)
+    return x
 
 
 def write_json(obj, path) -> Path:

@@ -27,7 +27,7 @@ from mechopt.analysis.sampling import Sampling
 from mechopt.requirements import Requirements
 from mechopt.requirements.singular import Singular
 
-__all__ = ["design", "DesignResult", "plot_design", "DESIGN_OUTPUTS"]
+__all__ = ["design", "DesignResult", "plot_design", "json_record", "DESIGN_OUTPUTS"]
 
 
 @dataclass
@@ -91,23 +91,12 @@ def _design_record(ev, v, res, index) -> dict:
     return rec
 
 
-def _json_record(rec) -> dict:
-    out = {k: val for k, val in rec.items() if k != "mechanism"}
+def json_record(rec) -> dict:
+    """design.json's content from a design record (:meth:`DesignResult.pick`): plain JSON
+    data (:func:`mechopt.run.io.plain_json`), without the mechanism object."""
+    from mechopt.run.io import plain_json
 
-    def clean(x):
-        if isinstance(x, dict):
-            return {k: clean(val) for k, val in x.items()}
-        if isinstance(x, (list, tuple)):
-            return [clean(val) for val in x]
-        if isinstance(x, (float, np.floating)):
-            return float(x) if math.isfinite(x) else None
-        if isinstance(x, (np.integer,)):
-            return int(x)
-        if isinstance(x, np.bool_):
-            return bool(x)
-        return x
-
-    return clean(out)
+    return plain_json({k: val for k, val in rec.items() if k != "mechanism"})
 
 
 # ------------------------------------------------------------------ polishing
@@ -714,7 +703,7 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
         with _io.output_set(out, manifest) as stage:
             _io.write_csv(front, stage / "front.csv")
             _io.write_csv(run.history, stage / "history.csv")
-            _io.write_json(_json_record(chosen), stage / "design.json")
+            _io.write_json(json_record(chosen), stage / "design.json")
             _io.write_json(info, stage / "run.json")
             _io.save_figure(fig_front, stage / "front.png")
             _io.save_figure(fig_design, stage / "design.png")

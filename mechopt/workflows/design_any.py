@@ -58,7 +58,7 @@ def design_any(task, requirements=None, objectives=("size", "min-lci"), *, mecha
     pop, gen, seed, n_jobs, client, polish). Raises :class:`NoFeasibleDesign` naming
     each mechanism's reason when none has a feasible design."""
     from mechopt.run import io as _io
-    from mechopt.workflows.design import _json_record, design, plot_design
+    from mechopt.workflows.design import json_record, design, plot_design
 
     names = tuple(mechanisms) if mechanisms else _mechanisms.designed()
     for m in names:
@@ -105,7 +105,7 @@ def design_any(task, requirements=None, objectives=("size", "min-lci"), *, mecha
             with _io.output_set(out, manifest) as stage:
                 _io.write_csv(front, stage / "front.csv")
                 _io.write_csv(fronts, stage / "fronts.csv")
-                _io.write_json(_json_record(chosen), stage / "design.json")
+                _io.write_json(json_record(chosen), stage / "design.json")
                 _io.write_json(info, stage / "run.json")
                 _io.save_figure(fig_front, stage / "front.png")
                 _io.save_figure(fig_design, stage / "design.png")

@@ -121,20 +121,6 @@ def _list(a, digits=DIGITS):
     return [None if not math.isfinite(v) else float(v) for v in r.ravel().tolist()]
 
 
-def _jsonable(x):
-    if isinstance(x, dict):
-        return {str(k): _jsonable(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_jsonable(v) for v in x]
-    if isinstance(x, (float, np.floating)):
-        return float(x) if math.isfinite(x) else None
-    if isinstance(x, (np.integer,)):
-        return int(x)
-    if isinstance(x, np.bool_):
-        return bool(x)
-    return x
-
-
 def _columns(df: pd.DataFrame) -> dict:
     """``{column: values}`` of a table: numbers as floats (NaN as None), text as text."""
     out = {}
@@ -304,10 +290,10 @@ def _design_data(d: Path) -> dict:
         "senses": {o: ("max" if declared[o].sense < 0 else "min") for o in objectives if o in declared},
         "objective_units": (chosen.get("objective_units") or {}),
         "lengths": lengths, "margins": margins,
-        "requirements": _jsonable(req), "gamma": gamma,
+        "requirements": _io.plain_json(req), "gamma": gamma,
         "chosen": int(chosen.get("index", 0)) if chosen else 0,
         "designs": designs,
-        "settings": _jsonable({k: v for k, v in settings.items() if k != "task"}),
+        "settings": _io.plain_json({k: v for k, v in settings.items() if k != "task"}),
     }
 
 
@@ -326,7 +312,7 @@ def _optimize_data(d: Path) -> dict:
         "columns": list(map(str, front.columns)), "front": _columns(front), "objectives": objectives,
         "history": _columns(history) if len(history) else None,
         "sweep": _columns(sweep) if sweep is not None else None,
-        "algorithm": _jsonable(info.get("algorithm")), "seed": info.get("seed"),
+        "algorithm": _io.plain_json(info.get("algorithm")), "seed": info.get("seed"),
     }
 
 
