@@ -135,3 +135,64 @@ def test_printed_time_covers_the_whole_command_and_the_placement_is_printed(tmp_
     assert float(m.group(3)) > 0  # the polish ran and is counted
     placed = re.search(r"task centre at \(([-\d.e]+), ([-\d.e]+)\) mm", line)
     assert placed and (float(placed.group(1)), float(placed.group(2))) == (0.0, 150.0)
+
+
+# ---------------------------------------------------------------- what helps, measured
+def _annulus_clearance(px, py, r1, r2, r3):
+    """Distance [mm] from points inside both legs' annuli to the nearer annulus boundary
+    (five-bar, base joints at (-r3, 0) and (r3, 0), Le 2013): written from the geometry,
+    not from the package's reach code."""
+    out = np.inf
+    for ax in (-r3, r3):
+        d = np.hypot(px - ax, py)
+        out = np.minimum(out, np.minimum(r1 + r2 - d, d - abs(r1 - r2)))
+    return float(np.min(out))
+
+
+def test_sensitivity_of_the_reach_margin_equals_the_closed_form():
+    """Each change :func:`sensitivity` measures, against the annulus clearance of the
+    changed design written here: links 10 % longer/shorter, the task moved by 10 % of
+    its diameter in four directions."""
+    from mechopt.analysis.design_eval import sensitivity
+
+    pts = np.array([[0.0, 250.0], [30.0, 260.0], [-20.0, 240.0]])
+    ev = DesignEvaluator("five-bar", Task.points(pts), Requirements(), ("size",), max_length=400)
+    r1, r2, r3 = 150.0, 140.0, 40.0
+    cx, cy = ev.task.reference
+    v = {"r1": r1, "r2": r2, "r3": r3, "mode": "+-", "task_x": cx, "task_y": cy}
+    sens = sensitivity(ev, v, "reach")
+    d = 0.1 * ev.task.diameter
+    expect = {"longer links": _annulus_clearance(*pts.T, 1.1 * r1, 1.1 * r2, 1.1 * r3),
+              "shorter links": _annulus_clearance(*pts.T, 0.9 * r1, 0.9 * r2, 0.9 * r3),
+              "task moved up": _annulus_clearance(pts[:, 0], pts[:, 1] + d, r1, r2, r3),
+              "task moved down": _annulus_clearance(pts[:, 0], pts[:, 1] - d, r1, r2, r3),
+              "task moved right": _annulus_clearance(pts[:, 0] + d, pts[:, 1], r1, r2, r3),
+              "task moved left": _annulus_clearance(pts[:, 0] - d, pts[:, 1], r1, r2, r3)}
+    assert set(sens) == set(expect)
+    for k, m in expect.items():
+        assert sens[k] == pytest.approx(m, abs=1e-9), k
+
+
+def test_no_design_names_what_helps_as_measured(tmp_path, capsys):
+    """The designer's pick-and-place arm with the task where it is asked (fixed
+    placement, 300 x 200 mm at y = 250 mm; motors of 3 rad/s and 8 N m; 0.5 m/s and 20
+    N everywhere): the message gives the least-violating design's miss in mm/s and,
+    measured at that design, that moving the task helps, each change with the miss it
+    leaves; run.json records every change measured; what does not help is not listed."""
+    import json
+
+    out = tmp_path / "fixed"
+    assert main(["design", "five-bar", "--task", "rect:300,200@0,250", "--actuator-speed", "3", "--actuator-torque",
+                 "8", "--min-speed", "0.5m/s", "--min-force", "20", "--objectives", "size", "--pop", "16", "--gen",
+                 "10", "--n-jobs", "1", "--no-polish", "--out", str(out)]) == 0
+    line = capsys.readouterr().out.strip().splitlines()[-1]
+    m = re.search(r"misses it by ([0-9.]+) (mm/s|N)\); what helps, measured at that design \(10 % each\): (.*); wrote",
+                  line)
+    assert line.startswith("no design satisfies guaranteed") and m, line
+    miss, helps = float(m.group(1)), m.group(3)
+    assert "task moved" in helps, helps
+    sens = json.loads((out / "run.json").read_text())["sensitivity"]
+    assert set(sens) >= {"longer links", "shorter links", "task moved up", "task moved down"}
+    for change, margin in sens.items():
+        assert (change in helps) == (margin > -miss * (1 - 1e-3) and change in
+                                     sorted(sens, key=lambda c: -sens[c])[:3]), (change, margin, helps)

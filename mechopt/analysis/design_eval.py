@@ -62,7 +62,10 @@ from mechopt.core.design_spec import DesignSpec
 from mechopt.requirements import Requirements
 
 __all__ = ["DesignEvaluator", "NoFeasibleDesign", "certify", "feasible", "knee_index",
-           "parse_weights", "parse_pick", "pick_index", "get_spec", "mechanisms"]
+           "parse_weights", "parse_pick", "pick_index", "get_spec", "mechanisms", "sensitivity"]
+
+#: the relative step of :func:`sensitivity` (link lengths, placement, actuator limits)
+SENSITIVITY_STEP = 0.1
 
 #: placements whose samples a :class:`DesignEvaluator` keeps (:meth:`DesignEvaluator._samples_at`)
 _CONTEXTS_KEPT = 8
@@ -459,6 +462,65 @@ def certify(evaluator: DesignEvaluator, v: dict, sampling: Sampling | None = Non
 
 
 # ------------------------------------------------------------------ choosing
+def sensitivity(evaluator: DesignEvaluator, v: dict, name: str, sampling: Sampling | None = None) -> dict:
+    """How the margin of requirement ``name`` of the decoded design ``v`` changes with
+    what a designer can change: measured, one change at a time, by re-evaluating ``v``.
+
+    The changes (each by :data:`SENSITIVITY_STEP` = 10 %): every link length scaled
+    by 1.1 and 0.9 (``"longer links"``, ``"shorter links"``; the length bound raised
+    by 25 % for the measurement, so the question is what raising ``--max-length``
+    would buy), the task moved by 10 % of its diameter up, down, left and right of
+    where ``v`` places it, and the actuator limits of the requirement (its options of
+    kind ``rate`` or ``effort``) raised by 10 % (``"faster actuators"``,
+    ``"stronger actuators"``).
+
+    Parameters
+    ----------
+    evaluator : DesignEvaluator
+        The run's evaluator.
+    v : dict
+        A decoded design (:meth:`DesignEvaluator.decode`).
+    name : str
+        An active requirement's name.
+    sampling : Sampling, optional
+        The sampling of the re-evaluations (the search's by default).
+
+    Returns
+    -------
+    dict
+        ``{change: margin}``: the requirement's margin [its ``margin_unit``] after each
+        change; NaN where the changed design is invalid. A larger margin helps.
+    """
+    import copy
+
+    step = SENSITIVITY_STEP
+    member = next((r for r in evaluator.active if r.name == name), None)
+    if member is None:
+        raise ValueError(f"{name!r} is not an active requirement of this design run")
+
+    def margin(ev, w):
+        return float(ev.evaluate(w, sampling)["margin"][name])
+
+    out = {}
+    roomy = copy.copy(evaluator)
+    roomy.max_length = evaluator.max_length * (1.0 + 2.5 * step)
+    for label, f in (("longer links", 1.0 + step), ("shorter links", 1.0 - step)):
+        out[label] = margin(roomy, {**v, **{n: v[n] * f for n in evaluator.spec.lengths}})
+    d = step * evaluator.task.diameter
+    for label, dx, dy in (("task moved up", 0, d), ("task moved down", 0, -d),
+                          ("task moved right", d, 0), ("task moved left", -d, 0)):
+        out[label] = margin(evaluator, {**v, "task_x": v["task_x"] + dx, "task_y": v["task_y"] + dy})
+    labels = {"rate": "faster actuators", "effort": "stronger actuators"}
+    for opt in member.options:
+        value = getattr(evaluator.req, opt.name, None)
+        if opt.kind in labels and value is not None:
+            stronger = copy.copy(evaluator)
+            scaled = np.asarray(value, float) * (1.0 + step)
+            stronger.req = evaluator.req.replace(**{opt.name: scaled if scaled.ndim else float(scaled)})
+            out[labels[opt.kind]] = margin(stronger, v)
+    return {k: (m if math.isfinite(m) else math.nan) for k, m in out.items()}
+
+
 def knee_index(F: np.ndarray) -> int:
     """Knee of a front (minimisation form ``F``, rows = designs): with two objectives
     the design farthest from the line through the two extremes (normalised), with

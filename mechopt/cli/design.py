@@ -141,11 +141,29 @@ def run(args) -> int:
                     for k, v in chosen["objectives"].items())
     place = chosen["task_placement"]
     stages = ", ".join(f"{k} {v:.1f}" for k, v in res.info["stage_times_s"].items())
+    print(_front_ends(res, chosen["objective_units"]))
     print(f"{len(res.front)} certified designs on the front; chosen ({res.info['chosen']['by']}): "
           f"{chosen['repr']}; {obj}; task centre at ({place['task_x']:.6g}, {place['task_y']:.6g}) "
           f"{chosen['unit']}; wrote {args.out}/front.csv, design.json, run.json, design.png "
           f"({time.perf_counter() - started:.1f} s: {stages})")
     return 0
+
+
+def _front_ends(res, units) -> str:
+    """One line: the front's design at the best end of each objective and the knee,
+    each with all its objectives (so the trade-off is seen before the choice)."""
+    import numpy as np
+
+    front, names = res.front, list(res.evaluator.objectives)
+    best = {n: int(np.argmin(sense * front[n].to_numpy(float))) for n, sense in res.evaluator.senses().items()}
+
+    def objectives(i):
+        return ", ".join(f"{n} {front[n].iloc[i]:.5g} {units[n]}".rstrip(" -") for n in names)
+
+    parts = [f"best {n}: {objectives(i)}" for n, i in best.items()]
+    if len(names) > 1:
+        parts.append(f"knee: {objectives(res.knee())}")
+    return "front ends: " + "; ".join(parts)
 
 
 def _echo_requirements(req, spec, task):

@@ -22,7 +22,7 @@ from mechopt.core import validation as _v
 from mechopt.core import indices as _ix
 from mechopt.core.numerics import golden_section_max
 from mechopt.analysis.design_eval import (DesignEvaluator, NoFeasibleDesign, certify, feasible, knee_index,
-                                          parse_pick, pick_index)
+                                          parse_pick, pick_index, sensitivity)
 from mechopt.analysis.sampling import Sampling
 from mechopt.requirements import Requirements
 from mechopt.requirements.singular import Singular
@@ -724,7 +724,8 @@ def _empty_result(problem, ev, run, info, stages, out, manifest, exc):
     from mechopt.run.plotting import plot_front
 
     info.update(design=ev.settings(), problem="design", front_size=0, no_design=str(exc),
-                violations=exc.info.get("violations", {}), fails=exc.info.get("fails", {}))
+                violations=exc.info.get("violations", {}), fails=exc.info.get("fails", {}),
+                sensitivity=exc.info.get("sensitivity", {}))
     info["stage_times_s"] = stages
     info["wall_time_s"] = sum(stages.values())
     pop = run.population
@@ -786,11 +787,39 @@ def _no_design(problem, run, certified=False) -> NoFeasibleDesign:
     unit = next(r.margin_unit for r in ev.active if r.name == worst).format(L=ev.unit)
     miss = -float(res["margin"][worst])
     by = f"{miss:.4g} {unit}".rstrip(" -") if math.isfinite(miss) else f"{per[worst]:.3g} normalised"
+    sens = sensitivity(ev, ev.decode(pop[list(problem.var_names)].to_numpy(float)[k]), worst, problem.sampling)
     msg = (f"no design satisfies {ev.req.describe(worst, ev.unit)} (of {len(pop)} designs in the final "
            f"population, {fails[worst]} fail it; the least-violating design misses it by {by})"
-           f"{' after certification' if certified else ''}; relax it, or change the placement (--place) "
-           f"or the length bounds")
-    return NoFeasibleDesign(msg, {"violations": per, "fails": fails, "miss": miss, "unit": unit})
+           f"{' after certification' if certified else ''}; {_what_helps(sens, -miss, unit)}")
+    return NoFeasibleDesign(msg, {"violations": per, "fails": fails, "miss": miss, "unit": unit,
+                                  "sensitivity": sens})
+
+
+#: what a designer does for each change :func:`~mechopt.analysis.design_eval.sensitivity` measures
+_ACTIONS = {"longer links": "raise --max-length", "shorter links": "lower --min-length",
+            "task moved up": "--place free-y or move the task", "task moved down": "--place free-y or move the task",
+            "task moved right": "--place free or move the task", "task moved left": "--place free or move the task",
+            "faster actuators": "raise --actuator-speed", "stronger actuators": "raise --actuator-torque"}
+
+
+def _miss_text(margin: float, unit: str) -> str:
+    text = f"meets it by {margin:.4g} {unit}" if margin >= 0 else f"misses it by {-margin:.4g} {unit}"
+    return text.rstrip(" -")
+
+
+def _what_helps(sens: dict, margin: float, unit: str) -> str:
+    """The measured changes that raise the least-violating design's margin, best first
+    (at most three, each with the margin it reaches), or that none of them helps."""
+    # a gain under 0.1 % of the miss is no help (rounding and the samples' resolution)
+    gains = sorted(((m - margin, k) for k, m in sens.items()
+                    if math.isfinite(m) and m - margin > 1e-3 * abs(margin)), reverse=True)
+    if not math.isfinite(margin):  # no margin in the requirement's unit to compare
+        return "relax it, or change the placement (--place) or the length bounds"
+    if not gains:
+        return f"measured at that design, none of: {', '.join(sens)} (10 % each) helps: relax the requirement"
+    parts = [f"{k} ({_miss_text(m, unit)}; {_ACTIONS[k]})" for k, m in
+             sorted(((k, sens[k]) for _, k in gains[:3]), key=lambda km: -km[1])]
+    return "what helps, measured at that design (10 % each): " + ", ".join(parts)
 
 
 # ------------------------------------------------------------------ figure
