@@ -113,7 +113,8 @@ def test_cli_writes_every_file_and_the_knee(tmp_path, capsys):
             "--joint-limits=-60,240", "--pop", "16", "--gen", "10", "--n-jobs", "1", "--no-polish",
             "--out", str(out)]
     assert main(argv) == 0
-    assert "certified designs on the front" in capsys.readouterr().out
+    printed = capsys.readouterr().out.strip().splitlines()
+    assert "certified designs on the front" in printed[-1]
     assert sorted(p.name for p in out.iterdir()) == ["design.json", "design.png", "front.csv", "front.png",
                                                      "history.csv", "manifest.json", "run.json"]
     assert json.loads((out / "manifest.json").read_text())["status"] == "complete"
@@ -126,6 +127,12 @@ def test_cli_writes_every_file_and_the_knee(tmp_path, capsys):
     assert run["chosen"]["by"] == "knee" and run["seed"] == 1 and run["design"]["mechanism"] == "five-bar"
     F = np.column_stack([front["size"], -front["min-lci"]])
     assert chosen["index"] == knee_index(F)
+    # the line before the last lists the front's ends and its knee, as front.csv and design.json have them
+    lo, hi = front.loc[front["size"].idxmin()], front.loc[front["min-lci"].idxmax()]
+    knee = chosen["objectives"]
+    assert printed[-2] == (f"front ends: best size: size {lo['size']:.5g} mm, min-lci {lo['min-lci']:.5g}; "
+                           f"best min-lci: size {hi['size']:.5g} mm, min-lci {hi['min-lci']:.5g}; "
+                           f"knee: size {knee['size']:.5g} mm, min-lci {knee['min-lci']:.5g}")
     check_front("five-bar", parse_task("rect:60,40@0,150"), front, 0.4, LE_LIMITS)
     # --pick by weights: all weight on size gives the smallest design
     out2 = tmp_path / "p"

@@ -55,6 +55,9 @@ N_EVALUATE = 300  # mechopt evaluate ...
 N_RUNS = 250  # optimize, sweep, atlas (they write --out)
 N_MISC = 150  # every other command, global flags, random tokens
 N_API = 1000  # constructors and public functions
+#: the unmarked run of each long fuzz test: the same strategies, a quarter of the examples
+#: (the full counts above run with ``-m slow``)
+CI_SHARE = 4
 
 
 def fuzz(n):
@@ -428,12 +431,23 @@ def evaluate_argv(draw):
     return ["evaluate", mech, *tokens]
 
 
-@fuzz(N_EVALUATE)
-@given(evaluate_argv())
-def test_cli_evaluate_fuzz(fuzz_root, argv):
+def _evaluate_case(fuzz_root, argv):
     rc, out, err = check_cli(argv, _new_workdir(fuzz_root))
     if rc == 0:
         assert out.strip()
+
+
+@fuzz(N_EVALUATE // CI_SHARE)
+@given(evaluate_argv())
+def test_cli_evaluate_fuzz(fuzz_root, argv):
+    _evaluate_case(fuzz_root, argv)
+
+
+@pytest.mark.slow
+@fuzz(N_EVALUATE)
+@given(evaluate_argv())
+def test_cli_evaluate_fuzz_full(fuzz_root, argv):
+    _evaluate_case(fuzz_root, argv)
 
 
 # --------------------------------------------------------------------------
@@ -753,9 +767,20 @@ def atlas_argv(draw, work):
     return toks
 
 
-@fuzz(N_RUNS)
+@fuzz(N_RUNS // CI_SHARE)
 @given(st.data())
 def test_cli_runs_fuzz(fuzz_root, data):
+    _runs_case(fuzz_root, data)
+
+
+@pytest.mark.slow
+@fuzz(N_RUNS)
+@given(st.data())
+def test_cli_runs_fuzz_full(fuzz_root, data):
+    _runs_case(fuzz_root, data)
+
+
+def _runs_case(fuzz_root, data):
     work = _new_workdir(fuzz_root)
     command = data.draw(st.sampled_from(["optimize", "optimize", "sweep", "atlas", "atlas"]))
     make = {"optimize": optimize_argv, "sweep": sweep_argv, "atlas": atlas_argv}[command]
@@ -1490,9 +1515,20 @@ def check_api(run, label):
             assert "\n" not in msg and "\r" not in msg, f"{label}: multi-line message {msg!r}"
 
 
-@fuzz(N_API)
+@fuzz(N_API // CI_SHARE)
 @given(st.data())
 def test_api_fuzz(fuzz_root, data):
+    _api_case(fuzz_root, data)
+
+
+@pytest.mark.slow
+@fuzz(N_API)
+@given(st.data())
+def test_api_fuzz_full(fuzz_root, data):
+    _api_case(fuzz_root, data)
+
+
+def _api_case(fuzz_root, data):
     _CACHE["root"] = fuzz_root  # where targets may write
     _SENSIBLE[0] = data.draw(st.sampled_from([20, 20, 19, 18, 12]))
     label = data.draw(st.sampled_from(sorted(API_TARGETS)))
