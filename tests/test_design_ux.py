@@ -196,3 +196,43 @@ def test_no_design_names_what_helps_as_measured(tmp_path, capsys):
     for change, margin in sens.items():
         assert (change in helps) == (margin > -miss * (1 - 1e-3) and change in
                                      sorted(sens, key=lambda c: -sens[c])[:3]), (change, margin, helps)
+
+
+# ---------------------------------------------------------------- the knee
+def test_the_knee_of_a_two_objective_front_is_its_sharpest_bend():
+    """On fronts force = 50 x^p + 3 N against size = 1000 x + 200 mm (p < 1: the force
+    gained early, p > 1: late) sampled unevenly, the knee (largest distance from the chord between the extremes, in the
+    front's normalised box) is the sample nearest the closed-form bend, where the slope
+    equals the chord's: x* = (1/p)^(1/(p-1)); never an extreme."""
+    from mechopt.analysis.design_eval import knee_index
+
+    rng = np.random.default_rng(5)
+    for p in (0.3, 0.5, 2.0, 3.0, 6.0):
+        x = np.sort(np.concatenate([[0.0, 1.0], rng.uniform(0, 1, 400)]))
+        F = np.column_stack([1000 * x + 200, -(50 * x ** p + 3)])  # size [mm], -force [N]: minimised
+        # normalised: z1 = x, z2 = 1 - x^p; the chord z1 + z2 = 1; the distance |x - x^p| is
+        # largest where p x^(p-1) = 1
+        xs = (1.0 / p) ** (1.0 / (p - 1.0))
+        k = knee_index(F)
+        assert 0 < k < len(x) - 1
+        assert abs(x[k] - xs) <= np.max(np.diff(x)) + 1e-12, (p, x[k], xs)
+
+
+@pytest.mark.slow
+def test_the_gantry_knee_is_not_a_far_extreme(tmp_path):
+    """The gantry speed/force case (Wu 2008's 500 x 400 mm task; 500 mm/s and 500 N
+    actuators; size, speed and force): the knee is a design of a few metres, not one
+    of the long designs that buy a few per cent of force with twice the size."""
+    import json
+
+    import pandas as pd
+
+    out = tmp_path / "g"
+    assert main(["design", "gantry", "--task", "rect:500,400@0,500", "--actuator-speed", "500",
+                 "--actuator-torque", "500", "--objectives", "size,speed,force", "--n-jobs", "1",
+                 "--out", str(out)]) == 0
+    chosen = json.loads((out / "design.json").read_text())["objectives"]
+    front = pd.read_csv(out / "front.csv")
+    assert chosen["size"] < 4000
+    for name in ("size", "speed", "force"):
+        assert front[name].min() < chosen[name] < front[name].max()
