@@ -458,9 +458,10 @@ def test_cli_accuracy(tmp_path, capsys):
 # --------------------------------------------------------------- the design requirement
 def test_max_error_requirement_and_error_objective():
     """``--max-error`` / ``error`` in the design evaluator: the margin is the allowed error
-    minus the largest pose bound over the evaluation's samples (computed here from the
-    samples directly), g > 0 exactly when the bound exceeds it; the objective is that
-    bound; without an error model the requirement and the objective are refused."""
+    minus the largest pose bound over the task (at least the samples' maximum, computed
+    here from the samples directly, and within 1 % of it on this design), g > 0 exactly
+    when the bound exceeds it; the objective is that bound; without an error model the
+    requirement and the objective are refused."""
     from mechopt.analysis.design_eval import DesignEvaluator
     from mechopt.analysis.sampling import Sampling, samples
     from mechopt.analysis.task import Task
@@ -475,10 +476,11 @@ def test_max_error_requirement_and_error_objective():
     for need in (0.5 * want, 2.0 * want):
         ev = DesignEvaluator("five-bar", task, Requirements(max_error=need, error_model=model), ("size", "error"))
         res = ev.evaluate(v, Sampling())
-        assert res["margin"]["error"] == pytest.approx(need - want, rel=1e-12, abs=1e-9)
-        assert (res["g"]["error"] > 0) == (need < want)
-        assert res["objectives"]["error"] == pytest.approx(want, rel=1e-12)
-        assert res["values"]["error_um"] == pytest.approx(want, rel=1e-12)
+        got = res["values"]["error_um"]  # the samples' maximum, refined (tests/test_accuracy_task.py)
+        assert want <= got <= 1.01 * want
+        assert res["margin"]["error"] == pytest.approx(need - got, rel=1e-12, abs=1e-9)
+        assert (res["g"]["error"] > 0) == (need < got)
+        assert res["objectives"]["error"] == got
     with pytest.raises(ValueError, match="error_model"):
         DesignEvaluator("five-bar", task, Requirements(max_error=20.0), ("size",))
     with pytest.raises(ValueError, match="error_model"):

@@ -105,28 +105,36 @@ from mechopt.core import validation as _v
 from mechopt.core.protocol import as_points
 
 __all__ = ["ErrorModel", "load_error_model", "pose_error", "max_error", "perturbed_fk", "monte_carlo",
-           "task_points", "parse_length_um", "parse_error_model", "DIRECTIONS", "UM_PER_UNIT"]
+           "task_points", "parse_length_um", "parse_error_model", "DIRECTIONS", "UM_PER_UNIT", "PER_MOTOR",
+           "POSE_KEYS", "errors_at", "parse_poses"]
 
 #: directions of the support function (the linear worst case is within 1/cos(pi/M) of exact)
 DIRECTIONS = 64
 #: micrometres per task length unit
 UM_PER_UNIT = {"mm": 1e3, "cm": 1e4, "m": 1e6, "in": 25400.0}
+#: the fields of :class:`ErrorModel` that take one value per motor
+PER_MOTOR = ("encoder_counts", "backlash_arcmin", "resolution_um", "backlash_um")
 
 
 @dataclass(frozen=True)
 class ErrorModel:
     """The error budget of a mechanism, units in the names (module docstring).
 
+    The four actuator fields (:data:`PER_MOTOR`) take one number for both motors or a
+    pair ``(motor 1, motor 2)``, each motor its own encoder or backlash (motor ``i``
+    drives the ``i``-th actuator coordinate of the mechanism, ``q1`` or ``theta1`` first;
+    in a ``key=value`` text the pair is written ``16384/4096``).
+
     Parameters
     ----------
-    encoder_counts : float
+    encoder_counts : float or (float, float)
         Counts per revolution of each crank's encoder (0: exact); the angle is known
         to +/- half a count, ``pi / counts`` [rad].
-    backlash_arcmin : float
+    backlash_arcmin : float or (float, float)
         Lost motion of each crank's drive [arcmin] (the full width: +/- half of it).
-    resolution_um : float
+    resolution_um : float or (float, float)
         One count of each slider's or strut's scale [um] (+/- half of it).
-    backlash_um : float
+    backlash_um : float or (float, float)
         Lost motion of each slider's or strut's drive [um] (+/- half of it).
     clearance_um : float
         Radial clearance of each passive joint [um]: the pin's centre anywhere within
@@ -147,10 +155,23 @@ class ErrorModel:
 
     def __post_init__(self):
         for f in fields(self):
-            val = _v.finite_number(f.name, getattr(self, f.name))
-            if val < 0:
+            raw = getattr(self, f.name)
+            if f.name in PER_MOTOR and isinstance(raw, str) and "/" in raw:
+                raw = raw.split("/")
+            if f.name in PER_MOTOR and isinstance(raw, (list, tuple, np.ndarray)):
+                if len(raw) != 2:
+                    raise ValueError(f"{f.name} takes one number or one per motor (2), got {_v.show(raw)}")
+                val = tuple(_v.finite_number(f"{f.name} of motor {i + 1}", r) for i, r in enumerate(raw))
+            else:
+                val = _v.finite_number(f.name, raw)
+            if min(np.atleast_1d(val)) < 0:
                 raise ValueError(f"{f.name} must be >= 0, got {_v.show(getattr(self, f.name))}")
             object.__setattr__(self, f.name, val)
+
+    def motor(self, name: str, i: int) -> float:
+        """The value of the actuator field ``name`` (:data:`PER_MOTOR`) for motor ``i`` (0 or 1)."""
+        v = getattr(self, name)
+        return v[i] if isinstance(v, tuple) else v
 
     @classmethod
     def from_dict(cls, d) -> "ErrorModel":
@@ -166,13 +187,22 @@ class ErrorModel:
     def half_widths(self, spec, angular: bool, unit: str) -> np.ndarray:
         """Half width of each scalar of ``spec`` (rad for crank angles, else [unit])."""
         to_l = 1.0 / _um_per(unit)
-        if angular:
-            act = (math.pi / self.encoder_counts if self.encoder_counts > 0 else 0.0) \
-                + 0.5 * math.radians(self.backlash_arcmin / 60.0)
-        else:
-            act = 0.5 * (self.resolution_um + self.backlash_um) * to_l
-        per_kind = {"actuator": act, "link": self.link_tol_um * to_l, "base": self.base_tol_um * to_l}
-        return np.array([per_kind[kind] for _, kind in spec.scalars])
+        act = []
+        for i in (0, 1):
+            if angular:
+                counts = self.motor("encoder_counts", i)
+                act.append((math.pi / counts if counts > 0 else 0.0)
+                           + 0.5 * math.radians(self.motor("backlash_arcmin", i) / 60.0))
+            else:
+                act.append(0.5 * (self.motor("resolution_um", i) + self.motor("backlash_um", i)) * to_l)
+        out, motor = [], 0
+        for _, kind in spec.scalars:
+            if kind == "actuator":
+                out.append(act[min(motor, 1)])
+                motor += 1
+            else:
+                out.append({"link": self.link_tol_um, "base": self.base_tol_um}[kind] * to_l)
+        return np.array(out)
 
     def clearances(self, spec, unit: str) -> np.ndarray:
         """Radial clearance [unit] of each passive joint of ``spec``."""
@@ -228,7 +258,8 @@ def load_error_model(path) -> ErrorModel:
 
 def parse_error_model(text) -> ErrorModel:
     """An :class:`ErrorModel` from a command-line text: ``key=value`` pairs separated by
-    commas (``encoder_counts=16384,clearance_um=5``) or the path of a JSON/TOML file
+    commas (``encoder_counts=16384,clearance_um=5``; one value per motor as
+    ``encoder_counts=16384/4096``) or the path of a JSON/TOML file
     (:func:`load_error_model`); an :class:`ErrorModel` or a dict passes through."""
     if isinstance(text, ErrorModel):
         return text
@@ -391,6 +422,59 @@ def max_error(mech, model: ErrorModel, x, y, unit: str = "mm") -> float:
     proven; the maximum over a region is as good as the points sample it."""
     b = pose_error(mech, model, x, y, unit)["bound"]
     return float(np.max(np.where(np.isnan(b), np.inf, b))) if b.size else 0.0
+
+
+#: the keys of :func:`errors_at` (``mechopt evaluate --error-model``; docs/outputs.md)
+POSE_KEYS = ("error_at", "error_bound_um", "error_linear_um", "error_remainder_um", "error_x_um", "error_y_um")
+
+
+def parse_poses(text) -> list:
+    """Poses ``[[x, y], ...]`` from ``"x,y"`` texts (one or a list of them, e.g. the
+    repeated ``--at`` of ``mechopt evaluate``) or pairs of numbers; ValueError (one
+    line) otherwise."""
+    items = [text] if isinstance(text, str) else list(text)
+    out = []
+    for item in items:
+        parts = item.split(",") if isinstance(item, str) else list(item)
+        if len(parts) != 2:
+            raise ValueError(f"a pose is two numbers x,y, got {_v.show(item)}")
+        out.append([_v.position("pose x", parts[0]), _v.position("pose y", parts[1])])
+    if not out:
+        raise ValueError("give at least one pose x,y")
+    return out
+
+
+def errors_at(mech, model: ErrorModel, poses, unit: str = "mm") -> dict:
+    """The proven worst-case position error of ``mech`` under ``model`` at each pose.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        A mechanism with an error model (:func:`pose_error`).
+    model : ErrorModel
+        The tolerances.
+    poses : sequence of (x, y)
+        Poses [unit] in the mechanism's frame (``"x,y"`` texts accepted, :func:`parse_poses`).
+    unit : str
+        The length unit of the mechanism's lengths and the poses.
+
+    Returns
+    -------
+    dict
+        The keys :data:`POSE_KEYS`, each a list with one entry per pose: ``error_at``
+        the pose ``[x, y]`` [unit], ``error_bound_um`` the proven bound [um] (inf where
+        not proven, NaN where unreachable), ``error_linear_um`` its first-order part and
+        ``error_remainder_um`` its second-order remainder [um], ``error_x_um``,
+        ``error_y_um`` the first-order worst error along each axis [um].
+    """
+    pts = np.array(parse_poses(poses), dtype=float)
+    pe = pose_error(mech, model, pts[:, 0], pts[:, 1], unit)
+    um = UM_PER_UNIT[unit]
+    out = {"error_at": pts.tolist()}
+    for key, part in (("error_bound_um", "bound"), ("error_linear_um", "linear"),
+                      ("error_remainder_um", "remainder"), ("error_x_um", "x"), ("error_y_um", "y")):
+        out[key] = [float(v) for v in pe[part] * um]
+    return {k: out[k] for k in POSE_KEYS}
 
 
 def task_points(task, n_boundary: int = 192, n_interior: int = 13):
