@@ -445,10 +445,11 @@ def test_cli_accuracy(tmp_path, capsys):
 
     tx, ty = acc.task_points(Task.rect(100, 60, (0, 180)))
     assert res["bound_um"] == pytest.approx(1e3 * acc.max_error(fb, load_error_model(m), tx, ty))
+    assert res["bound_um"] <= res["task_max_um"] <= 1.01 * res["bound_um"]  # refined from the samples
     fig = tmp_path / "map.png"
     assert main(["accuracy", str(d), "--error-model", str(m), "--samples", "5", "--figure", str(fig)]) == 0
     out = capsys.readouterr().out
-    assert "proven worst-case position error" in out and fig.exists()
+    assert "proven worst-case position error" in out and "maximum over the task (refined)" in out and fig.exists()
     m.write_text('{"encoder_count": 1}')
     assert main(["accuracy", str(d), "--error-model", str(m)]) == 2
     assert capsys.readouterr().err.count("\n") == 1

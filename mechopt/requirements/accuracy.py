@@ -52,25 +52,21 @@ def model_of(req) -> "_acc.ErrorModel":
     return model
 
 
-def _negated_bound(ctx):
-    """``f(x, y)``: minus the proven bound [um] at task points (-inf without a proof)."""
-    model, um = model_of(ctx.req), _acc.UM_PER_UNIT[ctx.unit]
-
-    def f(x, y):
-        b = _acc.pose_error(ctx.mech, model, *ctx.to_mech(x, y), ctx.unit)["bound"]
-        return -np.where(np.isnan(b), np.inf, b) * um
-    return f
-
-
 def _sampled(ctx) -> np.ndarray:
-    """Minus the bound [um] at the task samples (boundary, then grid)."""
-    return ctx.memo("error_samples", lambda: _negated_bound(ctx)(ctx.samples["allx"], ctx.samples["ally"]))
+    """Minus the bound [L] at the task samples (boundary, then grid; -inf without a proof)."""
+    def compute():
+        b = _acc.pose_error(ctx.mech, model_of(ctx.req), *ctx.to_mech(ctx.samples["allx"], ctx.samples["ally"]),
+                            ctx.unit)["bound"]
+        return -np.where(np.isnan(b), np.inf, b)
+    return ctx.memo("error_samples", compute)
 
 
 def error_um(ctx) -> float:
     """The largest proven position error [um] over the task (inf without a proof):
-    located on the samples and refined by zooming when ``ctx.refine`` (module docstring)."""
-    return ctx.memo("error_um", lambda: -ctx.region_min(_negated_bound(ctx), _sampled(ctx)))
+    located on the samples and refined by zooming when ``ctx.refine``
+    (:func:`mechopt.analysis.accuracy.task_max_error`)."""
+    return ctx.memo("error_um", lambda: _acc.UM_PER_UNIT[ctx.unit] * _acc.task_max_error(
+        ctx.mech, model_of(ctx.req), ctx.samples, ctx.to_mech, ctx.unit, ctx.refine, _sampled(ctx)))
 
 
 def _model(value, spec) -> dict:
@@ -120,7 +116,7 @@ class MaxError(Requirement):
             raise ValueError("max_error needs error_model (--error-model) or encoder (--encoder)")
 
     def screen(self, ctx) -> bool:
-        return float(-_sampled(ctx).min()) * SCREEN <= ctx.req.max_error
+        return float(-_sampled(ctx).min()) * _acc.UM_PER_UNIT[ctx.unit] * SCREEN <= ctx.req.max_error
 
     def describe(self, req, unit) -> str:
         return f"position error <= {req.max_error:g} um over the task"
