@@ -100,6 +100,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, fields
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -289,11 +290,14 @@ def _spec(mech):
     return spec
 
 
+@lru_cache(maxsize=None)
 def _directions(m=DIRECTIONS):
     """The first half of ``m`` directions at equal angles (the sets bounded here are
-    symmetric about the origin, ``h(-u) = h(u)``: the other half adds nothing)."""
+    symmetric about the origin, ``h(-u) = h(u)``: the other half adds nothing); read-only."""
     a = 2.0 * np.pi * np.arange((m + 1) // 2) / m
-    return np.stack([np.cos(a), np.sin(a)], -1)
+    out = np.stack([np.cos(a), np.sin(a)], -1)
+    out.setflags(write=False)
+    return out
 
 
 def _linear_terms(mech, spec, x, y):
@@ -326,15 +330,21 @@ def _linear_terms(mech, spec, x, y):
 
 
 def _support(G, A, t, c, U):
-    """``h(u)`` at the directions ``U`` (M, 2): shape (..., M)."""
-    ux, uy = U[:, 0, None], U[:, 1, None]
-    h = np.abs(G[..., None, 0, :] * ux + G[..., None, 1, :] * uy) @ t
-    for j, cj in enumerate(c):
-        if cj > 0:
-            Aj = A[..., j, :, :]
-            vx = Aj[..., None, 0, 0] * ux[:, 0] + Aj[..., None, 1, 0] * uy[:, 0]
-            vy = Aj[..., None, 0, 1] * ux[:, 0] + Aj[..., None, 1, 1] * uy[:, 0]
-            h = h + cj * np.sqrt(vx * vx + vy * vy)
+    """``h(u)`` at the directions ``U`` (M, 2): shape (..., M). One matrix product: the
+    rows ``t_k G_k`` and the rows of ``c_j A_j^T`` times the directions; the first
+    summed in absolute value, the second in pairs' norms (``|A_j^T u|``)."""
+    shape, k = G.shape[:-2], G.shape[-1]
+    live = [j for j, cj in enumerate(c) if cj > 0]
+    rows = [np.swapaxes(G * t, -1, -2)]  # (..., K, 2)
+    if live:
+        B = np.swapaxes(A[..., live, :, :], -1, -2) * np.asarray(c)[live][:, None, None]  # c_j A_j^T
+        rows.append(B.reshape(shape + (2 * len(live), 2)))
+    V = np.concatenate(rows, -2)
+    P = (V.reshape(-1, 2) @ U.T).reshape(V.shape[:-1] + (U.shape[0],))  # (..., R, M)
+    h = np.abs(P[..., :k, :]).sum(-2)
+    if live:
+        Q = P[..., k:, :].reshape(shape + (len(live), 2, U.shape[0]))
+        h = h + np.sqrt((Q * Q).sum(-2)).sum(-2)
     return h
 
 
@@ -383,7 +393,8 @@ def pose_error(mech, model: ErrorModel, x, y, unit: str = "mm", directions: int 
     low = h.max(-1)
     worst_dir = np.arctan2(U[:, 1], U[:, 0])[np.argmax(np.nan_to_num(h, nan=-1.0), -1)]
     W1 = low / math.cos(math.pi / M)
-    axes = _support(G, A, t, c, np.eye(2))
+    # the axes are directions 0 and M/4 when 4 divides M (cos(pi/2) = 6e-17: exact to rounding)
+    axes = h[..., [0, M // 4]] if M % 4 == 0 else _support(G, A, t, c, np.eye(2))
     # --- the remainder (module docstring) ---
     r1, r2 = p["R"]
     q1, q2 = p["q"]
