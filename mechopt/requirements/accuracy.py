@@ -107,6 +107,8 @@ class MaxError(Requirement):
     needs = ("points",)
     margin_text = "`--max-error`: the allowed position error minus the proven worst case over the task"
     margin_unit = "um"
+    #: the value "no design satisfies" names (the least-violating design's error)
+    reached_key = "error_um"
     certificate = ("each point's bound proven (first order over the tolerance box plus a proven second-order "
                    "remainder, mechopt.analysis.accuracy); the maximum over the task located on the samples and "
                    "refined by zooming (mechopt.analysis.sampling)")
