@@ -14,7 +14,6 @@ from mechopt import FiveBar
 from mechopt.analysis import accuracy as acc
 from mechopt.analysis.accuracy import ErrorModel
 from mechopt.analysis.task import Task
-from mechopt.cli import main
 from mechopt.requirements import Requirements
 
 TASK = Task.rect(100, 60, (0, 180))
