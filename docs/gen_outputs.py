@@ -544,7 +544,36 @@ def _evaluate() -> str:
             rows.append((f"`{k}`", meaning, _unit(unit)))
         out.append("Values:\n")
         out.append(_table(["key", "meaning", "unit"], rows))
+    out.append(_evaluate_errors())
     return "\n".join(out)
+
+
+#: mechopt evaluate --error-model FILE --at X,Y (mechopt.analysis.accuracy.POSE_KEYS)
+EVAL_ERRORS = {
+    "error_at": ("the poses `[[x, y], ...]` of `--at`, in the mechanism's frame", "L"),
+    "error_bound_um": ("proven worst-case position error at each pose under the error model (first order over "
+                       "the tolerance box plus a proven second-order remainder; null where not proven)", "um"),
+    "error_linear_um": ("its first-order part at each pose (the linear map's worst case, an upper bound)", "um"),
+    "error_remainder_um": ("its second-order remainder at each pose (error_bound_um - error_linear_um)", "um"),
+    "error_x_um": ("first-order worst error along x at each pose", "um"),
+    "error_y_um": ("first-order worst error along y at each pose", "um"),
+}
+
+
+def _evaluate_errors() -> str:
+    from mechopt.analysis.accuracy import POSE_KEYS
+    from mechopt.mechanisms import registry
+
+    names = ", ".join(f"`{n}`" for n, cls in registry().items() if cls.error_spec is not None)
+    rows = [(f"`{k}`", *_lookup(EVAL_ERRORS, k, "mechopt evaluate --error-model")) for k in POSE_KEYS]
+    return "\n".join([
+        "### `mechopt evaluate MECHANISM --error-model FILE --at X,Y`\n",
+        f"For a mechanism with an error model ({names}), `--error-model` (a JSON or TOML file or "
+        "`key=value` pairs, the keys of the error model file under `mechopt accuracy`) with one or more "
+        "`--at X,Y` poses [L] adds these keys after the values, one list entry per pose; `inputs` then also "
+        "echoes `error_model` (the model, every key) and `unit` (`--unit`, the unit of the lengths: mm, "
+        "cm, m or in; default mm):\n",
+        _table(["key", "meaning", "unit"], [(k, m, _unit(u)) for k, m, u in rows])])
 
 
 def _family(problem) -> str:
@@ -806,6 +835,8 @@ ACCURACY = {
     "unit": ("the task's length unit", ""),
     "poses": ("task samples evaluated (192 boundary points and the 13 x 13 grid kept inside)", "-"),
     "bound_um": ("proven worst-case position error: the largest bound over the samples", "um"),
+    "task_max_um": ("the maximum of the bound over the task: the samples' maximum refined by zooming "
+                    "(mechopt.analysis.sampling), what `--max-error` checks; >= bound_um", "um"),
     "linear_um": ("its first-order part at that sample (the linear map's worst case, an upper bound)", "um"),
     "remainder_um": ("its second-order remainder at that sample (bound_um - linear_um)", "um"),
     "worst_x_um": ("largest first-order worst error along x over the samples", "um"),
@@ -820,10 +851,15 @@ ACCURACY = {
 }
 #: the keys of an error model file (mechopt.analysis.accuracy.ErrorModel)
 ERROR_MODEL = {
-    "encoder_counts": ("counts per revolution of each crank's encoder (0: exact); +/- pi/counts rad", "-"),
-    "backlash_arcmin": ("lost motion of each crank's drive, full width (+/- half of it)", "arcmin"),
-    "resolution_um": ("one count of each slider's or strut's scale (+/- half of it)", "um"),
-    "backlash_um": ("lost motion of each slider's or strut's drive (+/- half of it)", "um"),
+    "encoder_counts": ("counts per revolution of each crank's encoder (0: exact); +/- pi/counts rad; one "
+                       "number, or one per motor `[16384, 4096]` (`16384/4096` in key=value form; also "
+                       "`mechopt design --encoder`)", "-"),
+    "backlash_arcmin": ("lost motion of each crank's drive, full width (+/- half of it); one number or one per "
+                        "motor", "arcmin"),
+    "resolution_um": ("one count of each slider's or strut's scale (+/- half of it); one number or one per "
+                      "motor", "um"),
+    "backlash_um": ("lost motion of each slider's or strut's drive (+/- half of it); one number or one per "
+                    "motor", "um"),
     "clearance_um": ("radial clearance of each passive joint (the pin's centre within it of the bore's)", "um"),
     "link_tol_um": ("tolerance on each link length, +/-", "um"),
     "base_tol_um": ("tolerance on each coordinate of each base joint or guide, +/-", "um"),

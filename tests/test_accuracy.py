@@ -445,10 +445,11 @@ def test_cli_accuracy(tmp_path, capsys):
 
     tx, ty = acc.task_points(Task.rect(100, 60, (0, 180)))
     assert res["bound_um"] == pytest.approx(1e3 * acc.max_error(fb, load_error_model(m), tx, ty))
+    assert res["bound_um"] <= res["task_max_um"] <= 1.01 * res["bound_um"]  # refined from the samples
     fig = tmp_path / "map.png"
     assert main(["accuracy", str(d), "--error-model", str(m), "--samples", "5", "--figure", str(fig)]) == 0
     out = capsys.readouterr().out
-    assert "proven worst-case position error" in out and fig.exists()
+    assert "proven worst-case position error" in out and "maximum over the task (refined)" in out and fig.exists()
     m.write_text('{"encoder_count": 1}')
     assert main(["accuracy", str(d), "--error-model", str(m)]) == 2
     assert capsys.readouterr().err.count("\n") == 1
@@ -458,9 +459,10 @@ def test_cli_accuracy(tmp_path, capsys):
 # --------------------------------------------------------------- the design requirement
 def test_max_error_requirement_and_error_objective():
     """``--max-error`` / ``error`` in the design evaluator: the margin is the allowed error
-    minus the largest pose bound over the evaluation's samples (computed here from the
-    samples directly), g > 0 exactly when the bound exceeds it; the objective is that
-    bound; without an error model the requirement and the objective are refused."""
+    minus the largest pose bound over the task (at least the samples' maximum, computed
+    here from the samples directly, and within 1 % of it on this design), g > 0 exactly
+    when the bound exceeds it; the objective is that bound; without an error model the
+    requirement and the objective are refused."""
     from mechopt.analysis.design_eval import DesignEvaluator
     from mechopt.analysis.sampling import Sampling, samples
     from mechopt.analysis.task import Task
@@ -475,10 +477,11 @@ def test_max_error_requirement_and_error_objective():
     for need in (0.5 * want, 2.0 * want):
         ev = DesignEvaluator("five-bar", task, Requirements(max_error=need, error_model=model), ("size", "error"))
         res = ev.evaluate(v, Sampling())
-        assert res["margin"]["error"] == pytest.approx(need - want, rel=1e-12, abs=1e-9)
-        assert (res["g"]["error"] > 0) == (need < want)
-        assert res["objectives"]["error"] == pytest.approx(want, rel=1e-12)
-        assert res["values"]["error_um"] == pytest.approx(want, rel=1e-12)
+        got = res["values"]["error_um"]  # the samples' maximum, refined (tests/test_accuracy_task.py)
+        assert want <= got <= 1.01 * want
+        assert res["margin"]["error"] == pytest.approx(need - got, rel=1e-12, abs=1e-9)
+        assert (res["g"]["error"] > 0) == (need < got)
+        assert res["objectives"]["error"] == got
     with pytest.raises(ValueError, match="error_model"):
         DesignEvaluator("five-bar", task, Requirements(max_error=20.0), ("size",))
     with pytest.raises(ValueError, match="error_model"):

@@ -75,10 +75,13 @@ clearances as the only play, the tool point on the pin of the platform joint
 carried by leg 2 (clearances in the legs' circle centres,
 :mod:`mechopt.core.error_spec`).
 
-Over a task (:func:`max_error`) the bound is the maximum of the pose bounds over the
-given points, e.g. the task samples of ``mechopt design`` (:func:`task_points`: 192
-boundary points and a 13 x 13 grid): each pose's number is proven, the maximum over
-the region is sampled (the certificates of the design loop will take it over).
+Over given points (:func:`max_error`) the bound is the maximum of the pose bounds, e.g.
+at the task samples of ``mechopt design`` (:func:`task_points`: 192 boundary points and
+a 13 x 13 grid). Over a task (:func:`task_max_error`, the ``--max-error`` requirement)
+the maximum is located on the samples and refined by the zoom searches of
+:mod:`mechopt.analysis.sampling`, like the minima of the other requirements: each
+point's number is proven, the maximum over the region is located (to the searches'
+stated tolerance), not proven between the points.
 
 Monte Carlo (:func:`monte_carlo`): deviations drawn in the box (uniformly, or at its
 vertices with the clearances on their circles, where the maximum of a near-linear
@@ -97,6 +100,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, fields
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -105,28 +109,36 @@ from mechopt.core import validation as _v
 from mechopt.core.protocol import as_points
 
 __all__ = ["ErrorModel", "load_error_model", "pose_error", "max_error", "perturbed_fk", "monte_carlo",
-           "task_points", "parse_length_um", "parse_error_model", "DIRECTIONS", "UM_PER_UNIT"]
+           "task_points", "parse_length_um", "parse_error_model", "DIRECTIONS", "UM_PER_UNIT", "PER_MOTOR",
+           "POSE_KEYS", "errors_at", "parse_poses", "task_max_error"]
 
 #: directions of the support function (the linear worst case is within 1/cos(pi/M) of exact)
 DIRECTIONS = 64
 #: micrometres per task length unit
 UM_PER_UNIT = {"mm": 1e3, "cm": 1e4, "m": 1e6, "in": 25400.0}
+#: the fields of :class:`ErrorModel` that take one value per motor
+PER_MOTOR = ("encoder_counts", "backlash_arcmin", "resolution_um", "backlash_um")
 
 
 @dataclass(frozen=True)
 class ErrorModel:
     """The error budget of a mechanism, units in the names (module docstring).
 
+    The four actuator fields (:data:`PER_MOTOR`) take one number for both motors or a
+    pair ``(motor 1, motor 2)``, each motor its own encoder or backlash (motor ``i``
+    drives the ``i``-th actuator coordinate of the mechanism, ``q1`` or ``theta1`` first;
+    in a ``key=value`` text the pair is written ``16384/4096``).
+
     Parameters
     ----------
-    encoder_counts : float
+    encoder_counts : float or (float, float)
         Counts per revolution of each crank's encoder (0: exact); the angle is known
         to +/- half a count, ``pi / counts`` [rad].
-    backlash_arcmin : float
+    backlash_arcmin : float or (float, float)
         Lost motion of each crank's drive [arcmin] (the full width: +/- half of it).
-    resolution_um : float
+    resolution_um : float or (float, float)
         One count of each slider's or strut's scale [um] (+/- half of it).
-    backlash_um : float
+    backlash_um : float or (float, float)
         Lost motion of each slider's or strut's drive [um] (+/- half of it).
     clearance_um : float
         Radial clearance of each passive joint [um]: the pin's centre anywhere within
@@ -147,10 +159,23 @@ class ErrorModel:
 
     def __post_init__(self):
         for f in fields(self):
-            val = _v.finite_number(f.name, getattr(self, f.name))
-            if val < 0:
+            raw = getattr(self, f.name)
+            if f.name in PER_MOTOR and isinstance(raw, str) and "/" in raw:
+                raw = raw.split("/")
+            if f.name in PER_MOTOR and isinstance(raw, (list, tuple, np.ndarray)):
+                if len(raw) != 2:
+                    raise ValueError(f"{f.name} takes one number or one per motor (2), got {_v.show(raw)}")
+                val = tuple(_v.finite_number(f"{f.name} of motor {i + 1}", r) for i, r in enumerate(raw))
+            else:
+                val = _v.finite_number(f.name, raw)
+            if min(np.atleast_1d(val)) < 0:
                 raise ValueError(f"{f.name} must be >= 0, got {_v.show(getattr(self, f.name))}")
             object.__setattr__(self, f.name, val)
+
+    def motor(self, name: str, i: int) -> float:
+        """The value of the actuator field ``name`` (:data:`PER_MOTOR`) for motor ``i`` (0 or 1)."""
+        v = getattr(self, name)
+        return v[i] if isinstance(v, tuple) else v
 
     @classmethod
     def from_dict(cls, d) -> "ErrorModel":
@@ -166,13 +191,22 @@ class ErrorModel:
     def half_widths(self, spec, angular: bool, unit: str) -> np.ndarray:
         """Half width of each scalar of ``spec`` (rad for crank angles, else [unit])."""
         to_l = 1.0 / _um_per(unit)
-        if angular:
-            act = (math.pi / self.encoder_counts if self.encoder_counts > 0 else 0.0) \
-                + 0.5 * math.radians(self.backlash_arcmin / 60.0)
-        else:
-            act = 0.5 * (self.resolution_um + self.backlash_um) * to_l
-        per_kind = {"actuator": act, "link": self.link_tol_um * to_l, "base": self.base_tol_um * to_l}
-        return np.array([per_kind[kind] for _, kind in spec.scalars])
+        act = []
+        for i in (0, 1):
+            if angular:
+                counts = self.motor("encoder_counts", i)
+                act.append((math.pi / counts if counts > 0 else 0.0)
+                           + 0.5 * math.radians(self.motor("backlash_arcmin", i) / 60.0))
+            else:
+                act.append(0.5 * (self.motor("resolution_um", i) + self.motor("backlash_um", i)) * to_l)
+        out, motor = [], 0
+        for _, kind in spec.scalars:
+            if kind == "actuator":
+                out.append(act[min(motor, 1)])
+                motor += 1
+            else:
+                out.append({"link": self.link_tol_um, "base": self.base_tol_um}[kind] * to_l)
+        return np.array(out)
 
     def clearances(self, spec, unit: str) -> np.ndarray:
         """Radial clearance [unit] of each passive joint of ``spec``."""
@@ -228,7 +262,8 @@ def load_error_model(path) -> ErrorModel:
 
 def parse_error_model(text) -> ErrorModel:
     """An :class:`ErrorModel` from a command-line text: ``key=value`` pairs separated by
-    commas (``encoder_counts=16384,clearance_um=5``) or the path of a JSON/TOML file
+    commas (``encoder_counts=16384,clearance_um=5``; one value per motor as
+    ``encoder_counts=16384/4096``) or the path of a JSON/TOML file
     (:func:`load_error_model`); an :class:`ErrorModel` or a dict passes through."""
     if isinstance(text, ErrorModel):
         return text
@@ -255,11 +290,14 @@ def _spec(mech):
     return spec
 
 
+@lru_cache(maxsize=None)
 def _directions(m=DIRECTIONS):
     """The first half of ``m`` directions at equal angles (the sets bounded here are
-    symmetric about the origin, ``h(-u) = h(u)``: the other half adds nothing)."""
+    symmetric about the origin, ``h(-u) = h(u)``: the other half adds nothing); read-only."""
     a = 2.0 * np.pi * np.arange((m + 1) // 2) / m
-    return np.stack([np.cos(a), np.sin(a)], -1)
+    out = np.stack([np.cos(a), np.sin(a)], -1)
+    out.setflags(write=False)
+    return out
 
 
 def _linear_terms(mech, spec, x, y):
@@ -292,15 +330,21 @@ def _linear_terms(mech, spec, x, y):
 
 
 def _support(G, A, t, c, U):
-    """``h(u)`` at the directions ``U`` (M, 2): shape (..., M)."""
-    ux, uy = U[:, 0, None], U[:, 1, None]
-    h = np.abs(G[..., None, 0, :] * ux + G[..., None, 1, :] * uy) @ t
-    for j, cj in enumerate(c):
-        if cj > 0:
-            Aj = A[..., j, :, :]
-            vx = Aj[..., None, 0, 0] * ux[:, 0] + Aj[..., None, 1, 0] * uy[:, 0]
-            vy = Aj[..., None, 0, 1] * ux[:, 0] + Aj[..., None, 1, 1] * uy[:, 0]
-            h = h + cj * np.sqrt(vx * vx + vy * vy)
+    """``h(u)`` at the directions ``U`` (M, 2): shape (..., M). One matrix product: the
+    rows ``t_k G_k`` and the rows of ``c_j A_j^T`` times the directions; the first
+    summed in absolute value, the second in pairs' norms (``|A_j^T u|``)."""
+    shape, k = G.shape[:-2], G.shape[-1]
+    live = [j for j, cj in enumerate(c) if cj > 0]
+    rows = [np.swapaxes(G * t, -1, -2)]  # (..., K, 2)
+    if live:
+        B = np.swapaxes(A[..., live, :, :], -1, -2) * np.asarray(c)[live][:, None, None]  # c_j A_j^T
+        rows.append(B.reshape(shape + (2 * len(live), 2)))
+    V = np.concatenate(rows, -2)
+    P = (V.reshape(-1, 2) @ U.T).reshape(V.shape[:-1] + (U.shape[0],))  # (..., R, M)
+    h = np.abs(P[..., :k, :]).sum(-2)
+    if live:
+        Q = P[..., k:, :].reshape(shape + (len(live), 2, U.shape[0]))
+        h = h + np.sqrt((Q * Q).sum(-2)).sum(-2)
     return h
 
 
@@ -349,7 +393,8 @@ def pose_error(mech, model: ErrorModel, x, y, unit: str = "mm", directions: int 
     low = h.max(-1)
     worst_dir = np.arctan2(U[:, 1], U[:, 0])[np.argmax(np.nan_to_num(h, nan=-1.0), -1)]
     W1 = low / math.cos(math.pi / M)
-    axes = _support(G, A, t, c, np.eye(2))
+    # the axes are directions 0 and M/4 when 4 divides M (cos(pi/2) = 6e-17: exact to rounding)
+    axes = h[..., [0, M // 4]] if M % 4 == 0 else _support(G, A, t, c, np.eye(2))
     # --- the remainder (module docstring) ---
     r1, r2 = p["R"]
     q1, q2 = p["q"]
@@ -391,6 +436,98 @@ def max_error(mech, model: ErrorModel, x, y, unit: str = "mm") -> float:
     proven; the maximum over a region is as good as the points sample it."""
     b = pose_error(mech, model, x, y, unit)["bound"]
     return float(np.max(np.where(np.isnan(b), np.inf, b))) if b.size else 0.0
+
+
+#: the keys of :func:`errors_at` (``mechopt evaluate --error-model``; docs/outputs.md)
+POSE_KEYS = ("error_at", "error_bound_um", "error_linear_um", "error_remainder_um", "error_x_um", "error_y_um")
+
+
+def parse_poses(text) -> list:
+    """Poses ``[[x, y], ...]`` from ``"x,y"`` texts (one or a list of them, e.g. the
+    repeated ``--at`` of ``mechopt evaluate``) or pairs of numbers; ValueError (one
+    line) otherwise."""
+    items = [text] if isinstance(text, str) else list(text)
+    out = []
+    for item in items:
+        parts = item.split(",") if isinstance(item, str) else list(item)
+        if len(parts) != 2:
+            raise ValueError(f"a pose is two numbers x,y, got {_v.show(item)}")
+        out.append([_v.position("pose x", parts[0]), _v.position("pose y", parts[1])])
+    if not out:
+        raise ValueError("give at least one pose x,y")
+    return out
+
+
+def errors_at(mech, model: ErrorModel, poses, unit: str = "mm") -> dict:
+    """The proven worst-case position error of ``mech`` under ``model`` at each pose.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        A mechanism with an error model (:func:`pose_error`).
+    model : ErrorModel
+        The tolerances.
+    poses : sequence of (x, y)
+        Poses [unit] in the mechanism's frame (``"x,y"`` texts accepted, :func:`parse_poses`).
+    unit : str
+        The length unit of the mechanism's lengths and the poses.
+
+    Returns
+    -------
+    dict
+        The keys :data:`POSE_KEYS`, each a list with one entry per pose: ``error_at``
+        the pose ``[x, y]`` [unit], ``error_bound_um`` the proven bound [um] (inf where
+        not proven, NaN where unreachable), ``error_linear_um`` its first-order part and
+        ``error_remainder_um`` its second-order remainder [um], ``error_x_um``,
+        ``error_y_um`` the first-order worst error along each axis [um].
+    """
+    pts = np.array(parse_poses(poses), dtype=float)
+    pe = pose_error(mech, model, pts[:, 0], pts[:, 1], unit)
+    um = UM_PER_UNIT[unit]
+    out = {"error_at": pts.tolist()}
+    for key, part in (("error_bound_um", "bound"), ("error_linear_um", "linear"),
+                      ("error_remainder_um", "remainder"), ("error_x_um", "x"), ("error_y_um", "y")):
+        out[key] = [float(v) for v in pe[part] * um]
+    return {k: out[k] for k in POSE_KEYS}
+
+
+def task_max_error(mech, model: ErrorModel, s: dict, to_mech=None, unit: str = "mm", refine: bool = True,
+                   vals=None) -> float:
+    """The largest :func:`pose_error` bound [unit] over a task: located on its samples
+    and refined by the zoom searches of :mod:`mechopt.analysis.sampling`
+    (:func:`~mechopt.analysis.sampling.region_mins` on the negated bound: boundary and
+    interior maxima placed to ``h_b/2048`` and ``h/64``).
+
+    Each point's bound is proven; the maximum over the task is located, to the stated
+    tolerance of the zoom searches (the samples resolve the peaks of the bound), not
+    proven between the points. ``inf`` when a point is unreachable or unproven.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism (with an error model).
+    model : ErrorModel
+        The tolerances.
+    s : dict
+        The task's samples (:func:`mechopt.analysis.sampling.samples`), in the task frame.
+    to_mech : callable, optional
+        ``to_mech(x, y)``: task points in the mechanism's frame (default: the same frame).
+    unit : str
+        The length unit of the task and the mechanism.
+    refine : bool
+        False: the samples' maximum alone.
+    vals : array, optional
+        The negated bound at ``s["allx"], s["ally"]`` when already computed.
+    """
+    from mechopt.analysis.sampling import region_mins
+
+    def f(x, y):
+        b = pose_error(mech, model, *(to_mech(x, y) if to_mech else (x, y)), unit)["bound"]
+        return -np.where(np.isnan(b), np.inf, b)[None]
+
+    if vals is None:
+        vals = f(s["allx"], s["ally"])[0]
+    return -region_mins(s, f, refine, np.asarray(vals)[None])[0]
 
 
 def task_points(task, n_boundary: int = 192, n_interior: int = 13):

@@ -57,6 +57,8 @@ def run(args) -> int:
     print(f"  proven worst-case position error  {res['bound_um']:.4g} um at ({res['at'][0]:.4g}, "
           f"{res['at'][1]:.4g}) {u} (first order <= {res['linear_um']:.4g} um, second-order remainder "
           f"<= {res['remainder_um']:.3g} um)")
+    print(f"  maximum over the task (refined)   {res['task_max_um']:.4g} um (the samples' maximum refined by "
+          "zooming, as --max-error checks)")
     print(f"  worst along x / y (first order)   {res['worst_x_um']:.4g} / {res['worst_y_um']:.4g} um")
     print(f"  Monte Carlo maximum               {res['mc_max_um']:.4g} um ({res['samples']} {res['draw']} "
           f"draws per sample, seed {res['seed']}); bound / Monte Carlo = {res['ratio']:.4f}")

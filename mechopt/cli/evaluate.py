@@ -8,6 +8,11 @@ lists them; the fuzz test draws its arguments from it). Prints the result of
 line) or, with ``--json``, one JSON object (inputs echoed, NaN and inf as null).
 Lengths [L] are in the one unit of the given lengths, areas in its square, angles in
 deg, the indices dimensionless; docs/outputs.md lists every key with its unit.
+
+With ``--error-model FILE --at X,Y [--at X,Y ...]`` (a mechanism with an error model)
+it also prints the proven worst-case position error [um] at those poses
+(:func:`mechopt.analysis.accuracy.errors_at`, keys
+:data:`mechopt.analysis.accuracy.POSE_KEYS`; ``--unit`` the unit of the lengths).
 """
 from __future__ import annotations
 
@@ -68,6 +73,15 @@ def add_parser(subparsers):
                                         "lengths are in that unit, its areas in that unit squared.")
         for p in options(cls):
             _add_parameter(mp, p)
+        if cls.error_spec is not None:
+            mp.add_argument("--error-model", default=None, metavar="FILE|KEY=VALUE,...",
+                            help="also print the proven worst-case position error [um] at the poses --at under "
+                                 "these tolerances: a JSON or TOML file, or key=value pairs "
+                                 "(encoder_counts=16384,clearance_um=5; keys in docs/outputs.md)")
+            mp.add_argument("--at", action="append", default=None, metavar="X,Y",
+                            help="a pose [L] in the mechanism's frame for --error-model (repeat it for more)")
+            mp.add_argument("--unit", default="mm", choices=("mm", "cm", "m", "in"),
+                            help="the unit of the lengths for --error-model's um: mm, cm, m or in (default mm)")
         mp.add_argument("--json", action="store_true",
                         help="print one JSON object (inputs echoed; NaN and inf as null; keys and "
                              "units: docs/outputs.md)")
@@ -107,9 +121,32 @@ def run(args) -> int:
 
     cls = get(args.mechanism)
     mech = cls.from_parameters(**{p.name: getattr(args, p.name) for p in cls.parameters})
+    errors = _errors(mech, args)
     res = evaluate(mech, **{p.name: getattr(args, p.name) for p in _disk_options(cls)})
+    if errors:
+        res.inputs.update(errors.pop("inputs"))
     if args.json:
-        print(json.dumps({k: _json_safe(v) for k, v in res.as_dict().items()}, allow_nan=False))
+        print(json.dumps({k: _json_safe(v) for k, v in {**res.as_dict(), **errors}.items()}, allow_nan=False))
     else:
-        _print_table({"inputs": res.inputs, **res.values}, res.mechanism)
+        _print_table({"inputs": res.inputs, **res.values, **errors}, res.mechanism)
     return 0
+
+
+def _errors(mech, args) -> dict:
+    """The error at the poses ``--at`` under ``--error-model``
+    (:func:`mechopt.analysis.accuracy.errors_at`) and the ``inputs`` it echoes; ``{}``
+    without ``--error-model``."""
+    model, at = getattr(args, "error_model", None), getattr(args, "at", None)
+    if model is None:
+        if at:
+            raise ValueError("--at gives the poses of --error-model: give --error-model too")
+        return {}
+    if not at:
+        raise ValueError("--error-model needs the poses: give --at X,Y (repeat it for more)")
+    from dataclasses import asdict
+
+    from mechopt.analysis.accuracy import errors_at, parse_error_model
+
+    model = parse_error_model(model)
+    out = errors_at(mech, model, at, args.unit)
+    return {"inputs": {"error_model": asdict(model), "unit": args.unit}, **out}

@@ -21,7 +21,7 @@ from mechopt.analysis import accuracy as _acc
 __all__ = ["load_design", "accuracy", "plot_error_map", "ACCURACY_KEYS"]
 
 #: the keys of :func:`accuracy`'s result, in order (docs/outputs.md)
-ACCURACY_KEYS = ("mechanism", "unit", "poses", "bound_um", "linear_um", "remainder_um", "worst_x_um",
+ACCURACY_KEYS = ("mechanism", "unit", "poses", "bound_um", "task_max_um", "linear_um", "remainder_um", "worst_x_um",
                  "worst_y_um", "at", "mc_max_um", "ratio", "samples", "draw", "seed", "unbounded_poses")
 
 
@@ -93,7 +93,9 @@ def accuracy(folder, model, samples: int = 1000, seed: int = 1, draw: str = "ver
     -------
     dict
         The keys :data:`ACCURACY_KEYS`: the largest proven bound over the samples and its
-        parts [um] (``linear_um``, ``remainder_um`` at that pose; ``worst_x_um``,
+        parts [um], ``task_max_um`` the maximum over the task refined from the samples by
+        zooming (:func:`~mechopt.analysis.accuracy.task_max_error`, what ``--max-error``
+        checks) (``linear_um``, ``remainder_um`` at that pose; ``worst_x_um``,
         ``worst_y_um`` the largest first-order error along each axis), ``at`` the task
         point [unit] of the largest bound, the Monte Carlo maximum ``mc_max_um`` and
         ``ratio`` = bound / Monte Carlo maximum, ``unbounded_poses`` (samples without a
@@ -104,14 +106,19 @@ def accuracy(folder, model, samples: int = 1000, seed: int = 1, draw: str = "ver
     mech, task, spec, rec = load_design(folder)
     unit = task.unit
     um = _acc.UM_PER_UNIT[unit]
-    tx, ty = _acc.task_points(task, _v.integer("n_boundary", n_boundary, 8), _v.integer("n_interior", n_interior, 2))
+    from mechopt.analysis.sampling import Sampling, samples as task_samples
+
+    s = task_samples(task, Sampling(_v.integer("n_boundary", n_boundary, 8), _v.integer("n_interior", n_interior, 2)))
+    tx, ty = s["allx"], s["ally"]
     mx, my = spec.to_mech(mech, tx, ty)
     pe = _acc.pose_error(mech, model, mx, my, unit)
     b = np.where(np.isnan(pe["bound"]), np.inf, pe["bound"])
+    top = _acc.task_max_error(mech, model, s, lambda x, y: spec.to_mech(mech, x, y), unit, vals=-b)
     i = int(np.argmax(b))
     mc = _acc.monte_carlo(mech, model, mx, my, samples, unit, seed, draw)
     mc_max = float(np.nanmax(mc)) if np.any(np.isfinite(mc)) else math.nan
     out = {"mechanism": repr(mech), "unit": unit, "poses": int(tx.size), "bound_um": float(b[i] * um),
+           "task_max_um": float(top * um),
            "linear_um": float(pe["linear"][i] * um), "remainder_um": float(pe["remainder"][i] * um),
            "worst_x_um": float(np.nanmax(pe["x"]) * um), "worst_y_um": float(np.nanmax(pe["y"]) * um),
            "at": [float(tx[i]), float(ty[i])], "mc_max_um": mc_max * um,

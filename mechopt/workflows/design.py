@@ -784,9 +784,14 @@ def _no_design(problem, run, certified=False) -> NoFeasibleDesign:
     fails = {n: int((pop[f"g_{n}"] > 0).sum()) for n in names}
     # the least-violating design's margin in natural units
     res = ev.evaluate(ev.decode(pop[list(problem.var_names)].to_numpy(float)[k]), problem.sampling)
-    unit = next(r.margin_unit for r in ev.active if r.name == worst).format(L=ev.unit)
+    req = next(r for r in ev.active if r.name == worst)
+    unit = req.margin_unit.format(L=ev.unit)
     miss = -float(res["margin"][worst])
     by = f"{miss:.4g} {unit}".rstrip(" -") if math.isfinite(miss) else f"{per[worst]:.3g} normalised"
+    # the value the requirement bounds, where it names one (reached_key: a key of values)
+    reached = res["values"].get(getattr(req, "reached_key", ""))
+    if reached is not None:
+        by += f", reaching {reached:.4g} {unit}".rstrip(" -")
     sens = sensitivity(ev, ev.decode(pop[list(problem.var_names)].to_numpy(float)[k]), worst, problem.sampling)
     msg = (f"no design satisfies {ev.req.describe(worst, ev.unit)} (of {len(pop)} designs in the final "
            f"population, {fails[worst]} fail it; the least-violating design misses it by {by})"
