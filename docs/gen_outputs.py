@@ -338,6 +338,10 @@ DESIGN_RUN = {
                    "requirement", ""),
     "fails": ("without a feasible design: how many designs of the final population fail each requirement",
               "-"),
+    "sensitivity": ("without a feasible design: the missed requirement's margin at the least-violating design "
+                    "after each change measured (`longer links`, `shorter links`: lengths x 1.1, x 0.9; `task "
+                    "moved up/down/left/right`: by 10 % of its size; `faster actuators`, `stronger actuators`: "
+                    "+10 %); larger helps", "the requirement's unit"),
 }
 DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
                    "max_length", "shape", "unit", "kind", "label", "vertices", "center", "radius", "points",
