@@ -8,11 +8,13 @@ Independent checks, for every front design of a run:
   distance written in ``tests/test_collisions.py`` (Ericson's closest points, not the
   library's), no intersecting pair, and front.csv's ``clearance`` equal to that grid
   minimum within 1e-6 of the task size;
-* the laser-table Biglide (400 x 300 mm, free-y, size) with ``--keep-out task``: every
-  guide and carriage kept out of the placed table, measured by shapely (the distance of
-  each capsule's axis to the table polygon less its half width, and the capsules as
-  polygons) on a 201 x 201 grid: no intersection, and ``margin_keep_out`` equal to the
-  grid minimum within 1e-6 of the task size;
+* the laser-table Biglide (400 x 300 mm, free-y, size) with ``--keep-out task
+  --min-clearance 0``: every guide and carriage kept out of the placed table, measured by
+  shapely (the distance of each capsule's axis to the table polygon less its half width,
+  and the capsules as polygons) on a 201 x 201 grid: no intersection, and
+  ``margin_keep_out`` equal to the grid minimum within 1e-6 of the task size; the
+  bodies clear of each other as the five-bar's (``--keep-out task`` alone lets the
+  smallest design put its two 40 mm carriages on guides 4.4 mm apart);
 * what design.png and the explorer draw: the worst-clearance pose is where the reported
   minimum lies (the independent distance of the named pair there equals it), the
   capsule outlines lie at half a width from their axes, the zone is the placed task.
@@ -38,15 +40,18 @@ from mechopt.core.bodies import Shapes, capsule_outline
 from mechopt.mechanisms import design_spec
 from mechopt.requirements import collisions as rc
 from test_collisions import _grid, ends, ericson_distance
+# the browser of the report's and the explorer's tests (skips, saying why, without one)
+from test_report import _browser, artifacts, browser  # noqa: F401
 
 FIVE_TASK = Task.rect(100, 60, (0, 250))
 FIVE = ["design", "five-bar", "--task", "rect:100,60@0,250", "--min-base", "60", "--min-clearance", "0",
         "--objectives", "size,clearance"]
 LASER_TASK = Task.rect(400, 300, (0, 400))
 LASER = ["design", "biglide", "--task", "rect:400,300@0,400", "--place", "free-y", "--objectives", "size"]
-#: small runs that find a feasible design (seed 1)
+KEEP_OUT = ["--keep-out", "task", "--min-clearance", "0"]
+#: small runs that find a feasible design
 SMALL_FIVE = ["--pop", "12", "--gen", "3", "--no-polish", "--seed", "1"]
-SMALL_LASER = ["--pop", "8", "--gen", "2", "--no-polish", "--seed", "1"]
+SMALL_LASER = ["--pop", "8", "--gen", "2", "--no-polish", "--seed", "2"]
 #: the zone's bodies of a Biglide: all but the links, which carry the tool
 OFF_TABLE = ("guide1", "carriage1", "guide2", "carriage2")
 
@@ -64,7 +69,7 @@ def five_bar_run(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def laser_run(tmp_path_factory):
-    return _run(tmp_path_factory, "laser", LASER + ["--keep-out", "task"] + SMALL_LASER)
+    return _run(tmp_path_factory, "laser", LASER + KEEP_OUT + SMALL_LASER)
 
 
 def _mechanism(spec, row, pad=1e-6):
@@ -84,6 +89,16 @@ def _pair_clearances(col, x, y):
                      for i, j in col.pairs])
 
 
+def _clearance_gap(col, task, reported, n):
+    """|reported clearance - the n x n grid's minimum| / task size, after checking that no
+    pair intersects at any grid pose (Ericson's distance)."""
+    x, y = _grid(task, n)
+    c = _pair_clearances(col, x, y)
+    assert np.isfinite(c).all()  # the whole grid reached
+    assert int(np.sum(c < 0)) == 0  # no intersecting pair at any grid pose
+    return abs(reported - float(c.min())) / task.diameter
+
+
 def check_five_bar(folder, n=201):
     """The five-bar front of ``folder`` on an n x n grid (module docstring); returns the
     largest |clearance - grid minimum| over the task size and the designs checked."""
@@ -93,27 +108,20 @@ def check_five_bar(folder, n=201):
     worst = 0.0
     for row in front.itertuples():
         assert 2 * row.r3 >= 60 - 1e-6 and row.margin_base == pytest.approx(2 * row.r3 - 60, abs=1e-6)
-        task = FIVE_TASK.moved_to(row.task_x, row.task_y)
-        col = Collisions(spec, _mechanism(spec, row), shapes)
-        x, y = _grid(task, n)
-        c = _pair_clearances(col, x, y)
-        assert np.isfinite(c).all()  # the whole grid reached
-        assert int(np.sum(c < 0)) == 0  # no intersecting pair at any grid pose
-        dense = float(c.min())
-        worst = max(worst, abs(row.clearance - dense) / task.diameter)
-        assert row.clearance <= dense + 1e-6 * task.diameter  # no grid pose below the reported minimum
         assert row.margin_clearance == pytest.approx(row.clearance, abs=1e-6)
+        col = Collisions(spec, _mechanism(spec, row), shapes)
+        worst = max(worst, _clearance_gap(col, FIVE_TASK.moved_to(row.task_x, row.task_y), row.clearance, n))
     assert worst <= 1e-6
     return worst, len(front)
 
 
 def check_laser(folder, n=201):
-    """The keep-out of the Biglide front of ``folder`` by shapely on an n x n grid (module
-    docstring); returns the largest |margin - grid minimum| over the task size, the
-    number of designs and their sizes."""
+    """The keep-out and the clearance of the Biglide front of ``folder`` on an n x n grid
+    (module docstring); returns the largest |margin - grid minimum| over the task size,
+    the number of designs and their sizes."""
     front = pd.read_csv(folder / "front.csv", dtype={"mode": str})
     spec, shapes = design_spec("biglide"), Shapes.default("mm")
-    assert len(front) >= 1 and "margin_keep_out" in front.columns
+    assert len(front) >= 1 and {"margin_keep_out", "margin_clearance"} <= set(front.columns)
     worst = 0.0
     for row in front.itertuples():
         task = LASER_TASK.moved_to(row.task_x, row.task_y)
@@ -130,7 +138,8 @@ def check_laser(folder, n=201):
             assert not shapely.intersects(caps, table).any()
         dense = float(np.min(margins))
         assert dense > 0  # guides and carriages outside the table at every grid pose
-        worst = max(worst, abs(row.margin_keep_out - dense) / task.diameter)
+        worst = max(worst, abs(row.margin_keep_out - dense) / task.diameter,
+                    _clearance_gap(col, task, row.margin_clearance, n))
         # guides and sliders below or beside the table (the guides' capsules outside it)
         for g in ("guide1", "guide2"):
             b = bodies[g]
@@ -157,7 +166,7 @@ def test_default_runs_on_a_201_grid(which, tmp_path_factory):
         print(f"five-bar --min-base 60: {n} designs, |clearance - grid min| <= {worst:.2e} D")
     else:
         free = _run(tmp_path_factory, "laser-free", LASER + ["--seed", "1"])
-        worst, n, sizes = check_laser(_run(tmp_path_factory, "laser-full", LASER + ["--keep-out", "task", "--seed", "1"]))
+        worst, n, sizes = check_laser(_run(tmp_path_factory, "laser-full", LASER + KEEP_OUT + ["--seed", "1"]))
         size_free = pd.read_csv(free / "front.csv")["size"].min()
         print(f"laser-table Biglide: {size_free:.1f} mm without --keep-out, {min(sizes):.1f} mm with "
               f"({n} designs, |margin - grid min| <= {worst:.2e} D)")
@@ -261,7 +270,7 @@ def test_explorer_page_data_draws_the_capsules(laser_run):
         # the zone is the placed table; the carriages are centred on the sliders, whose
         # height is the Biglide's inverse kinematics written here: q_i = y - sqrt(l2^2 - (x - g_i)^2)
         task = LASER_TASK.moved_to(row.task_x, row.task_y)
-        np.testing.assert_allclose(np.c_[B["zone"]["x"], B["zone"]["y"]][:4], task.vertices, atol=1e-3)
+        np.testing.assert_allclose(np.c_[B["zone"]["x"], B["zone"]["y"]][:4], task.vertices, rtol=1e-5)  # 6 digits
         path = data["designs"][i]["path"]
         for k in range(0, len(path["x"]), 7):
             px, py = path["x"][k], path["y"][k]
@@ -270,6 +279,38 @@ def test_explorer_page_data_draws_the_capsules(laser_run):
             for j, g in ((1, gs[0]), (4, gs[1])):
                 x0, y0, x1, y1 = B["segments"][k][j]
                 q = py - math.sqrt(row.l2 ** 2 - (px - g) ** 2)
-                assert (x0, 0.5 * (y0 + y1), y1 - y0) == pytest.approx((g, q, 60.0), abs=1e-3)
+                tol = 1e-5 * (abs(py) + row.l2)  # the page's numbers have 6 digits
+                assert (x0, 0.5 * (y0 + y1), y1 - y0) == pytest.approx((g, q, 60.0), abs=tol)
         worst = {w["what"]: w for w in B["worst"]}
         assert worst["keep_out"]["value"] == pytest.approx(row.margin_keep_out, rel=1e-8)
+
+
+def test_explorer_draws_the_capsules_in_a_browser(browser, laser_run, artifacts, tmp_path):
+    """The page's own capsule outlines (JavaScript) lie half a width from the page data's
+    axes (shapely), the zone and the worst poses are drawn and named with their values."""
+    from mechopt.workflows.explore import page_data, write_page
+    from test_explore import _chains, _load, _no_console_error, _trace
+
+    data = page_data(laser_run)
+    path = write_page(laser_run, out=tmp_path / "explore-collisions.html")
+    _load(browser, path)
+    i, k = browser.execute_script("var c = window.mechoptExplorer.current; return [c.i, c.k];")
+    B = data["designs"][i]["bodies"]
+    names = browser.execute_script("return document.getElementById('mech').data.map(function (t) { return t.name; });")
+    for kinds, trace in ((("guide",), "guides"), (("carriage",), "carriages"), (("distal",), "links (capsules)")):
+        polygons = _chains(_trace(browser, "mech", trace))
+        segs = [(s, w) for s, w, kind in zip(B["segments"][k], B["widths"], B["kinds"]) if kind in kinds]
+        assert len(polygons) == len(segs) == 2
+        for poly, (s, w) in zip(polygons, segs):
+            axis = shapely.LineString([s[:2], s[2:]])
+            d = shapely.distance(shapely.points(np.array(poly, float)), axis)
+            np.testing.assert_allclose(d, w / 2, rtol=1e-9)
+    zone = _trace(browser, "mech", "keep-out zone: task")
+    assert zone[0] == B["zone"]["x"] and zone[1] == B["zone"]["y"]
+    worst = {w["what"]: w for w in B["worst"]}
+    shown = f"{worst['keep_out']['value']:.6g}"  # the page's fmt: 6 significant digits
+    assert f"closest to the keep-out zone: {shown} mm ({worst['keep_out']['which'][0]})" in names, names
+    assert any(n.startswith("worst clearance: ") for n in names)
+    _no_console_error(browser)
+    shot = artifacts / "explore-collisions.png"
+    assert browser.find_element("id", "mech").screenshot(str(shot))

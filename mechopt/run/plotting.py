@@ -200,7 +200,8 @@ WORST_STYLES = {"clearance": ("tab:orange", "--"), "keep_out": ("tab:pink", ":")
 def draw_collisions(ax, ctx, pose, unit: str = "L") -> list:
     """Draw on ``ax`` the bodies of a design as capsules with their widths (housings as
     discs, carriages and guides as their capsules), filled, at the platform pose
-    ``pose = (x, y)`` [unit]; its ``--keep-out`` zone hatched; and its worst poses in
+    ``pose = (x, y)`` [unit]; its ``--keep-out`` zone hatched (a half-plane across the
+    view); and its worst poses in
     outline (:data:`WORST_STYLES`): where the clearance between bodies that share no
     joint is smallest over the task (the two bodies of that pair drawn heavier) and,
     with a zone, where a body comes closest to it, each with its value in the legend.
@@ -208,7 +209,7 @@ def draw_collisions(ax, ctx, pose, unit: str = "L") -> list:
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-        The axes, with the rest of the figure drawn (a half-plane zone fills the view).
+        The axes.
     ctx : mechopt.analysis.design_context.DesignContext
         The design's evaluation (:mod:`mechopt.requirements.collisions`: the bodies, the
         zone, :func:`~mechopt.requirements.collisions.worst_pose`).
@@ -232,15 +233,17 @@ def draw_collisions(ax, ctx, pose, unit: str = "L") -> list:
     handles = []
     zone = _rc.zone_of(ctx)
     if zone is not None:
-        ax.autoscale_view()
-        xl, yl = ax.get_xlim(), ax.get_ylim()
-        zx, zy = zone.outline((*xl, *yl))
-        if zx.size:
-            ax.fill(zx, zy, facecolor=(0.84, 0.15, 0.16, 0.08), edgecolor="tab:red", hatch="///", lw=1.0, zorder=1)
-        ax.set_xlim(xl)
-        ax.set_ylim(yl)
-        handles.append(Patch(facecolor=(0.84, 0.15, 0.16, 0.08), edgecolor="tab:red", hatch="///",
-                             label=f"keep-out zone: {zone.label}"))
+        style = dict(facecolor=(0.84, 0.15, 0.16, 0.08), edgecolor="tab:red", hatch="///", lw=1.0)
+        if zone.kind in ("above", "below"):  # the half-plane across the whole view (no autoscale)
+            from matplotlib.patches import Rectangle
+
+            reach = 10.0 * (np.abs(ax.dataLim.get_points()).max() + abs(zone.level) + ctx.diameter)
+            far = zone.level + (reach if zone.kind == "above" else -reach)  # beyond any view of the design
+            ax.add_artist(Rectangle((0.0, zone.level), 1.0, far - zone.level, transform=ax.get_yaxis_transform(),
+                                    zorder=1, **style))
+        else:
+            ax.fill(*zone.outline(None), zorder=1, **style)
+        handles.append(Patch(**style, label=f"keep-out zone: {zone.label}"))
 
     def bodies_at(x, y):
         return [b for b in col.bodies(np.array([float(x)]), np.array([float(y)]))

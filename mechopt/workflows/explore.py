@@ -19,7 +19,10 @@ design run (``mechopt design``: ``front.csv``, ``run.json``, ``design.json``)
     is built: the joint positions of every front design at every slider position
     from the design spec's ``sketch`` (the mechanism's own inverse kinematics), the
     outlines from the mechanism's ``serial_clearance``, ``type2_function`` and LCI
-    on a :data:`GRID` x :data:`GRID` raster (contour lines).
+    on a :data:`GRID` x :data:`GRID` raster (contour lines). With a collision option
+    (:func:`mechopt.requirements.collisions.drawn`) the bodies at every slider position
+    as capsules (their axes and widths; the page draws the outlines), the keep-out zone
+    and the worst poses (where front.csv's clearance and keep-out margin lie).
 optimisation run (``mechopt optimize`` / ``sweep``: ``front.csv``, ``history.csv``)
     The front (two drop-down lists), the hypervolume per generation (else the best
     value of each objective per generation) and the weighting sweep when
