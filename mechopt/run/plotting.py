@@ -203,8 +203,9 @@ def draw_collisions(ax, ctx, pose, unit: str = "L") -> list:
     ``pose = (x, y)`` [unit]; its ``--keep-out`` zone hatched (a half-plane across the
     view); and its worst poses in
     outline (:data:`WORST_STYLES`): where the clearance between bodies that share no
-    joint is smallest over the task (the two bodies of that pair drawn heavier) and,
-    with a zone, where a body comes closest to it, each with its value in the legend.
+    joint is smallest over the task (the two bodies of that pair drawn heavier, the
+    platform there marked x) and, with a zone, where a body comes closest to it, each
+    with its value in the legend.
 
     Parameters
     ----------
@@ -271,7 +272,6 @@ def draw_collisions(ax, ctx, pose, unit: str = "L") -> list:
             ax.plot(cx, cy, color=colour, ls=ls, lw=1.8 if b.name in which else 0.8, zorder=4)
         ax.plot([w["x"]], [w["y"]], "x", color=colour, ms=7, zorder=4)
         names = " - ".join(w["which"]) if isinstance(w["which"], tuple) else w["which"]
-        handles.append(Line2D([], [], color=colour, ls=ls, lw=1.8,
-                              label=f"{text}: {w['value']:.5g} {unit} ({names}) at "
-                                    f"({w['x']:.4g}, {w['y']:.4g})"))
+        handles.append(Line2D([], [], color=colour, ls=ls, lw=1.8, marker="x",
+                              label=f"{text}: {w['value']:.5g} {unit} ({names})"))
     return handles

@@ -884,7 +884,10 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
                 Line2D([], [], color="0.4", lw=0.8, ls="--", label="reachable boundary")]
     if "joint_ranges_deg" in rec:
         handles.append(Line2D([], [], color="tab:purple", lw=1.5, label="crank ranges"))
-    ax.legend(handles=handles + bodies, loc="lower right", fontsize=7)
+    if bodies:  # a longer legend: beside the axes
+        ax.legend(handles=handles + bodies, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7)
+    else:
+        ax.legend(handles=handles, loc="lower right", fontsize=7)
     ax.set_aspect("equal")
     ax.set_xlabel(f"x [{unit}]")
     ax.set_ylabel(f"y [{unit}]")
