@@ -317,3 +317,34 @@ def test_explorer_draws_the_capsules_in_a_browser(browser, laser_run, artifacts,
     _no_console_error(browser)
     shot = artifacts / "explore-collisions.png"
     assert browser.find_element("id", "mech").screenshot(str(shot))
+
+
+def test_a_half_plane_zone_spans_the_view_without_moving_it(five_bar_run):
+    """``--keep-out below:Y``: a hatched band from Y down past the view; the axes' limits
+    are those of the drawing without it."""
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Rectangle
+
+    from mechopt.analysis.design_eval import DesignEvaluator
+    from mechopt.requirements import Requirements
+    from mechopt.run.plotting import draw_collisions
+
+    chosen = json.loads((five_bar_run / "design.json").read_text())
+    ev = DesignEvaluator("five-bar", FIVE_TASK, Requirements(keep_out="below:-40"), ("size",), mode="+-")
+    ctx = ev.context({**chosen["variables"], **chosen["task_placement"]}, Sampling.fine())
+    limits = []
+    for draw in (False, True):
+        ax = Figure().add_subplot()
+        ax.plot([-300, 300], [-100, 400])
+        handles = draw_collisions(ax, ctx, (0.0, 250.0), "mm") if draw else []
+        ax.autoscale_view()
+        limits.append((ax.get_xlim(), ax.get_ylim()))
+    band = [a for a in ax.patches if isinstance(a, Rectangle) and a.get_hatch()]
+    (y0, y1) = limits[1][1]
+    assert len(band) == 1 and band[0].get_y() == -40
+    assert band[0].get_y() + band[0].get_height() < y0 - 5 * (y1 - y0)  # far below the view
+    assert "keep-out zone: below:-40" in [h.get_label() for h in handles]
+    # the housings (60 mm discs about y = 0) are the lowest bodies: 10 mm above the zone
+    w = rc.worst_pose(ctx, "keep_out")
+    assert w["which"] in ("housing1", "housing2") and w["value"] == pytest.approx(10.0, abs=1e-9)
+    assert limits[0][1][0] <= limits[1][1][0] and limits[1][1][0] > -1e3  # the view not stretched by the band
