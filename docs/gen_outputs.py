@@ -741,7 +741,11 @@ def _design() -> str:
            "succeeds: `front.csv`, `design.json`, `run.json`, `history.csv` (as for `optimize`), "
            "`front.png` and `design.png` (the chosen mechanism at the task's centre with the task, its "
            "good-conditioning workspace, the type-II locus, the reachable boundary and the crank "
-           "ranges). Lengths are in `--unit` (`unit` below).\n",
+           "ranges; with a collision option (`--min-clearance`, `--link-width`, `--carriage-length`, "
+           "`--min-joint-angle`, `--keep-out`, `--min-base`, `--motor-diameter` or the `clearance` "
+           "objective) also its bodies as capsules with their widths, the keep-out zone hatched and "
+           "the worst-clearance pose dashed, its clearance in the legend). Lengths are in `--unit` "
+           "(`unit` below).\n",
            "`mechopt design any` (every mechanism, or `--mechanisms`) writes `front.csv` (the merged front: "
            "a `mechanism` column first, then the columns below of each row's mechanism, empty where that "
            "mechanism has none), `fronts.csv` (every mechanism's certified front, same columns), "
@@ -954,7 +958,8 @@ def _reproduce() -> str:
            "it in the browser. Plotly and the data are embedded (gzip, base64) and inflated by the "
            "browser: the page works offline. A design run (`front.csv`, `run.json`, `design.json`): the "
            "front on any two columns, parallel coordinates, the mechanism of any front design over its "
-           "placed task (reachable boundary, type-II locus, the GCW when `--min-lci` was asked) with "
+           "placed task (reachable boundary, type-II locus, the GCW when `--min-lci` was asked; with a "
+           "collision option its capsules, keep-out zone and worst poses as in design.png) with "
            "its row, and a slider moving the platform along the task (72 boundary points at uniform "
            "arc length, or at most 200 task points). An optimisation run (`front.csv`, `history.csv`, "
            "`sweep.csv`): the front, the hypervolume per generation, the sweep. An atlas (`atlas.csv`): "

@@ -189,6 +189,28 @@ class Zone:
             raise ValueError("--keep-out task needs a task region (rect, circle or polygon), got a point task")
         return cls("polygon", vertices=np.asarray(task.vertices, float), spares_tool=True, label="task")
 
+    def outline(self, box, n: int = 128):
+        """The zone's outline for drawing, closed: a polygon's vertices, a disc's circle of
+        ``n`` points, a half-plane's part of ``box = (x0, x1, y0, y1)`` [L] (the view; an
+        empty outline when the zone misses it).
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(x, y)`` [L], the first point repeated at the end.
+        """
+        if self.kind == "polygon":
+            v = np.asarray(self.vertices, float)
+            return np.r_[v[:, 0], v[:1, 0]], np.r_[v[:, 1], v[:1, 1]]
+        if self.kind == "disc":
+            t = np.linspace(0.0, 2.0 * math.pi, int(n) + 1)
+            return self.center[0] + self.radius * np.cos(t), self.center[1] + self.radius * np.sin(t)
+        x0, x1, y0, y1 = (float(b) for b in box)
+        lo, hi = (max(self.level, y0), y1) if self.kind == "above" else (y0, min(self.level, y1))
+        if lo >= hi:
+            return np.zeros(0), np.zeros(0)
+        return np.array([x0, x1, x1, x0, x0]), np.array([lo, lo, hi, hi, lo])
+
     def margin(self, x0, y0, x1, y1):
         """``min over the segment of phi`` [L]: the signed distance of the segments
         ``(x0, y0) -> (x1, y1)`` to the zone, positive outside (module docstring)."""

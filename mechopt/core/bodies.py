@@ -34,13 +34,14 @@ are stated in millimetres and converted to the task's unit.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from mechopt.core import validation as _v
 
-__all__ = ["Body", "Shapes", "KINDS", "GROUND", "TOOL_KINDS", "MM_DEFAULTS"]
+__all__ = ["Body", "Shapes", "KINDS", "GROUND", "TOOL_KINDS", "MM_DEFAULTS", "capsule_outline"]
 
 #: the kinds of body
 KINDS = ("housing", "guide", "carriage", "proximal", "distal", "platform")
@@ -143,3 +144,35 @@ class Body:
         shape = np.broadcast_shapes(*(p.shape for p in pts), *(() if shape is None else (shape,)))
         x0, y0, x1, y1 = (p if p.shape == shape else np.broadcast_to(p, shape) for p in pts)
         return cls(name, kind, tuple(joints), tuple(ends), x0, y0, x1, y1, shapes.width(name, kind))
+
+
+def capsule_outline(x0, y0, x1, y1, width, n: int = 16):
+    """The outline of the capsule of the segment ``(x0, y0) -> (x1, y1)`` [L] and diameter
+    ``width`` [L], for drawing: two half circles of ``n + 1`` points each about the ends,
+    joined by the two straight sides (a circle of ``2 n`` points for a zero-length
+    segment), closed. The points lie on the capsule's boundary (the polygon is
+    inscribed in it).
+
+    Parameters
+    ----------
+    x0, y0, x1, y1 : float
+        The segment's ends [L].
+    width : float
+        The diameter [L], >= 0.
+    n : int
+        Points per half circle less one, >= 2.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(x, y)`` [L], the first point repeated at the end.
+    """
+    r = 0.5 * _v.nonnegative_length("width", width)
+    if int(n) < 2:
+        raise ValueError(f"n must be at least 2, got {n!r}")
+    a = math.atan2(y1 - y0, x1 - x0) if (x1, y1) != (x0, y0) else 0.0
+    t = np.linspace(0.0, math.pi, int(n) + 1)
+    # the far end's half circle from the side at a - 90 deg to a + 90 deg, then the near end's
+    tx = np.r_[x1 + r * np.cos(a - 0.5 * math.pi + t), x0 + r * np.cos(a + 0.5 * math.pi + t)]
+    ty = np.r_[y1 + r * np.sin(a - 0.5 * math.pi + t), y0 + r * np.sin(a + 0.5 * math.pi + t)]
+    return np.r_[tx, tx[:1]], np.r_[ty, ty[:1]]

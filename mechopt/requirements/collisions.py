@@ -41,7 +41,8 @@ from mechopt.core.bodies import Shapes
 from mechopt.requirements.base import Objective, Option, Requirement
 
 __all__ = ["Clearance", "JointAngle", "KeepOut", "Base", "ClearanceObjective", "shapes_of", "collisions",
-           "clearance_min", "joint_angle_min", "keep_out_min", "MEMBERS"]
+           "clearance_min", "joint_angle_min", "keep_out_min", "zone_of", "drawn", "worst_pose", "DRAWN_BY",
+           "MEMBERS"]
 
 #: a design whose sampled margin is below ``-SCREEN * D`` is not refined (far from feasible)
 SCREEN = 0.05
@@ -101,7 +102,9 @@ def _at_samples(ctx, key, rows):
 
 def _minimum(ctx, key, rows, rates):
     """``(refined minimum, certified bound)`` over the task of the smallest row of
-    ``rows(x, y)`` (shape ``(m, N)``), ``rates(x, y, radius)`` their Lipschitz bounds."""
+    ``rows(x, y)`` (shape ``(m, N)``), ``rates(x, y, radius)`` their Lipschitz bounds;
+    the pose ``(x, y)`` where the minimum was found is kept as ``key + "_where"``
+    (:func:`worst_pose`)."""
     def compute():
         s = ctx.samples
         x, y = s["allx"], s["ally"]
@@ -109,13 +112,20 @@ def _minimum(ctx, key, rows, rates):
         if vals.size == 0:
             return math.inf, math.inf
         bound = _c.lipschitz_bound(vals, rates(x, y, _radius(ctx)), _radius(ctx))
+        seen = []  # every (x, y, value) evaluated: the minimum is one of them
 
         def low(px, py):
-            return bad_to(np.min(rows(px, py), axis=0), -ctx.diameter)[None]
+            v = bad_to(np.min(rows(px, py), axis=0), -ctx.diameter)
+            seen.append((px, py, v))
+            return v[None]
 
-        sampled = bad_to(np.min(vals, axis=0), -ctx.diameter)[None]  # low(x, y)
-        m = ctx.region_mins(low, sampled)[0] if ctx.is_region else float(sampled.min())
-        return float(m), min(bound, float(m))
+        sampled = bad_to(np.min(vals, axis=0), -ctx.diameter)  # low(x, y)
+        seen.append((x, y, sampled))
+        m = float(ctx.region_mins(low, sampled[None])[0] if ctx.is_region else sampled.min())
+        px, py, v = (np.concatenate(c) for c in zip(*seen))
+        k = int(np.flatnonzero(v == m)[0])
+        ctx.memo(key + "_where", lambda: (float(px[k]), float(py[k])))
+        return m, min(bound, m)
     return ctx.memo(key, compute)
 
 
@@ -131,12 +141,86 @@ def joint_angle_min(ctx):
     return _minimum(ctx, "joint_angle_min", col.joint_angles, col.angle_lipschitz)
 
 
+def zone_of(ctx):
+    """The ``--keep-out`` zone (:class:`~mechopt.analysis.collisions.Zone`) of the
+    evaluation, ``task`` resolved to its placed task; None without ``--keep-out``."""
+    if ctx.req.keep_out is None:
+        return None
+    return ctx.memo("keep_out_zone", lambda: _c.parse_zone(ctx.req.keep_out, ctx.task))
+
+
 def keep_out_min(ctx):
     """``(minimum, certified bound)`` [L] of the bodies' margins to the ``--keep-out`` zone."""
-    col = collisions(ctx)
-    zone = ctx.memo("keep_out_zone", lambda: _c.parse_zone(ctx.req.keep_out, ctx.task))
+    col, zone = collisions(ctx), zone_of(ctx)
     return _minimum(ctx, "keep_out_min", lambda x, y: col.keep_out(x, y, zone),
                     lambda x, y, r: col.keep_out_lipschitz(x, y, zone, r))
+
+
+#: the options after which a design's figures draw its bodies (:func:`drawn`)
+DRAWN_BY = ("min_clearance", "link_width", "carriage_length", "min_joint_angle", "keep_out", "min_base",
+            "motor_diameter")
+
+
+def drawn(req, objectives=()) -> bool:
+    """True when the figures of a design (design.png, the explorer) draw its bodies as
+    capsules, its keep-out zone and its worst-clearance pose: a collision requirement
+    or a body size (:data:`DRAWN_BY`) is given, or ``clearance`` is an objective.
+
+    Parameters
+    ----------
+    req : mechopt.requirements.Requirements or dict
+        The requirements (a dict: run.json's ``design.requirements``).
+    objectives : sequence of str
+        The objectives.
+
+    Returns
+    -------
+    bool
+    """
+    get = req.get if isinstance(req, dict) else (lambda k: getattr(req, k, None))
+    return "clearance" in tuple(objectives or ()) or any(get(k) is not None for k in DRAWN_BY)
+
+
+def worst_pose(ctx, what="clearance"):
+    """Where the minimum over the task that a design's ``clearance`` (``what="clearance"``,
+    :func:`clearance_min`) or ``keep_out`` (``"keep_out"``, :func:`keep_out_min`) margin
+    rests on was found: the pose evaluated at that value.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's evaluation (its sampling: :meth:`Sampling.fine
+        <mechopt.analysis.sampling.Sampling.fine>` for the values of front.csv and design.json).
+    what : str
+        ``"clearance"`` or ``"keep_out"``.
+
+    Returns
+    -------
+    dict or None
+        ``value`` [L] (the refined minimum, as reported), ``x, y`` [L, task frame] (the
+        platform there) and ``which`` (the two bodies of the closest pair, or the body
+        closest to the zone); None when nothing is measured (no pair, no zone) or the
+        pose is out of reach.
+    """
+    col = collisions(ctx)
+    if what == "clearance":
+        value, _ = clearance_min(ctx)
+        rows, names = col.pair_clearances, col.pair_names()
+    elif what == "keep_out":
+        zone = zone_of(ctx)
+        if zone is None:
+            return None
+        value, _ = keep_out_min(ctx)
+        rows, names = (lambda x, y: col.keep_out(x, y, zone)), col.zone_bodies(zone)
+    else:
+        raise ValueError(f"what must be 'clearance' or 'keep_out', got {what!r}")
+    if not names or not math.isfinite(value):
+        return None
+    x, y = ctx.memo(f"{what}_min_where", lambda: None)
+    at = rows(np.array([x]), np.array([y]))[:, 0]
+    if not np.any(np.isfinite(at)):
+        return None
+    return dict(value=value, x=x, y=y, which=names[int(np.nanargmin(at))])
 
 
 class Clearance(Requirement):

@@ -1,4 +1,5 @@
-"""Figures of runs: Pareto fronts, convergence curves, weighting sweeps.
+"""Figures of runs: Pareto fronts, convergence curves, weighting sweeps; a design's
+bodies, keep-out zone and worst-clearance pose (:func:`draw_collisions`).
 
 Figures are built with :class:`matplotlib.figure.Figure` (no global pyplot
 state, no display needed) and saved through :func:`mechopt.run.io.save_figure`.
@@ -13,7 +14,7 @@ from matplotlib.figure import Figure
 import numpy as np
 
 __all__ = ["plot_front", "plot_sweep", "plot_population", "INDEX_LABELS", "workspace_axes",
-           "labelled_colorbar"]
+           "labelled_colorbar", "draw_collisions", "BODY_COLOURS", "WORST_STYLES"]
 
 #: axis and colour-bar labels of the local indices (Liu 2006 eq. 2, 10, 13, 18), with
 #: units for a mechanism in length unit L and angular joints: speeds per unit joint
@@ -187,3 +188,90 @@ def plot_population(problem, population, title=None) -> Figure:
         ax.set_ylim(problem.xl[1], problem.xu[1])
     ax.set_title(title or f"{problem.name}: population, no feasible design", fontsize=9)
     return fig
+
+
+#: fill colours of the bodies by kind (:data:`mechopt.core.bodies.KINDS`)
+BODY_COLOURS = {"housing": "#7f7f7f", "guide": "#b0b0b0", "carriage": "#c49a6c", "proximal": "#4a7fb5",
+                "distal": "#4a7fb5", "platform": "#4a7fb5"}
+#: the styles of the worst poses of :func:`draw_collisions`: outline colour, line style
+WORST_STYLES = {"clearance": ("tab:orange", "--"), "keep_out": ("tab:pink", ":")}
+
+
+def draw_collisions(ax, ctx, pose, unit: str = "L") -> list:
+    """Draw on ``ax`` the bodies of a design as capsules with their widths (housings as
+    discs, carriages and guides as their capsules), filled, at the platform pose
+    ``pose = (x, y)`` [unit]; its ``--keep-out`` zone hatched (a half-plane across the
+    view); and its worst poses in
+    outline (:data:`WORST_STYLES`): where the clearance between bodies that share no
+    joint is smallest over the task (the two bodies of that pair drawn heavier, the
+    platform there marked x) and, with a zone, where a body comes closest to it, each
+    with its value in the legend.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes.
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's evaluation (:mod:`mechopt.requirements.collisions`: the bodies, the
+        zone, :func:`~mechopt.requirements.collisions.worst_pose`).
+    pose : tuple of float
+        The platform ``(x, y)`` of the filled drawing [unit, task frame].
+    unit : str
+        The length unit of the legend.
+
+    Returns
+    -------
+    list
+        The legend handles (bodies, zone, worst poses).
+    """
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    from mechopt.core.bodies import capsule_outline
+    from mechopt.requirements import collisions as _rc
+
+    col = _rc.collisions(ctx)
+    handles = []
+    zone = _rc.zone_of(ctx)
+    if zone is not None:
+        style = dict(facecolor=(0.84, 0.15, 0.16, 0.08), edgecolor="tab:red", hatch="///", lw=1.0)
+        if zone.kind in ("above", "below"):  # the half-plane across the whole view (no autoscale)
+            from matplotlib.patches import Rectangle
+
+            reach = 10.0 * (np.abs(ax.dataLim.get_points()).max() + abs(zone.level) + ctx.diameter)
+            far = zone.level + (reach if zone.kind == "above" else -reach)  # beyond any view of the design
+            ax.add_artist(Rectangle((0.0, zone.level), 1.0, far - zone.level, transform=ax.get_yaxis_transform(),
+                                    zorder=1, **style))
+        else:
+            ax.fill(*zone.outline(None), zorder=1, **style)
+        handles.append(Patch(**style, label=f"keep-out zone: {zone.label}"))
+
+    def bodies_at(x, y):
+        return [b for b in col.bodies(np.array([float(x)]), np.array([float(y)]))
+                if np.isfinite([b.x0[0], b.y0[0], b.x1[0], b.y1[0]]).all()]
+
+    kinds = []
+    for b in bodies_at(*pose):
+        cx, cy = capsule_outline(b.x0[0], b.y0[0], b.x1[0], b.y1[0], b.width)
+        ax.fill(cx, cy, facecolor=BODY_COLOURS[b.kind], alpha=0.35, edgecolor=BODY_COLOURS[b.kind], lw=0.8,
+                zorder=2)
+        kinds.append(b.kind)
+    for kind in dict.fromkeys(kinds):
+        label = {"proximal": "links (capsules)", "distal": "links (capsules)", "platform": "links (capsules)",
+                 "housing": "motor housings", "guide": "guides", "carriage": "carriages"}[kind]
+        if label not in [h.get_label() for h in handles]:
+            handles.append(Patch(facecolor=BODY_COLOURS[kind], alpha=0.35, edgecolor=BODY_COLOURS[kind], label=label))
+    for what, text in (("clearance", "worst clearance"), ("keep_out", "closest to the keep-out zone")):
+        w = _rc.worst_pose(ctx, what)
+        if w is None:
+            continue
+        colour, ls = WORST_STYLES[what]
+        which = set(w["which"]) if isinstance(w["which"], tuple) else {w["which"]}
+        for b in bodies_at(w["x"], w["y"]):
+            cx, cy = capsule_outline(b.x0[0], b.y0[0], b.x1[0], b.y1[0], b.width)
+            ax.plot(cx, cy, color=colour, ls=ls, lw=1.8 if b.name in which else 0.8, zorder=4)
+        ax.plot([w["x"]], [w["y"]], "x", color=colour, ms=7, zorder=4)
+        names = " - ".join(w["which"]) if isinstance(w["which"], tuple) else w["which"]
+        handles.append(Line2D([], [], color=colour, ls=ls, lw=1.8, marker="x",
+                              label=f"{text}: {w['value']:.5g} {unit} ({names})"))
+    return handles

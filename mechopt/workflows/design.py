@@ -25,6 +25,7 @@ from mechopt.analysis.design_eval import (DesignEvaluator, NoFeasibleDesign, cer
                                           parse_pick, pick_index, sensitivity)
 from mechopt.analysis.sampling import Sampling
 from mechopt.requirements import Requirements
+from mechopt.requirements import collisions as _collisions
 from mechopt.requirements.singular import Singular
 
 __all__ = ["design", "DesignResult", "plot_design", "json_record", "DESIGN_OUTPUTS"]
@@ -832,7 +833,9 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
     """The chosen mechanism at the task's reference pose, the task (titled with where it
     was placed), the good-conditioning workspace ``{LCI >= gamma}`` of its
     singularity-free piece (only with a ``min_lci`` requirement), the type-II locus, the
-    reachable boundary and the joint ranges, with units."""
+    reachable boundary and the joint ranges, with units; with a collision option
+    (:func:`mechopt.requirements.collisions.drawn`) its bodies as capsules, the keep-out
+    zone and the worst-clearance pose (:func:`mechopt.run.plotting.draw_collisions`)."""
     from matplotlib.figure import Figure
 
     mech = rec["mechanism"]
@@ -878,6 +881,11 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
     px, py = float(rx), float(ry)
     pmx, pmy = spec.to_mech(mech, np.float64(px), np.float64(py))
     chain, bases = spec.sketch(mech, px, py, pmx, pmy)  # the legs, drawn by the mechanism's spec
+    bodies = []  # with a collision option: the capsules, the keep-out zone, the worst-clearance pose
+    if _collisions.drawn(ev.req, ev.objectives):
+        from mechopt.run.plotting import draw_collisions
+
+        bodies = draw_collisions(ax, ev.context(v, Sampling.fine()), (px, py), unit)
     for (sx0, sy0), (sx1, sy1) in spec.actuator_paths(mech, rec.get("strokes", [])):
         ax.plot([sx0, sx1], [sy0, sy1], color="k", lw=4, alpha=0.3, solid_capstyle="butt")
     for c in chain:
@@ -910,7 +918,10 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
                 Line2D([], [], color="0.4", lw=0.8, ls="--", label="reachable boundary")]
     if "joint_ranges_deg" in rec:
         handles.append(Line2D([], [], color="tab:purple", lw=1.5, label="crank ranges"))
-    ax.legend(handles=handles, loc="lower right", fontsize=7)
+    if bodies:  # a longer legend: beside the axes
+        ax.legend(handles=handles + bodies, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7)
+    else:
+        ax.legend(handles=handles, loc="lower right", fontsize=7)
     ax.set_aspect("equal")
     ax.set_xlabel(f"x [{unit}]")
     ax.set_ylabel(f"y [{unit}]")

@@ -19,7 +19,10 @@ design run (``mechopt design``: ``front.csv``, ``run.json``, ``design.json``)
     is built: the joint positions of every front design at every slider position
     from the design spec's ``sketch`` (the mechanism's own inverse kinematics), the
     outlines from the mechanism's ``serial_clearance``, ``type2_function`` and LCI
-    on a :data:`GRID` x :data:`GRID` raster (contour lines).
+    on a :data:`GRID` x :data:`GRID` raster (contour lines). With a collision option
+    (:func:`mechopt.requirements.collisions.drawn`) the bodies at every slider position
+    as capsules (their axes and widths; the page draws the outlines), the keep-out zone
+    and the worst poses (where front.csv's clearance and keep-out margin lie).
 optimisation run (``mechopt optimize`` / ``sweep``: ``front.csv``, ``history.csv``)
     The front (two drop-down lists), the hypervolume per generation (else the best
     value of each objective per generation) and the weighting sweep when
@@ -212,19 +215,82 @@ def _pose(spec, mech, px, py):
     return {"chains": [[_list(p) for p in c] for c in chains], "bases": [_list(b) for b in bases]}
 
 
-def _outlines(spec, mech, task, gamma, n=GRID) -> dict:
-    """Reachable boundary, type-II locus and (``gamma`` given) the good-conditioning
-    workspace ``{LCI >= gamma}`` of the singularity-free piece holding the task, as
-    contour lines over a raster covering the task, the base and the reachable set."""
-    from mechopt.core import indices as _ix
-
+def _view_box(spec, mech, task):
+    """``(x0, x1, y0, y1)`` [L, task frame]: the task, the base and the reachable set's
+    bounding box, 5 % of the larger side about them."""
     x0, x1, y0, y1 = task.bbox
     bb = mech.bounding_box()
     off = spec.to_mech(mech, 0.0, 0.0)[0]
     X0, X1 = min(bb[0] - off, x0), max(bb[1] - off, x1)
     Y0, Y1 = min(bb[2], y0, 0.0), max(bb[3], y1)
     pad = 0.05 * max(X1 - X0, Y1 - Y0)
-    gx, gy = np.meshgrid(np.linspace(X0 - pad, X1 + pad, n), np.linspace(Y0 - pad, Y1 + pad, n))
+    return X0 - pad, X1 + pad, Y0 - pad, Y1 + pad
+
+
+def _segments(bodies, k=0) -> list:
+    """``[[x0, y0, x1, y1], ...]`` of the capsule axes of ``bodies`` at their pose ``k``,
+    rounded; None for a body out of reach."""
+    out = []
+    for b in bodies:
+        e = np.array([b.x0[k], b.y0[k], b.x1[k], b.y1[k]], float)
+        out.append(_list(e) if np.isfinite(e).all() else None)
+    return out
+
+
+def _bodies(ev, spec, mech, row, placed, xs, ys) -> dict:
+    """The capsules of one front design (:mod:`mechopt.requirements.collisions`): names,
+    kinds, widths, the axes of every body at every slider position ``(xs, ys)``
+    (``segments[k][j]``: body ``j`` at position ``k``), the keep-out zone's outline
+    (placed with the task) and the worst poses (the reported minima's poses, from the
+    evaluation with the certification's sampling: the values of front.csv)."""
+    from mechopt.analysis.sampling import Sampling
+    from mechopt.requirements import collisions as _rc
+
+    v = {**{n: float(row[n]) for n in spec.lengths}, "mode": str(row["mode"]),
+         "task_x": float(row["task_x"]), "task_y": float(row["task_y"])}
+    ctx = ev.context(v, Sampling.fine())
+    col = _rc.collisions(ctx)
+    ref = col.bodies(np.zeros(1), np.zeros(1))
+    at = col.bodies(np.asarray(xs, float), np.asarray(ys, float))
+    segments = [_segments(at, k) for k in range(len(xs))]
+    out = {"names": [b.name for b in ref], "kinds": [b.kind for b in ref],
+           "widths": _list([b.width for b in ref]), "segments": segments, "worst": []}
+    zone = _rc.zone_of(ctx)
+    if zone is not None:
+        zx, zy = zone.outline(_view_box(spec, mech, placed))
+        out["zone"] = {"label": zone.label, "x": _list(zx), "y": _list(zy)}
+    for what in ("clearance", "keep_out"):
+        w = _rc.worst_pose(ctx, what)
+        if w is not None:
+            which = list(w["which"]) if isinstance(w["which"], tuple) else [w["which"]]
+            out["worst"].append({"what": what, "value": w["value"], "x": w["x"], "y": w["y"], "which": which,
+                                 "segments": _segments(col.bodies(np.array([w["x"]]), np.array([w["y"]])))})
+    return out
+
+
+def _evaluator(settings, task, spec):
+    """A :class:`~mechopt.analysis.design_eval.DesignEvaluator` of a design run's task
+    with its collision requirements only (run.json's ``design``): what :func:`_bodies`
+    evaluates."""
+    from mechopt.analysis.design_eval import DesignEvaluator
+    from mechopt.requirements import Requirements
+    from mechopt.requirements import collisions as _rc
+
+    req = settings.get("requirements") or {}
+    kept = {k: req[k] for k in (*_rc.DRAWN_BY, "singularity_margin") if req.get(k) is not None}
+    return DesignEvaluator(spec.name, task, Requirements(**kept), ("size",), mode=settings.get("mode"),
+                           place=settings.get("place", "fixed"), max_length=settings.get("max_length"),
+                           min_length=settings.get("min_length"), shape=settings.get("shape"))
+
+
+def _outlines(spec, mech, task, gamma, n=GRID) -> dict:
+    """Reachable boundary, type-II locus and (``gamma`` given) the good-conditioning
+    workspace ``{LCI >= gamma}`` of the singularity-free piece holding the task, as
+    contour lines over a raster covering the task, the base and the reachable set."""
+    from mechopt.core import indices as _ix
+
+    X0, X1, Y0, Y1 = _view_box(spec, mech, task)
+    gx, gy = np.meshgrid(np.linspace(X0, X1, n), np.linspace(Y0, Y1, n))
     mx, my = spec.to_mech(mech, gx, gy)
     with np.errstate(invalid="ignore", divide="ignore"):
         f = np.asarray(mech.type2_function(mx, my), float)
@@ -257,6 +323,9 @@ def _design_data(d: Path) -> dict:
     gamma = req.get("min_lci")
     px, py, tpath = _path_positions(task)
     rx, ry = task.reference
+    from mechopt.requirements import collisions as _rc
+
+    ev = _evaluator(settings, task, spec) if _rc.drawn(req, objectives) else None
     designs = []
     for _, r in front.iterrows():
         row = r.to_dict()
@@ -272,6 +341,8 @@ def _design_data(d: Path) -> dict:
             "actuators": [[_list(a), _list(b)] for a, b in spec.actuator_paths(mech, strokes)],
             "outlines": _outlines(spec, mech, placed, gamma),
         })
+        if ev is not None:  # a collision option: the capsules, the keep-out zone, the worst poses
+            designs[-1]["bodies"] = _bodies(ev, spec, mech, row, placed, px + dx, py + dy)
     from mechopt.requirements import objectives as _objectives
 
     declared = _objectives()
@@ -686,6 +757,57 @@ _JS = r"""
 
   function rowOf(D, i) { var r = {}; D.columns.forEach(function (c) { r[c] = D.front[c][i]; }); return r; }
 
+  // ---------------------------------------------------------------- capsules
+  // the outline of the capsule of segment s = [x0, y0, x1, y1] and diameter w (closed;
+  // mechopt.core.bodies.capsule_outline): half circles about the far end, then the near end
+  function capsule(s, w, n) {
+    var r = w / 2, a = (s[0] === s[2] && s[1] === s[3]) ? 0 : Math.atan2(s[3] - s[1], s[2] - s[0]), x = [], y = [];
+    [[s[2], s[3], a - Math.PI / 2], [s[0], s[1], a + Math.PI / 2]].forEach(function (e) {
+      for (var k = 0; k <= n; k++) { var b = e[2] + Math.PI * k / n; x.push(e[0] + r * Math.cos(b)); y.push(e[1] + r * Math.sin(b)); }
+    });
+    x.push(x[0]); y.push(y[0]);
+    return [x, y];
+  }
+  var BODY_GROUPS = {housing: ["motor housings", "#7f7f7f"], guide: ["guides", "#b0b0b0"], carriage: ["carriages", "#c49a6c"],
+                     proximal: ["links (capsules)", "#4a7fb5"], distal: ["links (capsules)", "#4a7fb5"], platform: ["links (capsules)", "#4a7fb5"]};
+  var WORST = {clearance: ["worst clearance", "#ff7f0e", "dash"], keep_out: ["closest to the keep-out zone", "#e377c2", "dot"]};
+  // the keep-out zone, the bodies at slider position k (filled, by group) and the worst poses (outlines)
+  function bodyTraces(B, k, unit) {
+    var t = [];
+    if (B.zone) {
+      t.push({x: B.zone.x, y: B.zone.y, mode: "lines", fill: "toself", name: "keep-out zone: " + B.zone.label,
+              line: {color: "#d62728", width: 1}, fillcolor: "rgba(214,39,40,0.08)",
+              fillpattern: {shape: "/", fgcolor: "#d62728", size: 8, solidity: 0.15}, hoverinfo: "skip"});
+    }
+    var groups = {}, order = [];
+    (B.segments[k] || []).forEach(function (s, j) {
+      if (!s) { return; }
+      var grp = BODY_GROUPS[B.kinds[j]], c = capsule(s, B.widths[j], 12);
+      if (!groups[grp[0]]) { groups[grp[0]] = {x: [], y: [], colour: grp[1]}; order.push(grp[0]); }
+      groups[grp[0]].x = groups[grp[0]].x.concat(c[0], [null]); groups[grp[0]].y = groups[grp[0]].y.concat(c[1], [null]);
+    });
+    order.forEach(function (name) {
+      var G = groups[name];
+      t.push({x: G.x, y: G.y, mode: "lines", fill: "toself", name: name, opacity: 0.45, fillcolor: G.colour,
+              line: {color: G.colour, width: 1}, hoverinfo: "skip"});
+    });
+    B.worst.forEach(function (w) {
+      var st = WORST[w.what], all = [[], []], pair = [[], []];
+      w.segments.forEach(function (s, j) {
+        if (!s) { return; }
+        var c = capsule(s, B.widths[j], 12), to = w.which.indexOf(B.names[j]) >= 0 ? pair : all;
+        to[0] = to[0].concat(c[0], [null]); to[1] = to[1].concat(c[1], [null]);
+      });
+      var name = st[0] + ": " + fmt(w.value) + " " + unit + " (" + w.which.join(" - ") + ")";
+      t.push({x: all[0].concat(pair[0]), y: all[1].concat(pair[1]), mode: "lines", name: name, legendgroup: w.what,
+              line: {color: st[1], width: 1, dash: st[2]}, hoverinfo: "skip"});
+      t.push({x: pair[0].concat([w.x]), y: pair[1].concat([w.y]), mode: "lines+markers", name: name + " (pair, platform)",
+              showlegend: false, legendgroup: w.what, line: {color: st[1], width: 2.5, dash: st[2]},
+              marker: {symbol: "x", size: pair[0].map(function () { return 0; }).concat([9]), color: st[1]},
+              hovertemplate: "platform (%{x}, %{y})<extra>" + st[0] + "</extra>"});
+    });
+    return t;
+  }
   // ---------------------------------------------------------------- design page
   function designPage(D) {
     var slider = el("pose");
@@ -711,6 +833,7 @@ _JS = r"""
       if (ax.length) {
         t.push({x: ax, y: ay, mode: "lines", name: "actuator travel", line: {color: "rgba(0,0,0,0.3)", width: 6}, hoverinfo: "skip"});
       }
+      if (g.bodies) { bodyTraces(g.bodies, cur.k, u).forEach(function (tr) { t.push(tr); }); }
       var lx = [], ly = [], bx = [], by = [];
       if (pose) {
         pose.chains.forEach(function (c) { c.forEach(function (p) { lx.push(p[0]); ly.push(p[1]); }); lx.push(null); ly.push(null); });
