@@ -233,7 +233,6 @@ PENDING = {
     "mechopt.core.kinematic_tree",
     "mechopt.core.motion",
     "mechopt.core.numerics",
-    "mechopt.core.protocol",
     "mechopt.core.published",
     "mechopt.core.quadrature",
     "mechopt.core.reading",
