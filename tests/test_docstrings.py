@@ -219,7 +219,6 @@ PENDING = {
     "mechopt.analysis.design_eval",
     "mechopt.analysis.dynamics",
     "mechopt.analysis.sampling",
-    "mechopt.analysis.workspace",
     "mechopt.core.bodies",
     "mechopt.core.conditions",
     "mechopt.core.design_spec",
