@@ -505,7 +505,20 @@ class FiveBarDesignSpec(DesignSpec):
         return FiveBar(v["r1"], v["r2"], v["r3"], mode)
 
     def size(self, mech, derived):
-        """``2 (r1 + r2 + r3)``: two cranks, two distal links, the base distance."""
+        """``2 (r1 + r2 + r3)``: two cranks, two distal links, the base distance.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        derived : dict
+            The evaluation's derived values (strokes, ...).
+
+        Returns
+        -------
+        float
+            The size [L].
+        """
         return 2.0 * (mech.r1 + mech.r2 + mech.r3)
 
     def joints(self, mech, x, y):
@@ -519,7 +532,24 @@ class FiveBarDesignSpec(DesignSpec):
         """The motor housings (discs about ``A1 = (-r3, 0)``, ``A2 = (r3, 0)``), the cranks
         ``A_i B_i`` (``"crank1"``, ``"crank2"``) and the distal links ``B_i P``
         (``"distal1"``, ``"distal2"``) at task points ``(x, y)``: joints ``A1, A2, B1, B2,
-        P`` (the asymmetric five-bar's too, each leg with its own lengths)."""
+        P`` (the asymmetric five-bar's too, each leg with its own lengths).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        shapes : mechopt.core.bodies.Shapes, optional
+            Widths and sizes of the bodies [L].
+
+        Returns
+        -------
+        list of mechopt.core.bodies.Body
+            The bodies as capsules.
+        """
         shapes = shapes or Shapes.default()
         x, y = as_points(x, y)
         b1x, b1y, b2x, b2y, _ = legs_elbows(x, y, mech.r3, mech._legs())
@@ -541,7 +571,24 @@ class FiveBarDesignSpec(DesignSpec):
         is 1-Lipschitz in ``P``: over the disc of ``radius`` about a task point ``d`` lies in
         ``[d0 - radius, d0 + radius]``, where ``|cos gamma_i|`` is largest at an end; the
         bound is infinite when that interval leaves the leg's annulus
-        ``[|a - c|, a + c]`` (a type-I singularity within reach)."""
+        ``[|a - c|, a + c]`` (a type-I singularity within reach).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        radius : float
+            Radius [L] of the platform positions about each task point.
+
+        Returns
+        -------
+        dict
+            ``{name: ndarray}``, speed bounds [L/L].
+        """
         x, y = as_points(x, y)
         out = {"A1": np.zeros_like(x), "A2": np.zeros_like(x), "P": np.ones_like(x)}
         for i, (ax, (a, c, _)) in enumerate(zip((-mech.r3, mech.r3), mech._legs()), start=1):
