@@ -318,12 +318,40 @@ class TwoSliderMechanism(PlanarMechanism):
     # --- protocol -----------------------------------------------------------------
     def reachable(self, x, y):
         """Both links reach their guides and both sliders lie within their strokes
-        (to the tolerance of the module docstring)."""
+        (to the tolerance of the module docstring).
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray of bool
+            True where every leg assembles (and, with stroke limits, within them).
+        """
         x, y = as_points(x, y)
         return self.legs(x, y)[4]
 
     def ik(self, x, y):
-        """Slider positions ``(q1, q2, reachable)`` [L]; NaN where unreachable."""
+        """Slider positions ``(q1, q2, reachable)`` [L]; NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        q1, q2 : ndarray
+            Actuator coordinates [rad or L]; NaN where unreachable.
+        reachable : ndarray of bool
+            Where the point is reached in the working mode.
+        """
         x, y = as_points(x, y)
         q1, q2, _, _, ok = self.legs(x, y)
         return np.where(ok, q1, np.nan), np.where(ok, q2, np.nan), ok
@@ -337,7 +365,24 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def closure(self, x, y):
         """``A p_dot = B q_dot`` with ``a_i = (x - g_i, c_i)`` and ``B_ii = c_i = L cos(theta_i)``;
-        rows of ``J = B^-1 A`` are ``(tan theta_i, 1)``. NaN where unreachable."""
+        rows of ``J = B^-1 A`` are ``(tan theta_i, 1)``. NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        A : ndarray
+            Shape ``(..., 2, 2)``.
+        b : ndarray
+            Shape ``(..., 2)``: the diagonal of ``B``.
+        reachable : ndarray of bool
+            Where every leg assembles.
+        """
         x, y = as_points(x, y)
         q1, q2, c1, c2, ok = self.legs(x, y)
         if self._closure_via_positions:
@@ -394,6 +439,22 @@ class TwoSliderMechanism(PlanarMechanism):
         ``A = M +/- sqrt(L^2 / |m|^2 - 1/4) (-m_y, m_x)``, ``M`` the sliders' midpoint;
         ``"up"`` takes ``+``. ``valid`` is False (NaN) where ``|m| > 2 L`` or, with
         ``limits=True``, a slider is outside its stroke.
+
+        Parameters
+        ----------
+        q1 : array_like
+            First actuator coordinate [rad or L].
+        q2 : array_like
+            Second actuator coordinate [rad or L]; broadcast with ``q1``.
+        assembly : str
+            One of :attr:`assembly_modes`.
+
+        Returns
+        -------
+        x, y : ndarray
+            The platform point [L]; NaN where invalid.
+        valid : ndarray of bool
+            Where the legs assemble in that mode.
         """
         _v.choice("assembly", assembly, ASSEMBLY_MODES)
         q1, q2 = as_points(q1, q2)
@@ -414,7 +475,20 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def assembly_of(self, x, y):
         """``"up"`` where the link joint is on the left of the vector from the left
-        slider to the right one (or on it), else ``"down"``."""
+        slider to the right one (or on it), else ``"down"``.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray of str
+            The assembly mode of each pose.
+        """
         x, y = as_points(x, y)
         q1, q2 = self.slider_positions(x, y)
         ql, qr = self._left_right(q1, q2)
@@ -429,6 +503,11 @@ class TwoSliderMechanism(PlanarMechanism):
         and the guides) both offsets ``c_i(x)`` are monotone and neither bound switches
         legs, so the bounds of the set reach their extremes at candidates. An empty
         workspace gives a box of zero height at the top of the strokes.
+
+        Returns
+        -------
+        tuple of float
+            ``(xmin, xmax, ymin, ymax)`` [L].
         """
         xmin, xmax = self.x_range
         pts = set(self._breakpoints().tolist()) | {g for g in self._g if xmin <= g <= xmax}
@@ -731,7 +810,24 @@ class GuideDesignSpec(DesignSpec):
         ``carriage_length`` along the guide) and the links ``S_i A`` (``"link1"``,
         ``"link2"``) to the link joint ``A = (x, y - e)``, named ``"P"`` (the tool) when
         the reported point is the link joint itself (``e = 0``: the Biglide, the designed
-        gantries), else ``"A"``."""
+        gantries), else ``"A"``.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        shapes : mechopt.core.bodies.Shapes, optional
+            Widths and sizes of the bodies [L].
+
+        Returns
+        -------
+        list of mechopt.core.bodies.Body
+            The bodies as capsules.
+        """
         shapes = shapes or Shapes.default()
         mx, my = as_points(*self.to_mech(mech, *as_points(x, y)))
         q1, q2, _, _, _ = mech.legs(mx, my)
@@ -755,7 +851,24 @@ class GuideDesignSpec(DesignSpec):
         L / sqrt(L^2 - (x - g_i)^2)`` (the closure of the module docstring), largest over
         the disc of ``radius`` where ``|x - g_i|`` is, at ``|x - g_i| + radius`` (infinite
         from ``L``: a type-I singularity within reach); the link joint ``A`` or ``P``
-        translates with the platform: 1."""
+        translates with the platform: 1.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        radius : float
+            Radius [L] of the platform positions about each task point.
+
+        Returns
+        -------
+        dict
+            ``{name: ndarray}``, speed bounds [L/L].
+        """
         mx, my = as_points(*self.to_mech(mech, *as_points(x, y)))
         L = mech._L
         out = {"P": np.ones_like(mx), "A": np.ones_like(mx)}
@@ -781,6 +894,19 @@ class GuideDesignSpec(DesignSpec):
         return chains, [(g[0], float(q1)), (g[1], float(q2))]
 
     def actuator_paths(self, mech, strokes):
-        """Each guide over its slider's stroke."""
+        """Each guide over its slider's stroke.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        strokes : tuple
+            As in :meth:`build`.
+
+        Returns
+        -------
+        list
+            Segments ``((x0, y0), (x1, y1))`` [L].
+        """
         return [((g, lo), (g, hi)) for g, (lo, hi) in zip(mech.guides, strokes)]
 
