@@ -249,7 +249,6 @@ PENDING = {
     "mechopt.mechanisms.five_bar.lci",
     "mechopt.mechanisms.five_bar.mic",
     "mechopt.mechanisms.gantry_dynamics",
-    "mechopt.mechanisms.sliders",
     "mechopt.problems",
     "mechopt.problems.design",
     "mechopt.problems.le2013",
