@@ -231,7 +231,6 @@ PENDING = {
     "mechopt.core.reading",
     "mechopt.core.rigid_bodies",
     "mechopt.core.units",
-    "mechopt.core.validation",
     "mechopt.data",
     "mechopt.experiments.le2013",
     "mechopt.experiments.liu2006",
