@@ -240,11 +240,8 @@ PENDING = {
     "mechopt.requirements.force",
     "mechopt.requirements.speed",
     "mechopt.run.io",
-    "mechopt.run.parallel",
     "mechopt.workflows.accuracy",
-    "mechopt.workflows.design_any",
     "mechopt.workflows.explore",
-    "mechopt.workflows.motion",
     "mechopt.workflows.report",
     "mechopt.workflows.reproduce",
 }
