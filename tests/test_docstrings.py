@@ -229,7 +229,6 @@ PENDING = {
     "mechopt.export.inertia",
     "mechopt.export.simulators",
     "mechopt.export.source",
-    "mechopt.mechanisms.gantry_dynamics",
     "mechopt.requirements.accuracy",
     "mechopt.requirements.collisions",
     "mechopt.requirements.force",
