@@ -215,10 +215,7 @@ MODULES = _modules()
 PENDING = {
     "mechopt.analysis.accuracy",
     "mechopt.analysis.collisions",
-    "mechopt.analysis.design_context",
     "mechopt.analysis.design_eval",
-    "mechopt.analysis.dynamics",
-    "mechopt.analysis.sampling",
     "mechopt.experiments.le2013",
     "mechopt.experiments.liu2006",
     "mechopt.experiments.liu2006_figures",
