@@ -229,8 +229,6 @@ PENDING = {
     "mechopt.run.io",
     "mechopt.workflows.accuracy",
     "mechopt.workflows.explore",
-    "mechopt.workflows.report",
-    "mechopt.workflows.reproduce",
 }
 
 
