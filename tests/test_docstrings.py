@@ -216,14 +216,7 @@ PENDING = {
     "mechopt.analysis.accuracy",
     "mechopt.analysis.collisions",
     "mechopt.analysis.design_eval",
-    "mechopt.export.inertia",
-    "mechopt.requirements.accuracy",
-    "mechopt.requirements.collisions",
-    "mechopt.requirements.force",
-    "mechopt.requirements.speed",
     "mechopt.run.io",
-    "mechopt.workflows.accuracy",
-    "mechopt.workflows.explore",
 }
 
 

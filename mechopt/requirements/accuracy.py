@@ -32,7 +32,18 @@ G_UNPROVEN = 1e3
 
 
 def error_um(ctx) -> float:
-    """The largest proven position error [um] over the task samples (inf without a proof)."""
+    """The largest proven position error [um] over the task samples (inf without a proof).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The error [um].
+    """
     def compute():
         x, y = ctx.to_mech(ctx.samples["allx"], ctx.samples["ally"])
         model = _acc.ErrorModel.from_dict(ctx.req.error_model)
