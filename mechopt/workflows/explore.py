@@ -389,8 +389,8 @@ def page_data(folder, where=()) -> dict:
     Raises
     ------
     ValueError
-        One line, for a folder that holds no run, unreadable run files or an invalid
-        ``where``.
+        One line, for a folder that holds no run, unreadable run files or ``where`` on a
+        run that is not an atlas.
     """
     d = Path(folder)
     kind = page_kind(d)
@@ -475,8 +475,8 @@ def write_page(folder, out=None, where=()) -> Path:
     Raises
     ------
     ValueError
-        One line, for a folder that holds no run, unreadable run files or an invalid
-        ``where``.
+        One line, for a folder that holds no run, unreadable run files, ``where`` on a
+        run that is not an atlas, or ``out`` naming a folder.
     """
     out = Path(folder) / "explore.html" if out is None else Path(out)
     if not str(out).strip() or out.is_dir():
