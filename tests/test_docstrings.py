@@ -211,7 +211,7 @@ MODULES = _modules()
 #: modules whose public callables do not all have their sections yet (issue 34: the
 #: docstrings are written module by module; each entry is an expected failure that
 #: fails, strict, once its module passes: remove it then). Not a skip: the gaps are
-#: listed by name, and ``python -m pytest tests/test_docstrings.py -rx`` shows them.
+#: listed by name; ``python tests/test_docstrings.py [MODULE ...]`` prints each gap.
 PENDING = {
     "mechopt.analysis.accuracy",
     "mechopt.analysis.collisions",
@@ -340,3 +340,11 @@ def _problems_of_fake(name):
         return _problems_of(name)
     finally:
         sys.modules.pop(name, None)
+
+
+if __name__ == "__main__":  # ``python tests/test_docstrings.py MODULE...``: list the gaps
+    import sys
+
+    for module_name in sys.argv[1:] or sorted(PENDING):
+        for line in _problems_of(module_name):
+            print(line)
