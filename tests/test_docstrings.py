@@ -213,7 +213,6 @@ MODULES = _modules()
 #: fails, strict, once its module passes: remove it then). Not a skip: the gaps are
 #: listed by name; ``python tests/test_docstrings.py [MODULE ...]`` prints each gap.
 PENDING = {
-    "mechopt.analysis.collisions",
     "mechopt.analysis.design_eval",
     "mechopt.run.io",
 }
