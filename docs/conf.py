@@ -6,7 +6,13 @@ runs with warnings as errors (``sphinx-build -W --keep-going``).
 """
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import mechopt  # the installed package (make docs installs it with the docs extra)
+
+# the local extension docs/_ext/mechopt_tables.py (tables rendered from the registry)
+sys.path.insert(0, str(Path(__file__).resolve().parent / "_ext"))
 
 project = "mechopt"
 author = "mechopt contributors"
@@ -15,8 +21,10 @@ version = release = mechopt.__version__
 
 extensions = [
     "sphinx.ext.autodoc",
+    "sphinx.ext.intersphinx",
     "numpydoc",
     "myst_parser",
+    "mechopt_tables",
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
@@ -35,15 +43,47 @@ autodoc_inherit_docstrings = True
 autoclass_content = "class"
 
 # --- intersphinx -------------------------------------------------------------
-# Not enabled: links to numpy, pandas, pymoo and matplotlib need their objects.inv
-# inventories, which intersphinx downloads; the docs build runs offline in CI, and no
-# inventory of them is shipped in docs/ yet (add them as docs/_inv/<name>.inv and set
-# intersphinx_mapping = {"numpy": ("https://numpy.org/doc/stable/", "_inv/numpy.inv"), ...}).
+# Links to Python, numpy, pandas, matplotlib and pymoo. The build runs offline (CI has
+# no network): it reads the small inventories shipped in docs/_inv/ (written by
+# docs/gen_inventories.py: the names the docstrings use, each to its page). With
+# MECHOPT_DOCS_ONLINE=1 it downloads each project's full objects.inv instead.
+import os  # noqa: E402
+
+_HERE = Path(__file__).resolve().parent
+_ONLINE = os.environ.get("MECHOPT_DOCS_ONLINE") == "1"
+_PROJECTS = {
+    "python": "https://docs.python.org/3/",
+    "numpy": "https://numpy.org/doc/stable/",
+    "pandas": "https://pandas.pydata.org/docs/",
+    "matplotlib": "https://matplotlib.org/stable/",
+    "pymoo": "https://pymoo.org/",
+}
+intersphinx_mapping = {
+    name: (url, None if _ONLINE else str(_HERE / "_inv" / f"{name}.inv"))
+    for name, url in _PROJECTS.items()
+}
+intersphinx_timeout = 10
 
 # --- numpydoc ----------------------------------------------------------------
 numpydoc_show_class_members = False   # autodoc's :members: lists them once
 numpydoc_class_members_toctree = False
-numpydoc_xref_param_type = False
+# the types of Parameters/Returns entries link to Python, numpy, pandas, pymoo
+# (intersphinx above); a word without an alias stays plain text
+numpydoc_xref_param_type = True
+numpydoc_xref_ignore = "all"
+numpydoc_xref_aliases = {
+    "ndarray": "numpy.ndarray",
+    "Generator": "numpy.random.Generator",
+    "DataFrame": "pandas.DataFrame",
+    "Series": "pandas.Series",
+    "Path": "pathlib.Path",
+    "Figure": "matplotlib.figure.Figure",
+    "Axes": "matplotlib.axes.Axes",
+    "Problem": "pymoo.core.problem.Problem",
+    "Result": "pymoo.core.result.Result",
+    "Callback": "pymoo.core.callback.Callback",
+    "Algorithm": "pymoo.core.algorithm.Algorithm",
+}
 numpydoc_validation_checks: set[str] = set()
 
 # --- myst --------------------------------------------------------------------

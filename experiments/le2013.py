@@ -94,7 +94,26 @@ _SY = np.concatenate([-np.ones_like(_U), np.ones_like(_U), _U, _U, _G[1].ravel()
 
 def square_feasible(fb, center_y, a, gamma=GAMMA, theta_limits=THETA_LIMITS) -> bool:
     """All constraints on the square of side ``a`` centred at ``(0, center_y)``, checked on
-    257 points per edge (corners included) and a 33 x 33 interior grid."""
+    257 points per edge (corners included) and a 33 x 33 interior grid.
+
+    Parameters
+    ----------
+    fb : FiveBar
+        The design.
+    center_y : float
+        The square's centre ordinate [L].
+    a : float
+        Its side [L].
+    gamma : float
+        The LCI level.
+    theta_limits : tuple of float
+        Crank limits [rad].
+
+    Returns
+    -------
+    bool
+        Whether every constraint holds at every sample.
+    """
     h = 0.5 * a
     return bool(np.all(_feasible(fb, h * _SX, center_y + h * _SY, gamma, theta_limits)))
 
@@ -107,6 +126,22 @@ def flowchart_a_max(rho: float, step: float = 0.1, gamma: float = GAMMA,
 
     Returns the side it stops at (0 when none is feasible). ``a`` is computed as
     ``sqrt(2) r_MIC - k step`` (no accumulated rounding of repeated subtraction).
+
+    Parameters
+    ----------
+    rho : float
+        ``l2 / l1`` (``l0`` tied by eq. 24).
+    step : float
+        The decrement of the side.
+    gamma : float
+        The LCI level of eq. (25).
+    theta_limits : tuple of float
+        Crank limits [rad].
+
+    Returns
+    -------
+    float
+        The side (non-dimensional, ``l1 = 1``).
     """
     fb, m = _design(float(rho))
     a0 = SQRT2 * m.radius
@@ -126,7 +161,28 @@ def golden_section_max(f, lo: float, hi: float, tol: float = GOLDEN_TOL, atol: f
     moving right: a staircase needs ``atol`` > 0 because its levels carry the ~1e-11
     noise of r_MIC). Returns ``(x, f(x), evaluations)`` with ``x`` the better of the
     final bracket's two interior points (a step function's midpoint may lie past its
-    edge; ties: the right one, as in the search)."""
+    edge; ties: the right one, as in the search).
+
+    Parameters
+    ----------
+    f : callable
+        The function.
+    lo, hi : float
+        The bracket.
+    tol : float
+        Bracket tolerance.
+    atol : float
+        Values within it count as ties.
+
+    Returns
+    -------
+    x : float
+        The better interior point.
+    fx : float
+        ``f(x)``.
+    evaluations : int
+        Evaluations of ``f``.
+    """
     g = _golden(f, float(lo), float(hi), tol=tol, right_within=atol)
     return (g.x1, g.f1, g.evaluations) if g.f1 > g.f2 + atol else (g.x2, g.f2, g.evaluations)
 
@@ -141,7 +197,26 @@ def _bisect_edge(inside, a, b, tol=1e-7):
 
 def plateau(f, x0, lo, hi, probe=0.02):
     """The interval around ``x0`` on which the step function ``f`` keeps the level
-    ``f(x0)``, within ``[lo, hi]``: ``(level, start, end)``."""
+    ``f(x0)``, within ``[lo, hi]``: ``(level, start, end)``.
+
+    Parameters
+    ----------
+    f : callable
+        A step function.
+    x0 : float
+        A point of the plateau.
+    lo, hi : float
+        The search interval.
+    probe : float
+        The first probe's distance.
+
+    Returns
+    -------
+    level : float
+        ``f(x0)``.
+    start, end : float
+        The plateau's ends.
+    """
     level = f(x0)
     inside = lambda x: f(x) >= level - LEVEL_ATOL  # noqa: E731
     ends = []
@@ -186,7 +261,27 @@ def _contact_lci(fb, center_y, a, where, refine=True):
 def contact_side(rho: float, where: str, gamma: float = GAMMA) -> float:
     """Side of the square (centred at the MIC centre) at which the LCI at ``where``
     (:data:`CONTACTS`) first reaches ``gamma`` as the side grows from 0 (a root in the
-    side; inf if it does not within the square inscribed in the MIC)."""
+    side; inf if it does not within the square inscribed in the MIC).
+
+    Parameters
+    ----------
+    rho : float
+        ``l2 / l1``.
+    where : str
+        A key of :data:`CONTACTS`.
+    gamma : float
+        The LCI level.
+
+    Returns
+    -------
+    float
+        The side (inf when not reached).
+
+    Raises
+    ------
+    ValueError
+        For an unknown contact.
+    """
     if where not in CONTACTS:
         raise ValueError(f"where must be one of {CONTACTS}, got {where!r}")
     fb, m = _design(float(rho))
@@ -205,25 +300,73 @@ def contact_side(rho: float, where: str, gamma: float = GAMMA) -> float:
 
 
 def corner_side(rho: float, top: bool, gamma: float = GAMMA) -> float:
-    """:func:`contact_side` at the top (or bottom) corners."""
+    """:func:`contact_side` at the top (or bottom) corners.
+
+    Parameters
+    ----------
+    rho : float
+        ``l2 / l1``.
+    top : bool
+        Top corners (else bottom).
+    gamma : float
+        The LCI level.
+
+    Returns
+    -------
+    float
+        The side.
+    """
     return contact_side(rho, "top corners" if top else "bottom corners", gamma)
 
 
 def corner_switch_rho(lo: float = 1.9, hi: float = 2.0) -> float:
     """rho on the tied curve where the binding LCI contact moves from the square's top
-    corners to its bottom corners: root of ``corner_side(top) - corner_side(bottom)``."""
+    corners to its bottom corners: root of ``corner_side(top) - corner_side(bottom)``.
+
+    Parameters
+    ----------
+    lo, hi : float
+        The bracket of rho.
+
+    Returns
+    -------
+    float
+        rho.
+    """
     return float(brentq(lambda r: corner_side(r, True) - corner_side(r, False), lo, hi, xtol=1e-10))
 
 
 def lower_switch_rho(lo: float = 1.45, hi: float = 1.6) -> float:
     """rho where the binding LCI contact moves from the square's bottom edge to its top
-    corners (the peak of a_MAX(rho))."""
+    corners (the peak of a_MAX(rho)).
+
+    Parameters
+    ----------
+    lo, hi : float
+        The bracket of rho.
+
+    Returns
+    -------
+    float
+        rho.
+    """
     return float(brentq(lambda r: contact_side(r, "bottom edge") - corner_side(r, True), lo, hi,
                         xtol=1e-10))
 
 
 def joint_limits_hold(rho: float) -> bool:
-    """(25)-(26) alone on the whole square inscribed in the MIC (side sqrt(2) r_MIC)."""
+    """(25)-(26) alone on the whole square inscribed in the MIC (side sqrt(2) r_MIC).
+
+    Parameters
+    ----------
+    rho : float
+        ``l2 / l1``.
+
+    Returns
+    -------
+    bool
+        Whether they hold.
+    """
     fb, m = _design(float(rho))
     return square_feasible(fb, m.center_y, SQRT2 * m.radius, gamma=-np.inf)
 
@@ -447,7 +590,22 @@ PARTS = ("sweep",)
 
 def run_part(out: Path, quick: bool, name: str) -> None:
     """One piece of :data:`PARTS` into ``out``: ``"sweep"``, the (square side, gamma)
-    front and its weighting sweep (``sweep/``)."""
+    front and its weighting sweep (``sweep/``).
+
+    Parameters
+    ----------
+    out : Path
+        The paper's results folder.
+    quick : bool
+        Smaller runs (every row and file is still produced).
+    name : str
+        A key of :data:`PARTS`.
+
+    Raises
+    ------
+    ValueError
+        For an unknown part.
+    """
     if name != "sweep":
         raise ValueError(f"le2013 has no part {name!r} (parts: {', '.join(PARTS)})")
     sweep(get("le2013-gamma"), parse_weights("0,0.5,1" if quick else "0:1:0.1"), seed=1,
@@ -456,7 +614,22 @@ def run_part(out: Path, quick: bool, name: str) -> None:
 
 def run(out: Path, quick: bool = False, parts: bool = True) -> pd.DataFrame:
     """Every row of Le 2013 and its files into ``out``; ``parts=False`` leaves out the
-    files of :data:`PARTS` (written by :func:`run_part`)."""
+    files of :data:`PARTS` (written by :func:`run_part`).
+
+    Parameters
+    ----------
+    out : Path
+        The paper's results folder.
+    quick : bool
+        Smaller runs (every row and file is still produced).
+    parts : bool
+        Also write the files of :data:`PARTS`.
+
+    Returns
+    -------
+    DataFrame
+        The table (table.csv's columns).
+    """
     out = Path(out)
     rho_rec, a_rec = _rec("rho_star"), _rec("a_max")
     paper_rho, paper_a = rho_rec.value, a_rec.value

@@ -123,6 +123,16 @@ def reproduce_section3(quadratures=("polar", "area")) -> pd.DataFrame:
 
     Disk means are computed with each named quadrature (one row each); raster
     quantities (areas, GCW means, ranges) do not depend on it.
+
+    Parameters
+    ----------
+    quadratures : tuple of str
+        ``"polar"`` and/or ``"area"``.
+
+    Returns
+    -------
+    DataFrame
+        The table (table.csv's columns).
     """
     recs = [r for r in records(PAPER) if not r.quantity.startswith(DIMENSIONAL)]
     rows = []
@@ -184,7 +194,13 @@ def _dimension_notes() -> dict:
 
 
 def dimension_rows() -> pd.DataFrame:
-    """Rows for sec. 3.2.3's dimensional example (D, R_i, scaled GSI, the square)."""
+    """Rows for sec. 3.2.3's dimensional example (D, R_i, scaled GSI, the square).
+
+    Returns
+    -------
+    DataFrame
+        The table (table.csv's columns).
+    """
     vals = _dimension_values(_design(GCW_DESIGN))
     notes = _dimension_notes()
     rows = []
@@ -197,7 +213,13 @@ def dimension_rows() -> pd.DataFrame:
 
 def paper_d_rows() -> pd.DataFrame:
     """Sec. 3.2.3 steps 2-3 under the paper's own rounded D = 6.6 (its R_i and scaled GSI
-    are computed with it), beside our unrounded D: kind ``reading``."""
+    are computed with it), beside our unrounded D: kind ``reading``.
+
+    Returns
+    -------
+    DataFrame
+        The table (table.csv's columns).
+    """
     d_rec = _rec(GCW_DESIGN, "gcw_D")
     d, dp = d_rec.value, d_rec.printed
     fb = _design(GCW_DESIGN)
@@ -237,7 +259,18 @@ def _rim_singular_points(fb: FiveBar, n: int = 20000) -> int:
 
 def claim_rows(out) -> pd.DataFrame:
     """Sec. 3's checkable sentences, each ``holds``/``fails`` with the evidence (uses the
-    atlas and regions written by :func:`liu2006_figures.draw_all` into ``out``)."""
+    atlas and regions written by :func:`liu2006_figures.draw_all` into ``out``).
+
+    Parameters
+    ----------
+    out : Path
+        The folder with the atlas and regions.
+
+    Returns
+    -------
+    DataFrame
+        The table (table.csv's columns).
+    """
     from pathlib import Path
 
     out = Path(out)
@@ -317,7 +350,22 @@ def run_part(out, quick: bool, name: str) -> None:
     """One piece of :data:`PARTS` into ``out``: ``"figures"``, the figures of single
     designs (Figs. 8-28, :func:`liu2006_figures.design_figures`); ``"runs"``, the
     (r_MIC, GCI) front inside Omega_W-GCI, the many-objective front and the weighting
-    sweep (``front/``, ``front_many/``, ``sweep/``)."""
+    sweep (``front/``, ``front_many/``, ``sweep/``).
+
+    Parameters
+    ----------
+    out : Path
+        The paper's results folder.
+    quick : bool
+        Smaller runs (every row and file is still produced).
+    name : str
+        A key of :data:`PARTS`.
+
+    Raises
+    ------
+    ValueError
+        For an unknown part.
+    """
     from pathlib import Path
 
     from mechopt.experiments import liu2006_figures as figs
@@ -340,7 +388,22 @@ def run_part(out, quick: bool, name: str) -> None:
 
 def run(out, quick: bool = False, parts: bool = True) -> pd.DataFrame:
     """All of Liu 2006 section 3 (both quadratures) and its figures into ``out``;
-    ``parts=False`` leaves out the files of :data:`PARTS` (written by :func:`run_part`)."""
+    ``parts=False`` leaves out the files of :data:`PARTS` (written by :func:`run_part`).
+
+    Parameters
+    ----------
+    out : Path
+        The paper's results folder.
+    quick : bool
+        Smaller runs (every row and file is still produced).
+    parts : bool
+        Also write the files of :data:`PARTS`.
+
+    Returns
+    -------
+    DataFrame
+        The table (table.csv's columns).
+    """
     from pathlib import Path
 
     from mechopt.experiments import liu2006_figures as figs

@@ -68,6 +68,19 @@ def _disk_region(fb, m, radius, step):
 
 
 def fig_examples(step):
+    """The usable workspace of each example design of Liu 2006 sec. 3.1 (Figs. 8-14),
+    with its MIC.
+
+    Parameters
+    ----------
+    step : float
+        Raster step (non-dimensional, Liu's lengths sum to 3).
+
+    Returns
+    -------
+    Figure
+        The figure (not saved).
+    """
     fig = Figure(figsize=(16, 3.6), layout="constrained")
     for k, (name, key) in enumerate(EXAMPLES.items()):
         r = _lengths(key)
@@ -85,6 +98,22 @@ def fig_examples(step):
 
 
 def fig_lci_usable(fb, step, title):
+    """The LCI over the usable workspace of one design.
+
+    Parameters
+    ----------
+    fb : FiveBar
+        The design.
+    step : float
+        Raster step (non-dimensional, Liu's lengths sum to 3).
+    title : str
+        The figure's title.
+
+    Returns
+    -------
+    Figure
+        The figure (not saved).
+    """
     u = usable_region(fb, step=step)
     X, Y = u.grid.points()
     fig = Figure(figsize=(6, 4), layout="constrained")
@@ -93,6 +122,18 @@ def fig_lci_usable(fb, step, title):
 
 
 def fig_usable_pair(step):
+    """The LCI over the usable workspaces of the two designs of :data:`USABLE_PAIR`.
+
+    Parameters
+    ----------
+    step : float
+        Raster step (non-dimensional, Liu's lengths sum to 3).
+
+    Returns
+    -------
+    Figure
+        The figure (not saved).
+    """
     fig = Figure(figsize=(11, 4), layout="constrained")
     for k, r in enumerate(_lengths(key) for key in USABLE_PAIR):
         fb = FiveBar(*r)
@@ -104,6 +145,25 @@ def fig_usable_pair(step):
 
 
 def fig_extremes_on_miw(fb, names, step, title):
+    """Local indices over the MIC of one design, one panel each (clipped at the 98th
+    percentile).
+
+    Parameters
+    ----------
+    fb : FiveBar
+        The design.
+    names : sequence of str
+        Local index names (:data:`mechopt.core.indices.LOCAL_INDEX_NAMES`).
+    step : float
+        Raster step (non-dimensional, Liu's lengths sum to 3).
+    title : str
+        The figure's title.
+
+    Returns
+    -------
+    Figure
+        The figure (not saved).
+    """
     from mechopt.core import indices as ix
 
     m = mic(fb)
@@ -120,6 +180,21 @@ def fig_extremes_on_miw(fb, names, step, title):
 
 
 def fig_gcw_and_square(fb, step):
+    """The GCW (LCI >= 0.5) of one design and the largest square in it (Liu 2006 sec.
+    3.2.3, Fig. 25).
+
+    Parameters
+    ----------
+    fb : FiveBar
+        The design.
+    step : float
+        Raster step (non-dimensional, Liu's lengths sum to 3).
+
+    Returns
+    -------
+    Figure
+        The figure (not saved).
+    """
     from mechopt.core import indices as ix
 
     u = usable_region(fb, step=step)
@@ -153,7 +228,15 @@ REGION_FIGURES = {"w-gci": ("fig07a", None), "w-gci-prime": ("fig07b", EXAMPLES[
 
 def atlas_figures(out, quick: bool = False):
     """Figs. 2-6 (atlases, polar means as in the paper) and the optimum regions of
-    Figs. 7-15 with their example designs; writes ``atlas.csv`` and ``regions.csv``."""
+    Figs. 7-15 with their example designs; writes ``atlas.csv`` and ``regions.csv``.
+
+    Parameters
+    ----------
+    out : Path
+        The folder.
+    quick : bool
+        Smaller runs (every row and file is still produced).
+    """
     import pandas as pd
 
     from mechopt.run.atlas import compute_atlas, draw_atlas, plane_coordinates
@@ -189,14 +272,30 @@ def atlas_figures(out, quick: bool = False):
 
 
 def draw_all(out, quick: bool = False):
-    """Write every figure of this module into ``out``."""
+    """Write every figure of this module into ``out``.
+
+    Parameters
+    ----------
+    out : Path
+        The folder.
+    quick : bool
+        Smaller runs (every row and file is still produced).
+    """
     out = Path(out)
     atlas_figures(out, quick)
     design_figures(out, quick)
 
 
 def design_figures(out, quick: bool = False):
-    """Figs. 8-28 of single designs (everything but the atlases and their regions)."""
+    """Figs. 8-28 of single designs (everything but the atlases and their regions).
+
+    Parameters
+    ----------
+    out : Path
+        The folder.
+    quick : bool
+        Smaller runs (every row and file is still produced).
+    """
     out = Path(out)
     step = 0.02 if quick else 0.005
     r_opt, r20, r21 = _lengths(GCW_EXAMPLE), _lengths(FIG20), _lengths(FIGS21_22)

@@ -202,7 +202,22 @@ def paper_ga(pop: int, crossover_rate: float, mutation_rate: float):
     ``crossover_rate`` (its one variable always crossed), polynomial mutation of an
     individual with probability ``mutation_rate`` (its one variable always mutated), no
     duplicate elimination (GAOT keeps copies; eliminating them would discard every
-    unchanged offspring and so raise the effective rates)."""
+    unchanged offspring and so raise the effective rates).
+
+    Parameters
+    ----------
+    pop : int
+        Population size.
+    crossover_rate : float
+        Table 1's crossover rate.
+    mutation_rate : float
+        Table 1's mutation rate.
+
+    Returns
+    -------
+    Algorithm
+        The pymoo GA.
+    """
     from pymoo.algorithms.soo.nonconvex.ga import GA
     from pymoo.operators.crossover.sbx import SBX
     from pymoo.operators.mutation.pm import PM
@@ -290,6 +305,24 @@ def area_search(target: float, half: float, box=None, near: float = AREA_NEAR):
     rounds_to_printed (``|area - target| <= half``), sorted by ``abs_diff``; ``info``
     the number of designs searched and the expected number of chance hits (designs
     within +-50 mm^2 of the target times the hit window ``2 half`` over 100 mm^2).
+
+    Parameters
+    ----------
+    target : float
+        The printed area [mm^2].
+    half : float
+        Half-width of the search box around the printed inputs [mm].
+    box : tuple, optional
+        ``(b, q_min, q_max)`` ranges [mm].
+    near : float
+        Distance to ``target`` that counts [mm^2].
+
+    Returns
+    -------
+    table : DataFrame
+        The designs near the target.
+    info : dict
+        Counts and the best design.
     """
     box = box or AREA_SEARCH
     axes = [np.arange(lo, hi + 1, dtype=float) for lo, hi in (box["b"], box["q_min"], box["q_max"])]
@@ -376,7 +409,18 @@ def _area_rows(bip, inputs, steps, out):
 
 # --- Bipod: readings of T and W --------------------------------------------------------------
 def retracted_pose_tqi(u):
-    """TQI of the Bipod (b = 1) at the retracted pose ``q1 = q2 = u`` (vectorised)."""
+    """TQI of the Bipod (b = 1) at the retracted pose ``q1 = q2 = u`` (vectorised).
+
+    Parameters
+    ----------
+    u : array_like
+        ``q / b``.
+
+    Returns
+    -------
+    ndarray
+        The TQI (dimensionless).
+    """
     m = Bipod(1.0, *_PROBE_STROKES)
     u = np.asarray(u, dtype=float)
     x, y, _ = m.fk(u, u)
@@ -388,7 +432,22 @@ def bipod_t_readings(u, n_gauss: int = 24, n_edge: int = 201) -> dict:
     ``q_max = 1.6 q_min``): area mean (ours, exact), joint-space mean (Gauss-Legendre
     over the stroke box), minimum over the workspace (on the stroke box's boundary:
     ``cos gamma`` has no stationary point inside), TQI at the retracted and at the
-    extended pose."""
+    extended pose.
+
+    Parameters
+    ----------
+    u : array_like
+        ``q1_min / b``.
+    n_gauss : int
+        Gauss-Legendre nodes per side of the stroke box.
+    n_edge : int
+        Samples per edge of the stroke box.
+
+    Returns
+    -------
+    dict
+        ``{reading: ndarray}``.
+    """
     u = np.asarray(u, dtype=float)
     one = np.ones_like(u)
     k = Q_MAX_OVER_Q_MIN
@@ -766,7 +825,25 @@ def _tradeoff_figure(key, curve, paper_opt, ours_opt):
 # --- the experiment --------------------------------------------------------------------------
 def run(out: Path, quick: bool = False) -> pd.DataFrame:
     """Every published number of ``mechopt/data/stan2008.csv`` against ours, the readings
-    beside them and the checked claims; files into ``out``."""
+    beside them and the checked claims; files into ``out``.
+
+    Parameters
+    ----------
+    out : Path
+        The paper's results folder.
+    quick : bool
+        Smaller runs (every row and file is still produced).
+
+    Returns
+    -------
+    DataFrame
+        The table (table.csv's columns).
+
+    Raises
+    ------
+    RuntimeError
+        When the weighting sweep lacks a weight a row needs (a programming error).
+    """
     out = _io.prepare_out_dir(out)
     s = SETTINGS[bool(quick)]
     inputs = _inputs()

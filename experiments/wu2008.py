@@ -522,7 +522,22 @@ PARTS = ("runs",)
 
 def run_part(out: Path, quick: bool, name: str) -> None:
     """One piece of :data:`PARTS` into ``out``: ``"runs"``, the fronts of ``wu2008`` and
-    ``wu2008-dynamic`` and the weighting sweep (``front/``, ``front_dynamic/``, ``sweep/``)."""
+    ``wu2008-dynamic`` and the weighting sweep (``front/``, ``front_dynamic/``, ``sweep/``).
+
+    Parameters
+    ----------
+    out : Path
+        The paper's results folder.
+    quick : bool
+        Smaller runs (every row and file is still produced).
+    name : str
+        A key of :data:`PARTS`.
+
+    Raises
+    ------
+    ValueError
+        For an unknown part.
+    """
     if name != "runs":
         raise ValueError(f"wu2008 has no part {name!r} (parts: {', '.join(PARTS)})")
     _runs(_io.prepare_out_dir(out), quick)
@@ -534,6 +549,25 @@ def run(out: Path, quick: bool = False, parts: bool = True) -> pd.DataFrame:
     ``quick`` shrinks the optimiser runs, the sweep and the figure grids; every row and
     every file is still produced (the rows' values do not depend on it). ``parts=False``
     leaves out the files of :data:`PARTS` (written by :func:`run_part`).
+
+    Parameters
+    ----------
+    out : Path
+        The paper's results folder.
+    quick : bool
+        Smaller runs (every row and file is still produced).
+    parts : bool
+        Also write the files of :data:`PARTS`.
+
+    Returns
+    -------
+    DataFrame
+        The table (table.csv's columns).
+
+    Raises
+    ------
+    RuntimeError
+        When the rows are out of order (a programming error).
     """
     out = _io.prepare_out_dir(out)
     rows = _synthesis_rows()

@@ -33,6 +33,13 @@ _REGISTRY = {
 
 
 def names() -> tuple[str, ...]:
+    """The registered problems' names.
+
+    Returns
+    -------
+    tuple of str
+        In registration order.
+    """
     return tuple(_REGISTRY)
 
 
@@ -44,6 +51,23 @@ def get(name: str, **options):
     :class:`pymoo.core.problem.Problem` (e.g. ``elementwise_runner=
     StarmapParallelization(pool.starmap)``); an option the problem does not take is a
     ValueError.
+
+    Parameters
+    ----------
+    name : str
+        A registered problem (:func:`names`).
+    **options : 
+        The problem's options and pymoo's :data:`PYMOO_KEYWORDS`.
+
+    Returns
+    -------
+    mechopt.run.problem.MechoptProblem
+        A new instance.
+
+    Raises
+    ------
+    ValueError
+        One line, for an unknown name or an option the problem does not take.
     """
     import inspect
 
@@ -64,7 +88,13 @@ def get(name: str, **options):
 
 def available():
     """``[(name, one-line summary)]`` of every registered problem; the summary of a
-    problem whose front is a single design says so, with the reason."""
+    problem whose front is a single design says so, with the reason.
+
+    Returns
+    -------
+    list of tuple
+        ``[(name, summary), ...]``.
+    """
     rows = []
     for n in names():
         p = get(n)

@@ -36,7 +36,37 @@ EXAMPLE = dict(mechanism="five-bar", task="rect:100,60@0,180", min_lci=0.4, max_
 
 class DesignProblem(MechoptProblem):
     """``DesignProblem(mechanism, task, requirements, objectives, mode=None,
-    place="fixed", min_length=None, max_length=None, shape=None, sampling=None)``."""
+    place="fixed", min_length=None, max_length=None, shape=None, sampling=None)``.
+
+    Parameters
+    ----------
+    mechanism : str
+        A designed mechanism.
+    task : Task or str
+        The task (or its CLI syntax).
+    requirements : Requirements, optional
+        What must hold over the task.
+    objectives : sequence of str
+        Objective names.
+    mode : str, optional
+        Working mode or ``"any"``.
+    place : str
+        ``"fixed"``, ``"free-y"`` or ``"free"``.
+    min_length, max_length : float, optional
+        Link length bounds [L].
+    shape : sequence of float, optional
+        Fixed link ratios (the variable is the scale D [L]).
+    sampling : mechopt.analysis.sampling.Sampling, optional
+        The task's sampling during the search.
+    **kwargs : 
+        pymoo's :class:`~pymoo.core.problem.Problem` keywords (``elementwise_runner``,
+        ``callback``).
+
+    Raises
+    ------
+    ValueError
+        One line, for invalid inputs.
+    """
 
     name = "design"
     summary = "task-driven sizing (mechopt design): any mechanism, a task region, requirements over the whole task"

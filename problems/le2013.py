@@ -40,7 +40,20 @@ GAMMA_BOUNDS = (0.05, 0.95)
 
 
 def tied_half_base(rho: float, l1: float = 1.0) -> float:
-    """Le eq. (24): ``l0 = sqrt(2)/2 (l2 - l1)`` with ``l2 = rho l1``."""
+    """Le eq. (24): ``l0 = sqrt(2)/2 (l2 - l1)`` with ``l2 = rho l1``.
+
+    Parameters
+    ----------
+    rho : float
+        The ratio ``l2 / l1``.
+    l1 : float
+        The crank [L].
+
+    Returns
+    -------
+    float
+        ``l0`` [L].
+    """
     return np.sqrt(2.0) / 2.0 * (rho - 1.0) * l1
 
 
@@ -52,6 +65,25 @@ def square_side(l1, l2, l0, gamma=GAMMA, theta_limits=THETA_LIMITS) -> dict:
     square) when a square exists; otherwise how far the design is from having one:
     1 without a MIC, else the larger of ``(gamma - LCI) / gamma`` and the joint-limit
     excess over pi at the MIC centre (> 0). ``a_max = 0`` when no square exists.
+
+    Parameters
+    ----------
+    l1 : float
+        Crank [L].
+    l2 : float
+        Distal link [L].
+    l0 : float
+        Half base [L].
+    gamma : float
+        The LCI level of eq. (25).
+    theta_limits : tuple of float
+        Crank limits ``(lo, hi)`` [rad] of eq. (26).
+
+    Returns
+    -------
+    dict
+        ``a_max`` [L], ``r_mic``, ``mic_center_y`` [L], the LCI range and ``violation``
+        (dimensionless).
     """
     try:
         fb = FiveBar(l1, l2, l0)
@@ -132,7 +164,14 @@ def _evaluate(rows, gamma_col=None, l0_col=None, tied=True):
 
 
 class LeSquare(MechoptProblem):
-    """Le eq. (23)-(26): maximise the square side over ``rho`` with ``l0`` tied by eq. (24)."""
+    """Le eq. (23)-(26): maximise the square side over ``rho`` with ``l0`` tied by eq. (24).
+
+    Parameters
+    ----------
+    **kwargs : 
+        pymoo's :class:`~pymoo.core.problem.Problem` keywords (``elementwise_runner``,
+        ``callback``).
+    """
 
     name = "le2013"
     summary = "Le 2013: max square in the MIC of a 5R, LCI >= 0.5, joint limits, l0 tied (eq. 24); rho in [1.2, 4]"
@@ -177,6 +216,14 @@ class LeSquareGamma(MechoptProblem):
 
     With ``tied=True`` the half base follows eq. (24); with ``tied=False`` it is a
     variable, so the gap between the two fronts is what eq. (24) costs.
+
+    Parameters
+    ----------
+    tied : bool
+        Whether the half base follows eq. (24).
+    **kwargs : 
+        pymoo's :class:`~pymoo.core.problem.Problem` keywords (``elementwise_runner``,
+        ``callback``).
     """
 
     name = "le2013-gamma"
@@ -207,6 +254,14 @@ class LeSquareGamma(MechoptProblem):
 
 
 class LeSquareGammaRelaxed(LeSquareGamma):
+    """As :class:`LeSquareGamma` with the half base ``l0`` free in [0, 2] (``tied=False``).
+
+    Parameters
+    ----------
+    **kwargs
+        pymoo's :class:`~pymoo.core.problem.Problem` keywords.
+    """
+
     name = "le2013-gamma-relaxed"
     summary = "Le 2013 two-objective with l0 free in [0, 2]: the front eq. (24) is measured against"
 

@@ -73,6 +73,16 @@ def designs(X):
     (``r1 + r2 + r3 = 3``, ``r1, r2 > 0``, ``0 <= r3 <= 1.5``) with the bounds
     ``u in [U_MIN, 1 - U_MIN]``, ``r3 in [0, 1.5]`` alone, so that every pymoo
     algorithm (MOEA/D included, which ignores constraints) stays inside it.
+
+    Parameters
+    ----------
+    X : array_like
+        Rows ``(u, r3)``, shape ``(n, 2)``.
+
+    Returns
+    -------
+    r1, r2, r3 : ndarray
+        Non-dimensional lengths (sum 3).
     """
     X = np.atleast_2d(np.asarray(X, float))
     u, r3 = X[:, 0], X[:, 1]
@@ -86,6 +96,19 @@ def liu_indices(r1, r2, r3, quadrature: str = "polar") -> dict:
     Vectorised over the designs through :func:`mechopt.mechanisms.five_bar.batch.evaluate_designs`
     (the explicit-locus MIC and the compiled disk means; agreement with
     :func:`mechopt.analysis.performance.global_indices` is tested in ``tests/test_atlas.py``).
+
+    Parameters
+    ----------
+    r1, r2, r3 : array_like
+        Non-dimensional lengths of the designs.
+    quadrature : str
+        ``"polar"`` (Liu's) or ``"area"``.
+
+    Returns
+    -------
+    dict
+        ``{index: ndarray}``: ``r_mic``, ``gci``, ``mci``, ``gvi_*``, ``gpi_*``, ``gsi_*``
+        (Liu 2006 eq. 4, 11, 14, 19).
     """
     from mechopt.mechanisms.five_bar.batch import RESULT_COLUMNS
 
@@ -144,7 +167,23 @@ def _objectives_and_mic(ex, objectives):
 
 
 class LiuRegion(MechoptProblem):
-    """Maximise (r_MIC, GCI) inside one optimum region of Liu 2006 sec. 3.1."""
+    """Maximise (r_MIC, GCI) inside one optimum region of Liu 2006 sec. 3.1.
+
+    Parameters
+    ----------
+    region : str
+        A region of :data:`REGIONS` (Liu 2006 sec. 3.1, Fig. 7-13).
+    quadrature : str
+        ``"polar"`` (Liu's) or ``"area"``.
+    **kwargs : 
+        pymoo's :class:`~pymoo.core.problem.Problem` keywords (``elementwise_runner``,
+        ``callback``).
+
+    Raises
+    ------
+    ValueError
+        For an unknown region or quadrature.
+    """
 
     var_names = ("u", "r3")
     objectives = (Objective("r_mic", -1, "L", BOUNDS["r_mic"]), Objective("gci", -1, "-", BOUNDS["gci"]))
@@ -181,7 +220,21 @@ class LiuRegion(MechoptProblem):
 
 
 class LiuManyObjective(MechoptProblem):
-    """Five objectives over the design space: r_MIC, GCI, GVI_min, GPI_min (max) and GSI_max (min)."""
+    """Five objectives over the design space: r_MIC, GCI, GVI_min, GPI_min (max) and GSI_max (min).
+
+    Parameters
+    ----------
+    quadrature : str
+        ``"polar"`` (Liu's) or ``"area"``.
+    **kwargs : 
+        pymoo's :class:`~pymoo.core.problem.Problem` keywords (``elementwise_runner``,
+        ``callback``).
+
+    Raises
+    ------
+    ValueError
+        For an unknown quadrature.
+    """
 
     name = "liu2006-many"
     summary = "Liu 2006 many-objective: max r_MIC, GCI, GVI_min, GPI_min and min GSI_max over r1 + r2 + r3 = 3"

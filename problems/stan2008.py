@@ -112,11 +112,33 @@ class _StanProblem(MechoptProblem):
 
     def weighted_sum(self, F, w):
         """Stan's ``Z = W1 T + W2 W_n`` with ``W1 = 1 - w``, ``W2 = w`` (w weighs W,
-        the first objective), returned negated for minimisation."""
+        the first objective), returned negated for minimisation.
+
+        Parameters
+        ----------
+        F : ndarray
+            Objectives in minimisation form, ``(n, 2)``.
+        w : float
+            The weight of W, in [0, 1].
+
+        Returns
+        -------
+        ndarray
+            ``-Z`` per row (minimised).
+        """
         return -((1.0 - w) * (-F[:, 1]) + w * (-F[:, 0]) / self.w_ref)
 
 
 class StanBipod(_StanProblem):
+    """Stan 2008 Bipod: maximise the workspace W and the global TQI T (eq. 8-9) over
+    ``q1_min / b`` with ``q_max = 1.6 q_min``.
+
+    Parameters
+    ----------
+    **kwargs
+        pymoo's :class:`~pymoo.core.problem.Problem` keywords.
+    """
+
     name = "stan2008-bipod"
     summary = "Stan 2008 Bipod: max workspace W and global TQI T over q1_min/b in (0.52, 1.35), q_max = 1.6 q_min"
     var_names = ("q1_min_over_b",)
@@ -147,6 +169,24 @@ class StanBipod(_StanProblem):
 
 
 class StanBiglide(_StanProblem):
+    """Stan 2008 Biglide: maximise the workspace W and the global TQI T (eq. 8-9) over
+    the link ``L2``.
+
+    Parameters
+    ----------
+    l1 : float
+        Link 1 [L] (Stan does not print it; 1 by default).
+    q_min, q_max : float
+        The strokes of both sliders [L].
+    **kwargs
+        pymoo's :class:`~pymoo.core.problem.Problem` keywords.
+
+    Raises
+    ------
+    ValueError
+        One line, for a non-positive ``l1`` or an empty stroke.
+    """
+
     name = "stan2008-biglide"
     summary = "Stan 2008 Biglide: max workspace W and global TQI T over L2 in (1, 1.2), L1 = 1, strokes [0, 1]"
     var_names = ("L2",)
@@ -190,6 +230,22 @@ def biglide_indices(l1: float, l2, q_min: float, q_max: float):
     (``tests/test_experiment_stan2008.py`` checks it on random designs of every setup the
     experiment uses); about 50 times faster than a design at a time, which is what the
     GA runs of Stan 2008 spend their time on.
+
+    Parameters
+    ----------
+    l1 : float
+        Link 1 [L].
+    l2 : array_like
+        Link 2 of each design [L].
+    q_min, q_max : float
+        The strokes [L].
+
+    Returns
+    -------
+    W : ndarray
+        Workspace areas [L^2] (Stan 2008 eq. 8).
+    T : ndarray
+        Global TQI (dimensionless, eq. 9).
     """
     L = np.ascontiguousarray(l2, dtype=float).reshape(-1)
     n = L.size

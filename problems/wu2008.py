@@ -32,6 +32,22 @@ THETA_1S_BOUNDS_DEG = (5.0, 40.0)
 
 
 class WuGantry(MechoptProblem):
+    """Wu 2008 gantry: maximise ``k_av`` (eq. 7) and minimise the link length ``l``
+    (eq. 15) over ``theta_1S`` [deg].
+
+    Parameters
+    ----------
+    b, h : float
+        The task rectangle [mm] (Wu's 500 x 400).
+    **kwargs
+        pymoo's :class:`~pymoo.core.problem.Problem` keywords.
+
+    Raises
+    ------
+    ValueError
+        One line, for a non-positive ``b`` or ``h``.
+    """
+
     name = "wu2008"
     summary = "Wu 2008 gantry: max k_av (eq. 7) and min link length l over theta_1S in [5, 40] deg, task 500 x 400 mm"
     var_names = ("theta_1S_deg",)

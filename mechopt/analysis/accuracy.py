@@ -179,7 +179,23 @@ class ErrorModel:
 
     @classmethod
     def from_dict(cls, d) -> "ErrorModel":
-        """The model of ``{field: value}`` (unknown keys refused)."""
+        """The model of ``{field: value}`` (unknown keys refused).
+
+        Parameters
+        ----------
+        d : dict
+            ``{field: value}``.
+
+        Returns
+        -------
+        ErrorModel
+            The model.
+
+        Raises
+        ------
+        ValueError
+            One line, for an unknown key or an invalid value.
+        """
         if not isinstance(d, dict):
             raise ValueError(f"an error model is a table of numbers, got {_v.show(d)}")
         known = {f.name for f in fields(cls)}
@@ -189,7 +205,22 @@ class ErrorModel:
         return cls(**d)
 
     def half_widths(self, spec, angular: bool, unit: str) -> np.ndarray:
-        """Half width of each scalar of ``spec`` (rad for crank angles, else [unit])."""
+        """Half width of each scalar of ``spec`` (rad for crank angles, else [unit]).
+
+        Parameters
+        ----------
+        spec : mechopt.core.error_spec.ErrorSpec
+            The mechanism's error model.
+        angular : bool
+            Whether the actuators are cranks.
+        unit : str
+            The length unit of the mechanism.
+
+        Returns
+        -------
+        ndarray
+            One half width per scalar [rad or unit].
+        """
         to_l = 1.0 / _um_per(unit)
         act = []
         for i in (0, 1):
@@ -209,14 +240,43 @@ class ErrorModel:
         return np.array(out)
 
     def clearances(self, spec, unit: str) -> np.ndarray:
-        """Radial clearance [unit] of each passive joint of ``spec``."""
+        """Radial clearance [unit] of each passive joint of ``spec``.
+
+        Parameters
+        ----------
+        spec : mechopt.core.error_spec.ErrorSpec
+            The mechanism's error model.
+        unit : str
+            The length unit of the mechanism.
+
+        Returns
+        -------
+        ndarray
+            One clearance per passive joint [unit].
+        """
         return np.full(len(spec.joints), self.clearance_um / _um_per(unit))
 
 
 def parse_length_um(text) -> float:
     """A positive length with its unit (``"20um"``, ``"20 µm"``, ``"0.05mm"``, ``"1e-5 m"``;
     units ``um``/``µm`` and those of :data:`UM_PER_UNIT`) in micrometres, e.g. the
-    value of a ``--max-error`` option. ValueError (one line) otherwise."""
+    value of a ``--max-error`` option. ValueError (one line) otherwise.
+
+    Parameters
+    ----------
+    text : str
+        A length with its unit.
+
+    Returns
+    -------
+    float
+        The length [um].
+
+    Raises
+    ------
+    ValueError
+        One line, for text that is not a positive length with a known unit.
+    """
     import re
 
     m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-zA-Zµ]+)\s*", str(text))
@@ -238,7 +298,23 @@ def _um_per(unit) -> float:
 
 def load_error_model(path) -> ErrorModel:
     """:class:`ErrorModel` from a JSON file (an object) or a TOML file (``.toml``: a
-    table of the same keys); ValueError naming the file when it cannot be read."""
+    table of the same keys); ValueError naming the file when it cannot be read.
+
+    Parameters
+    ----------
+    path : str or Path
+        A JSON or TOML file.
+
+    Returns
+    -------
+    ErrorModel
+        The model.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file, when it cannot be read or holds an invalid model.
+    """
     path = Path(path)
     try:
         text = path.read_text()
@@ -264,7 +340,23 @@ def parse_error_model(text) -> ErrorModel:
     """An :class:`ErrorModel` from a command-line text: ``key=value`` pairs separated by
     commas (``encoder_counts=16384,clearance_um=5``; one value per motor as
     ``encoder_counts=16384/4096``) or the path of a JSON/TOML file
-    (:func:`load_error_model`); an :class:`ErrorModel` or a dict passes through."""
+    (:func:`load_error_model`); an :class:`ErrorModel` or a dict passes through.
+
+    Parameters
+    ----------
+    text : str
+        ``key=value`` pairs or a file's path.
+
+    Returns
+    -------
+    ErrorModel
+        The model.
+
+    Raises
+    ------
+    ValueError
+        One line, for unknown keys, invalid values or an unreadable file.
+    """
     if isinstance(text, ErrorModel):
         return text
     if isinstance(text, dict):
@@ -433,7 +525,24 @@ def pose_error(mech, model: ErrorModel, x, y, unit: str = "mm", directions: int 
 def max_error(mech, model: ErrorModel, x, y, unit: str = "mm") -> float:
     """The largest :func:`pose_error` bound [unit] over the points ``(x, y)`` (the
     mechanism's frame); inf when one is unreachable or unproven. Each pose's bound is
-    proven; the maximum over a region is as good as the points sample it."""
+    proven; the maximum over a region is as good as the points sample it.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism [unit].
+    model : ErrorModel
+        The tolerances.
+    x, y : array_like
+        Poses [unit], the mechanism's frame.
+    unit : str
+        The length unit of the mechanism.
+
+    Returns
+    -------
+    float
+        The largest bound [unit] (inf when one pose is unreachable or unproven).
+    """
     b = pose_error(mech, model, x, y, unit)["bound"]
     return float(np.max(np.where(np.isnan(b), np.inf, b))) if b.size else 0.0
 
@@ -534,7 +643,22 @@ def task_points(task, n_boundary: int = 192, n_interior: int = 13):
     """``(x, y)`` [task unit, task frame]: the samples of one evaluation of ``mechopt
     design`` (:func:`mechopt.analysis.sampling.samples`: ``n_boundary`` points along the
     boundary at uniform arc length, every vertex included, and an ``n_interior`` x
-    ``n_interior`` grid over the box, kept inside); a point task's points."""
+    ``n_interior`` grid over the box, kept inside); a point task's points.
+
+    Parameters
+    ----------
+    task : mechopt.analysis.task.Task
+        The placed task.
+    n_boundary : int
+        Boundary points.
+    n_interior : int
+        Interior grid nodes per side.
+
+    Returns
+    -------
+    x, y : ndarray
+        The samples [task unit, task frame].
+    """
     from mechopt.analysis.sampling import Sampling, samples
 
     s = samples(task, Sampling(n_boundary, n_interior))
@@ -546,7 +670,26 @@ def perturbed_fk(mech, q1, q2, d, delta, side):
     (:meth:`~mechopt.core.error_spec.ErrorSpec.circles` at actuator values ``q1, q2``
     with the scalar deviations ``d``, ``{name: array}``), their centres moved by the
     clearance vectors ``delta`` (``{joint: (dx, dy)}``), intersected on the side
-    ``side`` (+1: left of ``C_1 -> C_2``, -1: right). NaN where they do not meet."""
+    ``side`` (+1: left of ``C_1 -> C_2``, -1: right). NaN where they do not meet.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism [unit].
+    q1, q2 : array_like
+        Actuator values [rad or unit].
+    d : dict
+        ``{name: array}`` scalar deviations.
+    delta : dict
+        ``{joint: (dx, dy)}`` clearance vectors [unit].
+    side : int
+        +1 or -1.
+
+    Returns
+    -------
+    x, y : ndarray
+        The pose [unit].
+    """
     spec = _spec(mech)
     c1x, c1y, r1, c2x, c2y, r2 = spec.circles(mech, q1, q2, d)
     for name, legs in spec.joints:
@@ -587,7 +730,34 @@ def monte_carlo(mech, model: ErrorModel, x, y, samples: int = 1000, unit: str = 
     ``G_k . u``, the clearances along ``A_j^T u``, ``u`` the worst direction). At most
     ``chunk`` draws x poses are solved at once (memory: about 30 arrays of that size).
     Returns an array [unit] of the poses' shape (NaN where unreachable, inf where a
-    perturbed mechanism does not assemble)."""
+    perturbed mechanism does not assemble).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism [unit].
+    model : ErrorModel
+        The tolerances.
+    x, y : array_like
+        Poses [unit], the mechanism's frame.
+    samples : int
+        Perturbed mechanisms per pose.
+    unit : str
+        The length unit of the mechanism.
+    seed : int
+        Random seed.
+    draw : str
+        ``"vertices"`` or ``"uniform"``.
+    worst : bool
+        Draw the predicted worst vertex first.
+    chunk : int
+        Draws x poses solved at once.
+
+    Returns
+    -------
+    ndarray
+        The largest error [unit] per pose.
+    """
     spec = _spec(mech)
     draw = _v.choice("draw", draw, ("vertices", "uniform"))
     n = _v.integer("samples", samples, 1)

@@ -168,6 +168,23 @@ class Zone:
     (disc), ``level`` (``above``: the zone ``y >= level``; ``below``: ``y <= level``) [L];
     ``spares_tool``: the bodies carrying the tool (:data:`mechopt.core.bodies.TOOL_KINDS`)
     may enter it (the task as a zone); ``label``: how it was given.
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`ZONE_KINDS`.
+    vertices : ndarray, optional
+        A polygon's vertices [L], shape ``(n, 2)``.
+    center : tuple of float, optional
+        A disc's centre [L].
+    radius : float, optional
+        A disc's radius [L].
+    level : float, optional
+        The line of ``above``/``below`` [L].
+    spares_tool : bool
+        Whether the tool-carrying bodies may enter it.
+    label : str
+        For messages.
     """
 
     kind: str
@@ -181,7 +198,23 @@ class Zone:
     @classmethod
     def from_task(cls, task) -> "Zone":
         """The task region of :class:`mechopt.analysis.task.Task` as a zone that spares
-        the tool-carrying bodies (a rectangle or polygon: its polygon; a circle: its disc)."""
+        the tool-carrying bodies (a rectangle or polygon: its polygon; a circle: its disc).
+
+        Parameters
+        ----------
+        task : mechopt.analysis.task.Task
+            A task region.
+
+        Returns
+        -------
+        Zone
+            The zone.
+
+        Raises
+        ------
+        ValueError
+            For a point task or path (no region).
+        """
         if task.kind == "circle":
             return cls("disc", center=tuple(task.center), radius=float(task.radius), spares_tool=True,
                        label="task")
@@ -213,7 +246,18 @@ class Zone:
 
     def margin(self, x0, y0, x1, y1):
         """``min over the segment of phi`` [L]: the signed distance of the segments
-        ``(x0, y0) -> (x1, y1)`` to the zone, positive outside (module docstring)."""
+        ``(x0, y0) -> (x1, y1)`` to the zone, positive outside (module docstring).
+
+        Parameters
+        ----------
+        x0, y0, x1, y1 : ndarray
+            Segment ends [L].
+
+        Returns
+        -------
+        ndarray
+            The signed distance [L], positive outside.
+        """
         if self.kind == "above":
             return self.level - np.maximum(y0, y1)
         if self.kind == "below":
@@ -263,6 +307,11 @@ def parse_zone(text: str, task=None) -> Zone:
     Returns
     -------
     Zone
+
+    Raises
+    ------
+    ValueError
+        One line, for a malformed zone, or ``task`` without a task region.
     """
     if not isinstance(text, str) or not text.strip():
         raise ValueError(f"--keep-out must be task, polygon:x1,y1;x2,y2;..., above:Y or below:Y, got {_v.show(text)}")
@@ -311,6 +360,11 @@ class Collisions:
         The sizes [L]; default :meth:`Shapes.default() <mechopt.core.bodies.Shapes.default>` (mm).
     ignore : iterable of (str, str), optional
         Pairs of body names not to check (e.g. two links in different planes).
+
+    Raises
+    ------
+    ValueError
+        One line, when the spec names two bodies alike or ``ignore`` names no body.
     """
 
     def __init__(self, spec, mech, shapes: Shapes | None = None, ignore=()):
@@ -347,21 +401,57 @@ class Collisions:
 
     # --- the bodies ------------------------------------------------------------------
     def bodies(self, x, y):
-        """The bodies at task points ``(x, y)`` (:meth:`DesignSpec.links`)."""
+        """The bodies at task points ``(x, y)`` (:meth:`DesignSpec.links`).
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task points [L, task frame].
+
+        Returns
+        -------
+        list of mechopt.core.bodies.Body
+            The capsules.
+        """
         return self.spec.links(self.mech, x, y, self.shapes)
 
     def pair_names(self):
-        """``[(name_a, name_b), ...]`` of the checked pairs, in the rows' order."""
+        """``[(name_a, name_b), ...]`` of the checked pairs, in the rows' order.
+
+        Returns
+        -------
+        list of tuple
+            ``(name_a, name_b)``.
+        """
         return [(self.names[i], self.names[j]) for i, j in self.pairs]
 
     def angle_names(self):
-        """``[(name_a, name_b, joint), ...]`` of the adjacent links, in the rows' order."""
+        """``[(name_a, name_b, joint), ...]`` of the adjacent links, in the rows' order.
+
+        Returns
+        -------
+        list of tuple
+            ``(name_a, name_b, joint)``.
+        """
         return [(self.names[i], self.names[j], J) for i, j, J in self.adjacent]
 
     # --- per pose -----------------------------------------------------------------
     def pair_clearances(self, x, y, bodies=None):
         """Capsule clearance [L] of every checked pair: shape ``(n_pairs, n_poses)``
-        (NaN where the pose is out of reach)."""
+        (NaN where the pose is out of reach).
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task points [L, task frame].
+        bodies : list, optional
+            The bodies at the poses (default: :meth:`bodies`).
+
+        Returns
+        -------
+        ndarray
+            [L].
+        """
         b = bodies if bodies is not None else self.bodies(x, y)
         if not self.pairs:
             return np.full((0, *np.shape(b[0].x0)), np.inf)
@@ -375,13 +465,37 @@ class Collisions:
 
     def clearance(self, x, y):
         """The smallest capsule clearance [L] over the checked pairs at each pose
-        (``inf`` with no pair; NaN where out of reach)."""
+        (``inf`` with no pair; NaN where out of reach).
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task points [L, task frame].
+
+        Returns
+        -------
+        ndarray
+            [L] per pose.
+        """
         c = self.pair_clearances(x, y)
         return np.min(c, axis=0) if len(c) else c.reshape(c.shape[1:])
 
     def joint_angles(self, x, y, bodies=None):
         """The angle [rad, in ``[0, pi]``] between adjacent links at their common joint:
-        shape ``(n_adjacent, n_poses)``, rows as :meth:`angle_names`."""
+        shape ``(n_adjacent, n_poses)``, rows as :meth:`angle_names`.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task points [L, task frame].
+        bodies : list, optional
+            The bodies at the poses (default: :meth:`bodies`).
+
+        Returns
+        -------
+        ndarray
+            [rad].
+        """
         b = bodies if bodies is not None else self.bodies(x, y)
         rows = []
         for i, j, J in self.adjacent:
@@ -398,7 +512,22 @@ class Collisions:
 
     def keep_out(self, x, y, zone: Zone, bodies=None):
         """The margin [L] of each body to ``zone`` (:meth:`Zone.margin` minus half its
-        width): shape ``(n_bodies, n_poses)``, rows as :meth:`zone_bodies`."""
+        width): shape ``(n_bodies, n_poses)``, rows as :meth:`zone_bodies`.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task points [L, task frame].
+        zone : Zone
+            The keep-out zone.
+        bodies : list, optional
+            The bodies at the poses (default: :meth:`bodies`).
+
+        Returns
+        -------
+        ndarray
+            [L].
+        """
         b = self._zone_bodies(bodies if bodies is not None else self.bodies(x, y), zone)
         ends = [np.stack([getattr(k, c) for k in b]) for c in ("x0", "y0", "x1", "y1")]  # (bodies, poses)
         half = 0.5 * np.array([k.width for k in b]).reshape((-1,) + (1,) * (ends[0].ndim - 1))
@@ -409,20 +538,43 @@ class Collisions:
 
     def zone_bodies(self, zone):
         """Names of the bodies :meth:`keep_out` measures (all but the tool-carrying ones
-        for a zone that spares them)."""
+        for a zone that spares them).
+
+        Parameters
+        ----------
+        zone : Zone
+            The keep-out zone.
+
+        Returns
+        -------
+        list of str
+            The names.
+        """
         return [b.name for b in self._zone_bodies(self._ref, zone)]
 
     # --- the base -----------------------------------------------------------------
     def base_margin(self) -> float:
         """The smallest clearance [L] between two fixed bodies that carry no common
-        joint (the five-bar's housings: ``2 r3 - d``; ``inf`` with fewer than two)."""
+        joint (the five-bar's housings: ``2 r3 - d``; ``inf`` with fewer than two).
+
+        Returns
+        -------
+        float
+            [L].
+        """
         b = self._ref
         vals = [float(_capsule_clearance(b[i], b[j])[0]) for i, j in self.ground_pairs]
         return min(vals, default=math.inf)
 
     def base_distance(self) -> float:
         """The smallest distance [L] between the axes of two fixed bodies (the five-bar's
-        base distance ``2 r3``, the Biglide's guide distance ``2 l1``)."""
+        base distance ``2 r3``, the Biglide's guide distance ``2 l1``).
+
+        Returns
+        -------
+        float
+            [L].
+        """
         b = self._ref
         vals = [float(_capsule_clearance(b[i], b[j])[0] + 0.5 * (b[i].width + b[j].width))
                 for i, j in self.ground_pairs]
@@ -444,14 +596,40 @@ class Collisions:
     def body_speeds(self, x, y, radius=0.0):
         """Upper bound of each body's displacement per unit platform displacement
         [L/L] within ``radius`` [L] of each pose: the larger of its ends' joint speeds,
-        shape ``(n_bodies, n_poses)``."""
+        shape ``(n_bodies, n_poses)``.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task points [L, task frame].
+        radius : float
+            Radius [L] of the platform positions about each pose.
+
+        Returns
+        -------
+        ndarray
+            [L/L], shape ``(n_bodies, n_poses)``.
+        """
         speed = self._end_speeds(x, y, radius)
         return np.stack([np.maximum(speed(k.ends[0]), speed(k.ends[1])) for k in self._ref])
 
     def clearance_lipschitz(self, x, y, radius=0.0):
         """``k_a + k_b`` of every checked pair (:meth:`body_speeds`): the clearance of
         the pair changes by at most this times the platform's displacement within
-        ``radius`` of each pose, shape ``(n_pairs, n_poses)``."""
+        ``radius`` of each pose, shape ``(n_pairs, n_poses)``.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task points [L, task frame].
+        radius : float
+            Radius [L] of the platform positions about each pose.
+
+        Returns
+        -------
+        ndarray
+            [L/L], shape ``(n_pairs, n_poses)``.
+        """
         k = self.body_speeds(x, y, radius)
         n = k.shape[1:]
         return np.stack([k[i] + k[j] for i, j in self.pairs]) if self.pairs else np.zeros((0, *n))
@@ -459,7 +637,22 @@ class Collisions:
     def angle_lipschitz(self, x, y, radius=0.0, bodies=None):
         """Bound of the rate [rad/L] of each joint angle within ``radius`` of each pose:
         ``sum over its two links of (k_E + k_J) / r_min`` (module docstring), ``r_min``
-        the link's axis length less its largest change (``inf`` if it may vanish)."""
+        the link's axis length less its largest change (``inf`` if it may vanish).
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task points [L, task frame].
+        radius : float
+            Radius [L] of the platform positions about each pose.
+        bodies : list, optional
+            The bodies at the poses (default: :meth:`bodies`).
+
+        Returns
+        -------
+        ndarray
+            [rad/L], shape ``(n_adjacent, n_poses)``.
+        """
         speed = self._end_speeds(x, y, radius)
         b = bodies if bodies is not None else self.bodies(x, y)
         rows = []
@@ -476,7 +669,22 @@ class Collisions:
 
     def keep_out_lipschitz(self, x, y, zone: Zone, radius=0.0):
         """Each measured body's speed bound (:meth:`body_speeds`, rows of :meth:`keep_out`):
-        ``phi`` is 1-Lipschitz, so a body's margin changes no faster than the body moves."""
+        ``phi`` is 1-Lipschitz, so a body's margin changes no faster than the body moves.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task points [L, task frame].
+        zone : Zone
+            The keep-out zone.
+        radius : float
+            Radius [L] of the platform positions about each pose.
+
+        Returns
+        -------
+        ndarray
+            [L/L], rows of :meth:`keep_out`.
+        """
         k = self.body_speeds(x, y, radius)
         keep = [not (zone.spares_tool and b.kind in TOOL_KINDS) for b in self._ref]
         return k[np.array(keep)]
@@ -495,6 +703,22 @@ class Collisions:
             task has less, :func:`lipschitz_bound`), ``radius`` (the covering radius [L]),
             ``where`` (the sample ``(x, y)`` of the smallest value) and ``which`` (the pair,
             joint or body there).
+
+        Parameters
+        ----------
+        task : mechopt.analysis.task.Task
+            The placed task.
+        what : str
+            ``"clearance"``, ``"angles"`` or ``"keep_out"``.
+        zone : Zone, optional
+            The zone of ``"keep_out"``.
+        n_boundary, n_interior : int
+            Sample counts (:func:`task_samples`).
+
+        Raises
+        ------
+        ValueError
+            For an unknown ``what``, or ``"keep_out"`` without a zone.
         """
         x, y, radius = task_samples(task, n_boundary, n_interior)
         b = self.bodies(x, y)
@@ -532,6 +756,11 @@ def covering_radius(task, n_boundary: int = 192, n_interior: int = 13) -> float:
     Returns
     -------
     float
+
+    Raises
+    ------
+    ValueError
+        For fewer than 2 interior nodes per side, or invalid counts.
     """
     if not task.is_region:
         return 0.0
@@ -545,7 +774,24 @@ def covering_radius(task, n_boundary: int = 192, n_interior: int = 13) -> float:
 def covering_radius_of(task, gap, n_boundary, step) -> float:
     """:func:`covering_radius` from the samples' figures: the largest boundary ``gap``
     [L], the number of boundary samples and the interior grid's ``step`` [L] (the larger
-    cell side, :meth:`mechopt.analysis.task.Task.grid`); 0 for a point task."""
+    cell side, :meth:`mechopt.analysis.task.Task.grid`); 0 for a point task.
+
+    Parameters
+    ----------
+    task : mechopt.analysis.task.Task
+        The task.
+    gap : float
+        The largest boundary gap [L].
+    n_boundary : int
+        Boundary samples.
+    step : float
+        The interior grid's step [L].
+
+    Returns
+    -------
+    float
+        [L].
+    """
     if not task.is_region:
         return 0.0
     x0, x1, y0, y1 = task.bbox
@@ -561,7 +807,22 @@ def covering_radius_of(task, gap, n_boundary, step) -> float:
 def task_samples(task, n_boundary: int = 192, n_interior: int = 13):
     """``(x, y, radius)``: the samples of one design evaluation of ``task`` (boundary
     points, then the interior grid kept inside, as :mod:`mechopt.analysis.task` takes
-    them) and their :func:`covering_radius` [L]."""
+    them) and their :func:`covering_radius` [L].
+
+    Parameters
+    ----------
+    task : mechopt.analysis.task.Task
+        The placed task.
+    n_boundary, n_interior : int
+        Sample counts.
+
+    Returns
+    -------
+    x, y : ndarray
+        The samples [L].
+    radius : float
+        Their covering radius [L].
+    """
     if not task.is_region:
         return task.pts[:, 0].copy(), task.pts[:, 1].copy(), 0.0
     tb, _ = task.boundary_params(n_boundary)

@@ -24,7 +24,7 @@ __all__ = ["DesignContext"]
 class DesignContext:
     """One design's evaluation context (module docstring).
 
-    Attributes
+    Parameters
     ----------
     spec : DesignSpec
         The mechanism's design spec.
@@ -75,7 +75,18 @@ class DesignContext:
         return self.samples["bx"].size
 
     def to_mech(self, x, y):
-        """Task points in the mechanism's frame."""
+        """Task points in the mechanism's frame.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task points [L, task frame].
+
+        Returns
+        -------
+        x, y : ndarray
+            The points in the mechanism's frame [L].
+        """
         return self.spec.to_mech(self.mech, x, y)
 
     # --- values at the samples, computed once --------------------------------------------
@@ -106,25 +117,88 @@ class DesignContext:
     # --- searches over the task ------------------------------------------------------------
     def region_min(self, f, vals) -> float:
         """Minimum over the task of ``f(x, y)`` (values ``vals`` at the samples), refined
-        when :attr:`refine` (:func:`mechopt.analysis.sampling.region_mins`)."""
+        when :attr:`refine` (:func:`mechopt.analysis.sampling.region_mins`).
+
+        Parameters
+        ----------
+        f : callable
+            ``f(x, y)`` -> values at task points.
+        vals : ndarray
+            ``f`` at the samples.
+
+        Returns
+        -------
+        float
+            The minimum.
+        """
         return self.region_mins(lambda x, y: f(x, y)[None], vals[None])[0]
 
     def region_mins(self, F, vals) -> list:
-        """Minima over the task of the rows of ``F(x, y)`` (values ``vals`` at the samples)."""
+        """Minima over the task of the rows of ``F(x, y)`` (values ``vals`` at the samples).
+
+        Parameters
+        ----------
+        F : callable
+            ``F(x, y)`` -> shape ``(m, N)``.
+        vals : ndarray
+            ``F`` at the samples.
+
+        Returns
+        -------
+        list of float
+            The minimum of each row.
+        """
         return _s.region_mins(self.samples, F, self.refine, vals)
 
     def leg_ranges(self, legs, bad=(np.inf, np.inf)) -> list:
         """Ranges over the task's boundary of the two values of ``legs(x, y)``
-        (:func:`mechopt.analysis.sampling.leg_ranges`)."""
+        (:func:`mechopt.analysis.sampling.leg_ranges`).
+
+        Parameters
+        ----------
+        legs : callable
+            ``legs(x, y) -> (v1, v2)``: one value per leg (actuator or link angle).
+        bad : tuple of float
+            Replacements of NaN for the minimum and the maximum.
+
+        Returns
+        -------
+        list of tuple
+            ``[(lo1, hi1), (lo2, hi2)]``.
+        """
         return _s.leg_ranges(self.samples, legs, self.refine, bad)
 
     # --- sharing between members -----------------------------------------------------------
     def memo(self, key, compute):
-        """``compute()``, computed once per evaluation under ``key``."""
+        """``compute()``, computed once per evaluation under ``key``.
+
+        Parameters
+        ----------
+        key : str
+            The value's name.
+        compute : callable
+            ``compute()`` -> the value.
+
+        Returns
+        -------
+        object
+            The value.
+        """
         if key not in self._memo:
             self._memo[key] = compute()
         return self._memo[key]
 
     def has(self, key) -> bool:
-        """True when a member computed the value ``key`` (:meth:`memo`)."""
+        """True when a member computed the value ``key`` (:meth:`memo`).
+
+        Parameters
+        ----------
+        key : str
+            A memo key.
+
+        Returns
+        -------
+        bool
+            Whether it was computed.
+        """
         return key in self._memo

@@ -80,18 +80,60 @@ class NoFeasibleDesign(ValueError):
 
 
 def mechanisms() -> tuple[str, ...]:
-    """Names of the mechanisms ``mechopt design`` sizes (:func:`mechopt.mechanisms.designed`)."""
+    """Names of the mechanisms ``mechopt design`` sizes (:func:`mechopt.mechanisms.designed`).
+
+    Returns
+    -------
+    tuple of str
+        The names.
+    """
     return _mechanisms.designed()
 
 
 def get_spec(name) -> DesignSpec:
-    """The design specification of mechanism ``name`` (one of :func:`mechanisms`)."""
+    """The design specification of mechanism ``name`` (one of :func:`mechanisms`).
+
+    Parameters
+    ----------
+    name : str
+        A designed mechanism.
+
+    Returns
+    -------
+    mechopt.core.design_spec.DesignSpec
+        Its spec.
+    """
     return _mechanisms.design_spec(name)
 
 
 class DesignEvaluator:
     """Evaluates one design (a dict of variables) against a task: every requirement's
-    margin, every objective, the derived strokes. Picklable (travels to workers)."""
+    margin, every objective, the derived strokes. Picklable (travels to workers).
+
+    Parameters
+    ----------
+    mechanism : str
+        A designed mechanism.
+    task : mechopt.analysis.task.Task
+        The task [L].
+    requirements : mechopt.requirements.Requirements
+        What must hold over the task.
+    objectives : sequence of str
+        Objective names.
+    mode : str, optional
+        Working mode or ``"any"``.
+    place : str
+        ``"fixed"``, ``"free-y"`` or ``"free"``.
+    min_length, max_length : float, optional
+        Link length bounds [L].
+    shape : sequence of float, optional
+        Fixed link ratios.
+
+    Raises
+    ------
+    ValueError
+        One line, for invalid inputs or requirements no geometry can meet.
+    """
 
     def __init__(self, mechanism, task: Task, requirements: Requirements, objectives, mode=None,
                  place="fixed", min_length=None, max_length=None, shape=None):
@@ -212,7 +254,18 @@ class DesignEvaluator:
         del far
 
     def decode(self, x) -> dict:
-        """Variables of one row of X as a dict (lengths, ``mode`` string, placement)."""
+        """Variables of one row of X as a dict (lengths, ``mode`` string, placement).
+
+        Parameters
+        ----------
+        x : array_like
+            One row of X.
+
+        Returns
+        -------
+        dict
+            The variables.
+        """
         x = np.asarray(x, float)
         d = dict(zip(self.var_names, x))
         out = {}
@@ -242,6 +295,18 @@ class DesignEvaluator:
         return out
 
     def encode(self, v: dict) -> np.ndarray:
+        """One row of X from a decoded design (the inverse of :meth:`decode`).
+
+        Parameters
+        ----------
+        v : dict
+            The design's variables.
+
+        Returns
+        -------
+        ndarray
+            The row, in :attr:`var_names` order.
+        """
         row = []
         for n in self.var_names:
             if n == "mode":
@@ -263,7 +328,20 @@ class DesignEvaluator:
 
     # --- one design -------------------------------------------------------------------
     def mechanism(self, v: dict, sampling: Sampling | None = None):
-        """The mechanism of the decoded design ``v`` (strokes derived from its task)."""
+        """The mechanism of the decoded design ``v`` (strokes derived from its task).
+
+        Parameters
+        ----------
+        v : dict
+            A decoded design (:meth:`decode`).
+        sampling : mechopt.analysis.sampling.Sampling, optional
+            The task's sampling (default: the search's).
+
+        Returns
+        -------
+        PlanarMechanism
+            The mechanism [L].
+        """
         return self._setup(v, sampling or Sampling.fine())[0]
 
     def _setup(self, v, s: Sampling):
@@ -312,7 +390,20 @@ class DesignEvaluator:
     def context(self, v: dict, sampling: Sampling | None = None) -> DesignContext:
         """The sample context of the decoded design ``v`` (:class:`DesignContext`): its
         mechanism, the task's samples, its derived strokes; ``refine`` from the sampling
-        and the active requirements' screens; the crank ranges of a design with cranks."""
+        and the active requirements' screens; the crank ranges of a design with cranks.
+
+        Parameters
+        ----------
+        v : dict
+            A decoded design (:meth:`decode`).
+        sampling : mechopt.analysis.sampling.Sampling, optional
+            The task's sampling (default: the search's).
+
+        Returns
+        -------
+        mechopt.analysis.design_context.DesignContext
+            The context.
+        """
         s = sampling or Sampling()
         mech, check, smp, derived = self._setup(v, s)
         ctx = DesignContext(self.spec, mech, check, smp, self.req, self.objectives, self.unit,
@@ -326,7 +417,20 @@ class DesignEvaluator:
     def evaluate(self, v: dict, sampling: Sampling | None = None) -> dict:
         """Every active requirement's ``g`` (<= 0 feasible) and margin, every objective,
         the reported and derived values of the decoded design ``v``: a loop over the
-        members of :mod:`mechopt.requirements` on one :class:`DesignContext`."""
+        members of :mod:`mechopt.requirements` on one :class:`DesignContext`.
+
+        Parameters
+        ----------
+        v : dict
+            A decoded design (:meth:`decode`).
+        sampling : mechopt.analysis.sampling.Sampling, optional
+            The task's sampling (default: the search's).
+
+        Returns
+        -------
+        dict
+            ``g``, ``margin``, ``objectives``, ``values`` and ``derived``.
+        """
         names = tuple(r.name for r in self.active)
         validity = self.spec.validity({n: v[n] for n in self.spec.lengths}, self.max_length)
         if validity > 0:
@@ -357,27 +461,69 @@ class DesignEvaluator:
 
     # --- pymoo rows -------------------------------------------------------------------
     def objective_values(self, res) -> list[float]:
-        """The objectives of an evaluation ``res``, in :attr:`objectives` order [their units]."""
+        """The objectives of an evaluation ``res``, in :attr:`objectives` order [their units].
+
+        Parameters
+        ----------
+        res : dict
+            An evaluation (:meth:`evaluate`).
+
+        Returns
+        -------
+        list of float
+            The values.
+        """
         return [float(res["objectives"][o]) for o in self.objectives]
 
     def units(self):
-        """``{objective: unit}`` in the task's units."""
+        """``{objective: unit}`` in the task's units.
+
+        Returns
+        -------
+        dict
+            ``{objective: unit}``.
+        """
         t = "N m" if self.spec.angular else "N"
         return {ob.name: ob.unit.format(L=self.unit, T=t) for ob in self._objectives}
 
     def senses(self) -> dict:
-        """``{objective: sense}`` (+1 minimised, -1 maximised) of the chosen objectives."""
+        """``{objective: sense}`` (+1 minimised, -1 maximised) of the chosen objectives.
+
+        Returns
+        -------
+        dict
+            ``{objective: sense}``.
+        """
         return {ob.name: ob.sense for ob in self._objectives}
 
     def objective_specs(self):
         """``(name, sense, unit, (lo, hi))`` of each chosen objective (the problem's
-        :class:`~mechopt.run.problem.Objective` s; ``(lo, hi)`` the hypervolume's range)."""
+        :class:`~mechopt.run.problem.Objective` s; ``(lo, hi)`` the hypervolume's range).
+
+        Returns
+        -------
+        list of tuple
+            ``(name, sense, unit, (lo, hi))``.
+        """
         units = self.units()
         return [(ob.name, ob.sense, units[ob.name], ob.bounds(self)) for ob in self._objectives]
 
     def row(self, v, res) -> dict:
         """One front.csv row: variables (mode as a string), placement, objectives,
-        margins (``margin_<requirement>``, natural units), derived values."""
+        margins (``margin_<requirement>``, natural units), derived values.
+
+        Parameters
+        ----------
+        v : dict
+            A decoded design (:meth:`decode`).
+        res : dict
+            Its evaluation.
+
+        Returns
+        -------
+        dict
+            ``{column: value}``.
+        """
         r = {n: v[n] for n in self.spec.lengths}
         if "D" in v:
             r["D"] = v["D"]
@@ -402,6 +548,14 @@ class DesignEvaluator:
         return r
 
     def settings(self) -> dict:
+        """The evaluator's settings (run.json's ``design`` key).
+
+        Returns
+        -------
+        dict
+            Mechanism, task, the set requirements, objectives, mode, placement, length
+            bounds, shape and unit.
+        """
         req = {k: v for k, v in self.req.asdict().items() if v is not None}
         return {"mechanism": self.spec.name, "task": self.task.to_dict(), "requirements": req,
                 "objectives": list(self.objectives), "mode": "any" if self.mode_any else self.mode,
@@ -411,7 +565,18 @@ class DesignEvaluator:
 
     def record(self, derived) -> dict:
         """design.json's keys from the derived values: crank ranges [deg], strokes [L],
-        and what the active requirements add (:meth:`~mechopt.requirements.base.Requirement.record`)."""
+        and what the active requirements add (:meth:`~mechopt.requirements.base.Requirement.record`).
+
+        Parameters
+        ----------
+        derived : dict
+            An evaluation's derived values.
+
+        Returns
+        -------
+        dict
+            The keys.
+        """
         rec = {}
         if "joint_ranges" in derived:
             rec["joint_ranges_deg"] = [[math.degrees(a), math.degrees(b)] for a, b in derived["joint_ranges"]]
@@ -426,7 +591,18 @@ class DesignEvaluator:
 # ------------------------------------------------------------------ certification
 def feasible(g) -> bool:
     """Every requirement holds: each of the values ``g`` (an evaluation's ``"g"`` values,
-    a row of G) is ``<= 0``; NaN fails."""
+    a row of G) is ``<= 0``; NaN fails.
+
+    Parameters
+    ----------
+    g : iterable of float
+        Constraint values.
+
+    Returns
+    -------
+    bool
+        Whether all are ``<= 0``.
+    """
     return bool(all(v <= 0 for v in g))
 
 
@@ -524,7 +700,18 @@ def sensitivity(evaluator: DesignEvaluator, v: dict, name: str, sampling: Sampli
 def knee_index(F: np.ndarray) -> int:
     """Knee of a front (minimisation form ``F``, rows = designs): with two objectives
     the design farthest from the line through the two extremes (normalised), with
-    one the best, otherwise the design nearest the normalised ideal point."""
+    one the best, otherwise the design nearest the normalised ideal point.
+
+    Parameters
+    ----------
+    F : ndarray
+        The front, shape ``(n, n_obj)``, minimisation form.
+
+    Returns
+    -------
+    int
+        The knee's row.
+    """
     F = np.asarray(F, float)
     if len(F) == 1 or F.shape[1] == 1:
         return int(np.argmin(F[:, 0]))
@@ -543,7 +730,26 @@ def knee_index(F: np.ndarray) -> int:
 
 def parse_weights(weights, objectives):
     """``{objective: weight}`` from ``"size=1,min-lci=2"`` or a mapping; each a known
-    objective of ``objectives`` with a finite weight >= 0, at least one positive."""
+    objective of ``objectives`` with a finite weight >= 0, at least one positive.
+
+    Parameters
+    ----------
+    weights : str or dict
+        The weights.
+    objectives : sequence of str
+        The run's objectives.
+
+    Returns
+    -------
+    dict
+        ``{objective: weight}``.
+
+    Raises
+    ------
+    ValueError
+        One line, for a malformed text, an unknown objective, a negative weight or no
+        positive one.
+    """
     if isinstance(weights, str):
         d = {}
         for part in weights.split(","):
@@ -572,7 +778,22 @@ PICK_METHODS = ("sum", "asf", "pseudo")
 
 def parse_pick(text, objectives) -> tuple:
     """``(method, {objective: weight})`` from ``"size=1,min-lci=2"`` (a weighted sum),
-    ``"asf:size=1,min-lci=2"`` or ``"pseudo:..."`` (or a mapping: a weighted sum)."""
+    ``"asf:size=1,min-lci=2"`` or ``"pseudo:..."`` (or a mapping: a weighted sum).
+
+    Parameters
+    ----------
+    text : str or dict
+        The ``--pick`` value.
+    objectives : sequence of str
+        The run's objectives.
+
+    Returns
+    -------
+    method : str
+        ``"sum"``, ``"asf"`` or ``"pseudo"``.
+    weights : dict
+        ``{objective: weight}``.
+    """
     method = "sum"
     if isinstance(text, str) and ":" in text:
         method, _, text = text.partition(":")
@@ -587,7 +808,22 @@ def pick_index(F, objectives, weights=None) -> int:
     (pymoo's achievement scalarizing function) minimises ``max_i Z_i / w_i``, which
     reaches designs on non-convex parts of a front that no weighted sum does; pseudo
     takes the design whose pseudo-weights are nearest ``w`` (pymoo's PseudoWeights,
-    Deb 2001)."""
+    Deb 2001).
+
+    Parameters
+    ----------
+    F : ndarray
+        The front, minimisation form.
+    objectives : sequence of str
+        Its columns' objectives.
+    weights : str or dict, optional
+        As :func:`parse_pick` takes.
+
+    Returns
+    -------
+    int
+        The chosen row.
+    """
     F = np.asarray(F, float)
     if weights is None:
         return knee_index(F)

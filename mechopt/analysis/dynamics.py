@@ -54,7 +54,21 @@ class MassModel:
     """The bodies of a mechanism with their masses (:class:`mechopt.core.rigid_bodies.RigidBody`, SI),
     the reflected rotor inertia of each actuator ``I_r N^2`` [kg m^2 or kg] and the
     gravity magnitude [m/s^2] the model was stated with; ``source`` says where the numbers
-    come from (``"law"``, ``"wu2008-table2"``, plus ``"+user"`` for given bodies)."""
+    come from (``"law"``, ``"wu2008-table2"``, plus ``"+user"`` for given bodies).
+
+    Parameters
+    ----------
+    bodies : tuple of mechopt.core.rigid_bodies.RigidBody
+        The bodies (SI).
+    actuator_inertia : tuple of float
+        Reflected rotor inertia per actuator [kg m^2 or kg].
+    g : float
+        Gravity magnitude [m/s^2].
+    source : str
+        Where the numbers come from.
+    law : mechopt.core.rigid_bodies.MassLaw, optional
+        The law used.
+    """
 
     bodies: tuple
     actuator_inertia: tuple = (0.0, 0.0)
@@ -68,7 +82,13 @@ class MassModel:
         return float(sum(b.mass for b in self.bodies if b.kind != "motor"))
 
     def as_dict(self) -> dict:
-        """``bodies.json``: every body and the model's settings."""
+        """``bodies.json``: every body and the model's settings.
+
+        Returns
+        -------
+        dict
+            bodies.json's content (SI units).
+        """
         law = self.law
         return {"source": self.source, "gravity_m_s2": self.g,
                 "actuator_inertia": list(self.actuator_inertia),
@@ -108,6 +128,11 @@ def mass_model(mech, law=None, bodies=None, length_unit: float = 1.0) -> MassMod
     Returns
     -------
     MassModel
+
+    Raises
+    ------
+    ValueError
+        One line, for an unknown body or key, or invalid values.
     """
     unit = _v.positive_length("length_unit", length_unit)
     specs = _declared(mech)
@@ -152,7 +177,27 @@ def mass_model(mech, law=None, bodies=None, length_unit: float = 1.0) -> MassMod
 
 def load_mass_model(mech, path, length_unit: float = 1.0) -> MassModel:
     """:func:`mass_model` from a JSON file ``{"law": {...}, "bodies": {...}}`` (both
-    optional; the keys of :class:`~mechopt.core.rigid_bodies.MassLaw` and of ``bodies``)."""
+    optional; the keys of :class:`~mechopt.core.rigid_bodies.MassLaw` and of ``bodies``).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        A mechanism with ``bodies()`` and ``body_frames()`` (lengths [L]).
+    path : str or Path
+        The JSON file.
+    length_unit : float
+        Metres per length unit [m/L].
+
+    Returns
+    -------
+    MassModel
+        The model.
+
+    Raises
+    ------
+    ValueError
+        One line, for an unreadable file or invalid content.
+    """
     try:
         with open(path, encoding="utf-8") as fh:
             d = json.load(fh)
@@ -165,7 +210,25 @@ def load_mass_model(mech, path, length_unit: float = 1.0) -> MassModel:
 
 def parse_gravity(value, g: float = STANDARD_GRAVITY):
     """``(gx, gy)`` [m/s^2] from ``"off"`` (a horizontal table: ``(0, 0)``), ``"down"``
-    (``(0, -g)``), a pair, or a string ``"gx,gy"``."""
+    (``(0, -g)``), a pair, or a string ``"gx,gy"``.
+
+    Parameters
+    ----------
+    value : str or tuple
+        ``"off"``, ``"down"``, ``"gx,gy"`` or a pair [m/s^2].
+    g : float
+        The magnitude of ``"down"`` [m/s^2].
+
+    Returns
+    -------
+    tuple of float
+        ``(gx, gy)`` [m/s^2].
+
+    Raises
+    ------
+    ValueError
+        One line, for another value.
+    """
     if value is None or (isinstance(value, str) and value.strip().lower() == "down"):
         return (0.0, -float(g))
     if isinstance(value, str):
@@ -259,7 +322,26 @@ def _solve_masked(J, Q):
 
 
 def energies(mech, motion, model: MassModel, gravity=None, length_unit: float = 1.0):
-    """``(T, V)`` [J] along the motion (:func:`inverse_dynamics`'s)."""
+    """``(T, V)`` [J] along the motion (:func:`inverse_dynamics`'s).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        A mechanism with ``bodies()`` and ``body_frames()`` (lengths [L]).
+    motion : dict
+        A timed motion (:func:`mechopt.core.motion.timed_motion`) [L, s].
+    model : MassModel
+        The masses.
+    gravity : tuple of float, optional
+        ``(gx, gy)`` [m/s^2] (default: the model's, downwards).
+    length_unit : float
+        Metres per length unit [m/L].
+
+    Returns
+    -------
+    T, V : ndarray
+        Kinetic and potential energy [J] at each time.
+    """
     out = inverse_dynamics(mech, motion, model, gravity, length_unit)
     return out["T"], out["V"]
 
@@ -324,14 +406,52 @@ def motion_efforts(mech, motion, model: MassModel, gravity=None, length_unit: fl
 
 def peak_torque(mech, motion, model: MassModel, gravity=None, length_unit: float = 1.0):
     """``(2,)`` array: the largest ``|tau_i|`` [N m or N] of each actuator along the motion
-    (:func:`inverse_dynamics`; no reach check: NaN where a pose is out of reach)."""
+    (:func:`inverse_dynamics`; no reach check: NaN where a pose is out of reach).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        A mechanism with ``bodies()`` and ``body_frames()`` (lengths [L]).
+    motion : dict
+        A timed motion (:func:`mechopt.core.motion.timed_motion`) [L, s].
+    model : MassModel
+        The masses.
+    gravity : tuple of float, optional
+        ``(gx, gy)`` [m/s^2] (default: the model's, downwards).
+    length_unit : float
+        Metres per length unit [m/L].
+
+    Returns
+    -------
+    ndarray
+        Shape ``(2,)`` [N m or N].
+    """
     tau = inverse_dynamics(mech, motion, model, gravity, length_unit)["tau"]
     return np.max(np.abs(tau), axis=0)
 
 
 def rms_torque(mech, motion, model: MassModel, gravity=None, length_unit: float = 1.0):
     """``(2,)`` array: the root mean square of ``tau_i`` over the motion's time [N m or N]
-    (trapezoidal rule on the samples ``motion["t"]``)."""
+    (trapezoidal rule on the samples ``motion["t"]``).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        A mechanism with ``bodies()`` and ``body_frames()`` (lengths [L]).
+    motion : dict
+        A timed motion (:func:`mechopt.core.motion.timed_motion`) [L, s].
+    model : MassModel
+        The masses.
+    gravity : tuple of float, optional
+        ``(gx, gy)`` [m/s^2] (default: the model's, downwards).
+    length_unit : float
+        Metres per length unit [m/L].
+
+    Returns
+    -------
+    ndarray
+        Shape ``(2,)`` [N m or N].
+    """
     tau = inverse_dynamics(mech, motion, model, gravity, length_unit)["tau"]
     t = np.asarray(motion["t"], float)
     return np.sqrt(np.trapezoid(tau ** 2, t, axis=0) / (t[-1] - t[0]))

@@ -60,7 +60,18 @@ def disk_powers(mech) -> dict:
     """``{key: p}``: the value ``key`` of :func:`disk_evaluation` of the design scaled by
     ``D`` is ``D**p`` times that of the design (the other keys are not numbers). With
     angular joints J scales as ``1/D`` (velocities as ``D``, efforts as ``1/D``,
-    compliances as ``D^2``); with prismatic ones J is invariant."""
+    compliances as ``D^2``); with prismatic ones J is invariant.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        A mechanism with ``disk_indices``.
+
+    Returns
+    -------
+    dict
+        ``{key: p}`` (integers).
+    """
     a = 1 if mech.angular_joints else 0
     return {"r_mic": 1, "mic_center_y": 1, "gci": 0, "mci": 0, "gvi_max": a, "gvi_min": a,
             "gpi_max": -a, "gpi_min": -a, "gsi_max": 2 * a, "gsi_min": 2 * a, "usable_area": 2,
@@ -75,7 +86,18 @@ _UNIT_EXPONENT_MAX = 39
 
 def unit_of(mech) -> float:
     """The power of two nearest ``mech.length_scale`` (within ``2**+-39``): the unit a
-    design is evaluated in (1.0 for designs of size about 1)."""
+    design is evaluated in (1.0 for designs of size about 1).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+
+    Returns
+    -------
+    float
+        ``2**k`` [L]; 1.0 when the length scale is not a positive finite number.
+    """
     L = float(mech.length_scale)
     if not (L > 0.0 and math.isfinite(L)):
         return 1.0
@@ -110,7 +132,18 @@ def _scale_back(values: dict, powers: dict, unit: float) -> dict | None:
 
 @dataclass(frozen=True)
 class Evaluation:
-    """The result of :func:`evaluate` for any mechanism."""
+    """The result of :func:`evaluate` for any mechanism.
+
+    Parameters
+    ----------
+    mechanism : str
+        ``repr`` of the mechanism.
+    inputs : dict
+        The values of its declared parameters and the evaluation options.
+    values : dict
+        ``{name: value}``: floats (in the design's units, :doc:`outputs` gives each),
+        strings, ``[lo, hi]`` ranges or None.
+    """
 
     #: ``repr`` of the mechanism
     mechanism: str
@@ -120,16 +153,47 @@ class Evaluation:
     values: dict = field(default_factory=dict)
 
     def as_dict(self) -> dict:
-        """``{"mechanism": ..., "inputs": {...}, **values}`` (what ``--json`` prints)."""
+        """The evaluation as one dict (what ``--json`` prints).
+
+        Returns
+        -------
+        dict
+            ``{"mechanism": ..., "inputs": {...}, **values}``.
+        """
         return {"mechanism": self.mechanism, "inputs": dict(self.inputs), **self.values}
 
 
 def evaluate(mech, quadrature: str = "area", gamma: float = 0.5, step=None) -> Evaluation:
     """Every global number of ``mech`` (any :class:`~mechopt.PlanarMechanism`).
 
-    ``quadrature`` and ``gamma`` are those of :func:`disk_evaluation` (used only for
-    mechanisms with ``disk_indices``); ``step`` is the raster step [L] of the usable
-    workspace and GCW (default ``length_scale/400``).
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism, however it was built (constructor, ``from_parameters``,
+        ``scaled``, ``with_mode``).
+    quadrature : {"area", "polar"}
+        Rule of the disk means (mechanisms with ``disk_indices`` only; Liu 2006 used
+        "polar").
+    gamma : float
+        LCI level bounding the good-conditioning workspace, in (0, 1) (mechanisms
+        with ``disk_indices`` only).
+    step : float, optional
+        Raster step [L] of the usable workspace and GCW (default
+        ``length_scale/400``).
+
+    Returns
+    -------
+    Evaluation
+        The mechanism's ``repr``, its inputs and every number: for ``disk_indices``
+        mechanisms those of :func:`disk_evaluation`, then its own ``summary()``
+        (computed in a power-of-two unit near its size, :func:`unit_of`, and scaled
+        back).
+
+    Raises
+    ------
+    ValueError
+        One line, for invalid options or a design whose numbers do not exist (no MIC,
+        a workspace too thin for the raster).
     """
     inputs = mech.parameter_values()
     values = {}
@@ -174,14 +238,22 @@ def disk_evaluation(fb, quadrature: str = "area", gamma: float = 0.5, step=None)
         any positive size giving at most ``quadrature.MAX_NODES`` cells (the error
         names the smallest step that does).
 
-    Raises ValueError (one line naming the design's inputs) when it has no MIC or a
-    usable workspace too thin for the raster (see :func:`mechopt.analysis.workspace.no_mic_message`
-    and :func:`mechopt.analysis.workspace.unusable_message`).
+    Returns
+    -------
+    dict
+        The keys :data:`DISK_KEYS` (lengths [L], areas [L^2], indices
+        dimensionless); ranges are ``[lo, hi]`` in degrees over the GCW. An empty GCW
+        (no usable point with LCI >= gamma, e.g. Liu's (0.4, 2.33, 0.27)) is a
+        result: ``gcw_area = 0``, ``gcw_square_side = 0``, NaN GCW means and square
+        centre, ``None`` ranges; the MIC indices are still given.
 
-    Returns a dict with :data:`DISK_KEYS`; ranges are ``[lo, hi]`` in degrees
-    over the GCW. An empty GCW (no usable point with LCI >= gamma, e.g. Liu's
-    (0.4, 2.33, 0.27)) is a result: ``gcw_area = 0``, ``gcw_square_side = 0``, NaN
-    GCW means and square centre, ``None`` ranges; the MIC indices are still given.
+    Raises
+    ------
+    ValueError
+        One line naming the design's inputs, when it has no MIC or a usable
+        workspace too thin for the raster (see
+        :func:`mechopt.analysis.workspace.no_mic_message` and
+        :func:`mechopt.analysis.workspace.unusable_message`).
     """
     _v.choice("quadrature", quadrature, QUADRATURES)
     gamma = _v.open_unit_interval("gamma", gamma)

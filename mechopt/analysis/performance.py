@@ -35,7 +35,30 @@ _HALF_DISK = {
 def disk_mean(mech, center_y, radius, quadrature="area", n_r=None, n_theta=None):
     """Means of every local index over the disk of ``radius`` centred at ``(0, center_y)``.
 
-    Returns a dict keyed by :data:`mechopt.core.indices.LOCAL_INDEX_NAMES`.
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+    center_y : float
+        Ordinate of the disk's centre [L].
+    radius : float
+        The disk's radius [L], >= 0.
+    quadrature : {"area", "polar"}
+        The rule of :func:`mechopt.core.quadrature.disk_rule` ("polar": Liu 2006's
+        mean over radius and angle; "area": the area mean).
+    n_r, n_theta : int, optional
+        Nodes in radius and angle (default: the rule's).
+
+    Returns
+    -------
+    dict
+        ``{name: float}`` keyed by :data:`mechopt.core.indices.LOCAL_INDEX_NAMES`, in
+        the indices' units.
+
+    Raises
+    ------
+    ValueError
+        For an unknown quadrature, a negative radius or a non-finite centre.
     """
     kw = {k: v for k, v in (("n_r", n_r), ("n_theta", n_theta)) if v is not None}
     center_y = _v.position("center_y", center_y)
@@ -271,6 +294,26 @@ def max_lci(mech, center_y, radius, n_r=64, n_theta=128, iters=40, n_seeds=6):
     independent maximisers in ``tests/test_mci.py``. Deterministic; about 1 ms
     (isotropic point found) to 10 ms for a five-bar at the defaults.
     ``iters = 0`` returns the best grid node or rim sample.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+    center_y : float
+        Ordinate of the disk's centre [L].
+    radius : float
+        The disk's radius [L].
+    n_r, n_theta : int
+        The polar grid of step 1.
+    iters : int
+        Most iterations of the local searches (0: the grid and rim samples alone).
+    n_seeds : int
+        Local maxima of the grid (and of the rim samples) the searches start from.
+
+    Returns
+    -------
+    float
+        The MCI (dimensionless, in [0, 1]).
     """
     center_y = _v.position("center_y", center_y)
     iters = _v.integer("iters", iters, 0)
@@ -315,6 +358,29 @@ def global_indices(mech, quadrature: str = "area", mic: MIC | None = None, **rul
     ``mci`` is the maximum LCI over the MIC by :func:`max_lci` (at its defaults; a
     maximum, so it depends on neither ``quadrature`` nor ``rule``). The atlas
     kernel computes it by another algorithm (``tests/test_mci.py`` compares them).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        A mechanism with ``disk_indices`` (symmetric about the y axis).
+    quadrature : {"area", "polar"}
+        The rule of the disk means (:func:`disk_mean`).
+    mic : mechopt.analysis.workspace.MIC, optional
+        The MIC when already computed (default: :func:`mechopt.analysis.workspace.mic`).
+    **rule
+        ``n_r``, ``n_theta`` of the quadrature.
+
+    Returns
+    -------
+    dict
+        ``r_mic`` and ``mic_center_y`` [L], ``gci`` and ``mci`` (dimensionless),
+        ``gvi_*`` [L per rad], ``gpi_*`` [per L], ``gsi_*`` [L^2] (GVI, GPI, GSI over
+        the half-radius disk, Liu 2006 sec. 2).
+
+    Raises
+    ------
+    ValueError
+        For an unknown quadrature, or a design without a MIC.
     """
     _v.choice("quadrature", quadrature, QUADRATURES)
     m = _mic(mech) if mic is None else mic
@@ -327,8 +393,21 @@ def global_indices(mech, quadrature: str = "area", mic: MIC | None = None, **rul
 
 
 def region_indices(mech, region: Region) -> dict:
-    """Area means over a raster region (e.g. the GCW): ``gci``, ``gsi_max``, ``gsi_min``;
-    NaN for an empty region (no mean exists)."""
+    """Area means over a raster region (e.g. the GCW).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+    region : mechopt.core.quadrature.Region
+        A raster region (cells and mask).
+
+    Returns
+    -------
+    dict
+        ``gci`` (dimensionless), ``gsi_max`` and ``gsi_min`` [L^2 for cranks]; NaN for
+        an empty region (no mean exists).
+    """
     if not region.mask.any():
         return {"gci": np.nan, "gsi_max": np.nan, "gsi_min": np.nan}
     x, y = region.points()

@@ -31,7 +31,17 @@ __all__ = ["Sampling", "samples", "bad_to", "region_mins", "leg_ranges", "minimi
 
 @dataclass(frozen=True)
 class Sampling:
-    """Sample counts of one evaluation: boundary points, interior grid per side."""
+    """Sample counts of one evaluation: boundary points, interior grid per side.
+
+    Parameters
+    ----------
+    n_boundary : int
+        Boundary points.
+    n_interior : int
+        Interior grid nodes per side.
+    refine : bool
+        Refine minima by zooming.
+    """
 
     n_boundary: int = 192
     n_interior: int = 13
@@ -39,12 +49,31 @@ class Sampling:
 
     @classmethod
     def fine(cls):
-        """The certification of :func:`certify` (front designs, design.json)."""
+        """The certification of :func:`certify` (front designs, design.json).
+
+        Returns
+        -------
+        Sampling
+            2048 boundary points, a 61 x 61 grid, refinement.
+        """
         return cls(2048, 61, True)
 
 
 def bad_to(v, bad):
-    """NaN (unreachable) replaced by ``bad``."""
+    """NaN (unreachable) replaced by ``bad``.
+
+    Parameters
+    ----------
+    v : ndarray
+        Values.
+    bad : float
+        The replacement of NaN.
+
+    Returns
+    -------
+    ndarray
+        The values.
+    """
     return np.where(np.isfinite(v), v, bad)
 
 
@@ -59,7 +88,20 @@ def samples(task, s: Sampling) -> dict:
     """The samples of one evaluation of ``task`` (module doc): boundary parameters
     ``tb`` and points ``bx, by`` (largest gap ``gap``), interior grid ``ix, iy`` (step
     ``step``), and both together, ``allx, ally``. A point task's points are its
-    boundary samples (contiguous copies: every sample set is a contiguous array)."""
+    boundary samples (contiguous copies: every sample set is a contiguous array).
+
+    Parameters
+    ----------
+    task : mechopt.analysis.task.Task
+        The (placed) task.
+    s : Sampling
+        The counts.
+
+    Returns
+    -------
+    dict
+        The arrays named above [L].
+    """
     if task.is_region:
         tb, gap = task.boundary_params(s.n_boundary)
         bx, by = task.boundary_at(tb)
@@ -165,7 +207,22 @@ def minimise(F, searches, task):
     all the points to ``F`` in one call (``F(x, y)``: the values of the searched
     functions as rows, shape ``(m, N)``), then sends each search its columns. A call of
     a mechanism's method on 50 points costs mostly its overhead: batching the searches
-    of one evaluation saves most of its time."""
+    of one evaluation saves most of its time.
+
+    Parameters
+    ----------
+    F : callable
+        ``F(x, y)`` -> the searches' values.
+    searches : list
+        Generators of the boundary and interior searches.
+    task : mechopt.analysis.task.Task
+        The (placed) task.
+
+    Returns
+    -------
+    list of float
+        The minima, one per search.
+    """
     out = [None] * len(searches)
     asks = {}
 
@@ -203,7 +260,24 @@ def region_mins(ctx, F, refine, vals):
     """Minimum over the task of each row of ``F(x, y)`` (functions evaluated by one
     call, shape ``(m, N)``): the boundary and interior searches of every row
     (:func:`_boundary_search`, :func:`_interior_search`) run together; ``vals`` is
-    ``F`` at ``ctx["allx"], ctx["ally"]`` (the boundary samples, then the grid)."""
+    ``F`` at ``ctx["allx"], ctx["ally"]`` (the boundary samples, then the grid).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's context (samples, task).
+    F : callable
+        ``F(x, y)`` -> shape ``(m, N)``.
+    refine : bool
+        Refine by zooming.
+    vals : ndarray
+        ``F`` at the samples.
+
+    Returns
+    -------
+    list of float
+        The minimum of each row.
+    """
     nb = ctx["bx"].size
     searches = []
     for i, v in enumerate(vals):
@@ -217,7 +291,24 @@ def leg_ranges(ctx, legs, refine, bad=(np.inf, np.inf)):
     two values ``legs(x, y)`` returns (one per leg: actuator or link angle), NaN
     replaced by ``bad[0]`` for the minimum and ``bad[1]`` for the maximum: the
     boundary minima (:func:`_boundary_search`) of ``q1, -q1, q2, -q2``, searched
-    together (:func:`minimise`: one call of ``legs`` per round, not four)."""
+    together (:func:`minimise`: one call of ``legs`` per round, not four).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's context (samples, task).
+    legs : callable
+        ``legs(x, y) -> (v1, v2)``.
+    refine : bool
+        Refine by zooming.
+    bad : tuple of float
+        Replacements of NaN.
+
+    Returns
+    -------
+    list of tuple
+        ``[(lo1, hi1), (lo2, hi2)]``.
+    """
     def rows(x, y):
         q1, q2 = legs(x, y)[:2]
         return np.stack([bad_to(q1, bad[0]), bad_to(-q1, bad[1]), bad_to(q2, bad[0]), bad_to(-q2, bad[1])])

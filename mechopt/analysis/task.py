@@ -93,6 +93,23 @@ class Task:
     Build it with :meth:`rect`, :meth:`circle`, :meth:`polygon` or :meth:`points`
     (or :func:`parse_task` from the CLI syntax). ``reference`` is the centre of its
     bounding box; :meth:`moved_to` translates the task so that it sits there.
+
+    Parameters
+    ----------
+    kind : str
+        ``rect``, ``circle``, ``polygon``, ``points`` or ``path``.
+    vertices : ndarray, optional
+        Vertices [unit] of a rectangle or polygon, counter-clockwise, shape (n, 2).
+    center : tuple of float, optional
+        A circle's centre [unit].
+    radius : float, optional
+        A circle's radius [unit].
+    pts : ndarray, optional
+        The points of a point set or path [unit], shape (n, 2).
+    unit : str
+        Length unit: mm, cm, m or in (default mm).
+    label : str
+        A description for messages and plots.
     """
 
     kind: str
@@ -106,7 +123,29 @@ class Task:
     # --- constructors ---------------------------------------------------------------
     @classmethod
     def rect(cls, width, height, center=(0.0, 0.0), unit="mm"):
-        """Axis-aligned ``width x height`` rectangle centred at ``center`` [unit]."""
+        """Axis-aligned ``width x height`` rectangle centred at ``center`` [unit].
+
+        Parameters
+        ----------
+        width : float
+            Width along x [unit], > 0.
+        height : float
+            Height along y [unit], > 0.
+        center : tuple of float
+            Centre (x, y) [unit].
+        unit : str
+            Length unit: mm, cm, m or in (default mm).
+
+        Returns
+        -------
+        Task
+            The rectangle.
+
+        Raises
+        ------
+        ValueError
+            One line naming the invalid input.
+        """
         w = _v.positive_length("task width", width)
         h = _v.positive_length("task height", height)
         cx, cy = (_v.coordinate("task center", c) for c in _v.finite_numbers("task center", center, 2, "a point (x, y)"))
@@ -117,7 +156,27 @@ class Task:
 
     @classmethod
     def circle(cls, radius, center=(0.0, 0.0), unit="mm"):
-        """Disk of ``radius`` about ``center`` [unit]."""
+        """Disk of ``radius`` about ``center`` [unit].
+
+        Parameters
+        ----------
+        radius : float
+            Radius [unit], > 0.
+        center : tuple of float
+            Centre (x, y) [unit].
+        unit : str
+            Length unit: mm, cm, m or in (default mm).
+
+        Returns
+        -------
+        Task
+            The disk.
+
+        Raises
+        ------
+        ValueError
+            One line naming the invalid input.
+        """
         r = _v.positive_length("task radius", radius)
         cx, cy = (_v.coordinate("task center", c) for c in _v.finite_numbers("task center", center, 2, "a point (x, y)"))
         return cls("circle", center=(cx, cy), radius=r, unit=_v.choice("unit", unit, tuple(UNITS)),
@@ -125,7 +184,26 @@ class Task:
 
     @classmethod
     def polygon(cls, vertices, unit="mm"):
-        """Simple polygon (no self-intersection, positive area), vertices in order."""
+        """Simple polygon (no self-intersection, positive area), vertices in order.
+
+        Parameters
+        ----------
+        vertices : array_like
+            Shape (n, 2) [unit], n >= 3, in boundary order (either orientation; a repeated
+            first vertex closes it).
+        unit : str
+            Length unit: mm, cm, m or in (default mm).
+
+        Returns
+        -------
+        Task
+            The polygon, counter-clockwise.
+
+        Raises
+        ------
+        ValueError
+            For fewer than 3 distinct vertices, too many, zero area or crossing edges.
+        """
         v = _as_xy("polygon vertices", vertices, 3)
         if len(v) > 3 and np.allclose(v[0], v[-1]):
             v = v[:-1]  # closed explicitly
@@ -153,7 +231,25 @@ class Task:
     @classmethod
     def points(cls, array, unit="mm"):
         """A finite set of poses (a point cloud, or way-points checked at the points
-        only: :meth:`path` for the polyline through them)."""
+        only: :meth:`path` for the polyline through them).
+
+        Parameters
+        ----------
+        array : array_like
+            Shape (n, 2) [unit].
+        unit : str
+            Length unit: mm, cm, m or in (default mm).
+
+        Returns
+        -------
+        Task
+            The point set.
+
+        Raises
+        ------
+        ValueError
+            One line naming the invalid input.
+        """
         p = _as_xy("task points", array, 1)
         return cls("points", pts=p, unit=_v.choice("unit", unit, tuple(UNITS)),
                    label=f"{len(p)} points [{unit}]")
@@ -162,7 +258,25 @@ class Task:
     def path(cls, array, unit="mm"):
         """The polyline through ``array``'s points, in order (a trajectory): every point of
         every segment is covered, not only the way-points. Repeated consecutive points
-        are dropped; at least two distinct points."""
+        are dropped; at least two distinct points.
+
+        Parameters
+        ----------
+        array : array_like
+            Shape (n, 2) [unit], in order.
+        unit : str
+            Length unit: mm, cm, m or in (default mm).
+
+        Returns
+        -------
+        Task
+            The path.
+
+        Raises
+        ------
+        ValueError
+            For fewer than 2 distinct points or invalid values.
+        """
         p = _as_xy("task path", array, 2)
         p = p[np.r_[True, np.any(np.diff(p, axis=0) != 0, axis=1)]]
         if len(p) < 2:
@@ -225,7 +339,20 @@ class Task:
         return float(np.hypot(*(np.roll(self.vertices, -1, 0) - self.vertices).T).sum())
 
     def moved_to(self, x, y) -> "Task":
-        """The same task translated so that its :attr:`reference` is ``(x, y)``."""
+        """The same task translated so that its :attr:`reference` is ``(x, y)``.
+
+        Parameters
+        ----------
+        x : float
+            New reference abscissa [unit].
+        y : float
+            New reference ordinate [unit].
+
+        Returns
+        -------
+        Task
+            The translated task (this one when it is already there).
+        """
         rx, ry = self.reference
         d = np.array([x - rx, y - ry], float)
         if not np.any(d):
@@ -238,7 +365,13 @@ class Task:
 
     def outline(self):
         """Closed outline ``(x, y)`` for plots (the points themselves for a point task,
-        the polyline for a path)."""
+        the polyline for a path).
+
+        Returns
+        -------
+        x, y : ndarray
+            The outline's coordinates [unit].
+        """
         if self.kind == "circle":
             t = np.linspace(0, 2 * np.pi, 361)
             return self.center[0] + self.radius * np.cos(t), self.center[1] + self.radius * np.sin(t)
@@ -264,7 +397,18 @@ class Task:
 
     def boundary_at(self, t):
         """Point at arc-length fraction ``t`` (mod 1) of the boundary, counter-clockwise;
-        of a path, from its first point (``t`` clipped to [0, 1]: it has two ends)."""
+        of a path, from its first point (``t`` clipped to [0, 1]: it has two ends).
+
+        Parameters
+        ----------
+        t : array_like
+            Arc-length fractions.
+
+        Returns
+        -------
+        x, y : ndarray
+            The boundary points [unit].
+        """
         t = np.clip(np.asarray(t, float), 0.0, 1.0) if self.is_path else np.mod(np.asarray(t, float), 1.0)
         if self.kind == "circle":
             a = 2 * np.pi * t
@@ -276,7 +420,20 @@ class Task:
 
     def boundary_params(self, n):
         """Arc-length fractions of about ``n`` boundary samples, every vertex included;
-        returns ``(t, gap)`` with ``gap`` the largest distance between neighbours [unit]."""
+        returns ``(t, gap)`` with ``gap`` the largest distance between neighbours [unit].
+
+        Parameters
+        ----------
+        n : int
+            Requested number of samples (at least 8 are used).
+
+        Returns
+        -------
+        t : ndarray
+            The arc-length fractions.
+        gap : float
+            The largest distance between neighbouring samples [unit].
+        """
         n = max(int(n), 8)
         if self.kind == "circle":
             t = np.arange(n) / n
@@ -294,7 +451,20 @@ class Task:
         return np.concatenate(ts), gap
 
     def contains(self, x, y):
-        """Points inside or on the boundary (to rounding)."""
+        """Points inside or on the boundary (to rounding).
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae [unit].
+        y : array_like
+            Ordinates [unit]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray of bool
+            Inside or on the boundary; False everywhere for a point set or path.
+        """
         x, y = np.asarray(x, float), np.asarray(y, float)
         if self.kind == "circle":
             return np.hypot(x - self.center[0], y - self.center[1]) <= self.radius * (1 + _v.ROUNDING)
@@ -303,7 +473,25 @@ class Task:
         return self.signed_distance(x, y) >= -_v.ROUNDING * self.diameter
 
     def signed_distance(self, x, y):
-        """Distance to the boundary, positive inside, negative outside [unit]."""
+        """Distance to the boundary, positive inside, negative outside [unit].
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae [unit].
+        y : array_like
+            Ordinates [unit]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The signed distance [unit].
+
+        Raises
+        ------
+        ValueError
+            For a point set or path (no inside).
+        """
         x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
         if self.kind == "circle":
             return self.radius - np.hypot(x - self.center[0], y - self.center[1])
@@ -321,7 +509,20 @@ class Task:
         return np.where(inside, d, -d)
 
     def grid(self, n):
-        """``n x n`` grid over the bounding box (edges included), kept inside: ``(x, y, step)``."""
+        """``n x n`` grid over the bounding box (edges included), kept inside: ``(x, y, step)``.
+
+        Parameters
+        ----------
+        n : int
+            Nodes per side of the bounding box.
+
+        Returns
+        -------
+        x, y : ndarray
+            The nodes inside the task [unit] (a point set's or path's points).
+        step : float
+            The grid step [unit] (0 for points).
+        """
         if not self.is_region:
             return self.pts[:, 0].copy(), self.pts[:, 1].copy(), 0.0
         x0, x1, y0, y1 = self.bbox
@@ -332,7 +533,23 @@ class Task:
     @classmethod
     def from_dict(cls, d: dict) -> "Task":
         """The task of :meth:`to_dict` (run.json's ``design.task``), checked by its
-        constructors (a rectangle keeps its vertices as written)."""
+        constructors (a rectangle keeps its vertices as written).
+
+        Parameters
+        ----------
+        d : dict
+            What :meth:`to_dict` wrote.
+
+        Returns
+        -------
+        Task
+            The task.
+
+        Raises
+        ------
+        ValueError
+            One line, for a missing key, an unknown kind or invalid values.
+        """
         kind, unit = d.get("kind"), d.get("unit", "mm")
         try:
             if kind == "rect":
@@ -349,6 +566,14 @@ class Task:
         raise ValueError(f"the task's kind must be rect, circle, polygon, points or path, got {kind!r}")
 
     def to_dict(self) -> dict:
+        """The task as plain data (run.json's ``design.task``).
+
+        Returns
+        -------
+        dict
+            ``kind``, ``unit``, ``label`` and ``vertices``, ``center`` and ``radius``, or
+            ``points`` [unit].
+        """
         d = {"kind": self.kind, "unit": self.unit, "label": self.label}
         if self.kind == "circle":
             d.update(center=list(self.center), radius=self.radius)
@@ -379,7 +604,26 @@ def read_points(path, what) -> list:
     skipped; an optional header of two names (``x,y``); the delimiter ``,``, ``;`` or a
     tab, the one the first data line uses; with ``;`` a decimal comma is read as a point
     (``-20,5;120`` is (-20.5, 120)); every data line exactly two finite numbers, else
-    the error names the line."""
+    the error names the line.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    what : str
+        What the points are, for messages (``--task points``).
+
+    Returns
+    -------
+    list
+        ``[[x, y], ...]`` as floats, in the file's unit.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and the offending line, for an unreadable or malformed
+        file.
+    """
     from mechopt.core import reading
 
     try:
@@ -426,7 +670,25 @@ def parse_task(text: str, unit: str = "mm") -> Task:
     """A task from the CLI syntax: ``rect:W,H@X,Y``, ``circle:R@X,Y``,
     ``polygon:x1,y1;x2,y2;...``, ``points:FILE.csv`` (two columns x, y; a header line is
     skipped: the points alone) or ``path:FILE.csv`` (the same file: the polyline through
-    the points, in order). ``@X,Y`` (the centre) defaults to the origin."""
+    the points, in order). ``@X,Y`` (the centre) defaults to the origin.
+
+    Parameters
+    ----------
+    text : str
+        The ``--task`` value.
+    unit : str
+        Length unit: mm, cm, m or in (default mm).
+
+    Returns
+    -------
+    Task
+        The task.
+
+    Raises
+    ------
+    ValueError
+        One line, for a malformed text or invalid values.
+    """
     if not isinstance(text, str) or ":" not in text:
         raise ValueError(f"--task must be rect:W,H@X,Y, circle:R@X,Y, polygon:x1,y1;x2,y2;..., "
                          f"points:FILE.csv or path:FILE.csv, got {_v.show(text)}")

@@ -58,7 +58,15 @@ RASTER_BLOCK = 1 << 15
 
 @dataclass(frozen=True)
 class MIC:
-    """Maximal inscribed circle: ``radius`` and centre ``(0, center_y)`` [L]."""
+    """Maximal inscribed circle: ``radius`` and centre ``(0, center_y)`` [L].
+
+    Parameters
+    ----------
+    radius : float
+        The radius [L].
+    center_y : float
+        Ordinate of the centre [L] (the centre is on the y axis).
+    """
 
     radius: float
     center_y: float
@@ -103,6 +111,28 @@ def type2_clearance(mech, cx, cy, radius, n_phi=128, n_r=96, n_refine=64):
     hit is then refined on ``n_refine`` rays spanning the neighbouring grid
     cells. At the closest point the locus is tangent to the circle, so the ray
     there crosses it transversally and the bracketing cannot miss it.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+    cx, cy : array_like
+        The centres [L], shape ``(m,)`` or scalars.
+    radius : float
+        The search radius [L].
+    n_phi : int
+        Rays of the angle grid.
+    n_r : int
+        Radial grid nodes per ray.
+    n_refine : int
+        Rays of the angle refinement.
+
+    Returns
+    -------
+    float or ndarray
+        The distance [L] from each centre to the locus (or to the loss of
+        reachability); ``radius`` where none is found within it, 0 where the centre
+        itself is singular or unreachable.
     """
     from mechopt.core.protocol import as_points
 
@@ -152,9 +182,28 @@ def mic(mech, method: str = "auto", n_y: int = 48, tol: float = 1e-6) -> MIC:
     mechanism's length scale. Its coarse centre grid can pick the lower of two
     nearly equal peaks; the explicit method does not.
 
-    Raises ValueError when no centre on the positive y axis is a regular
-    reachable point (``radius`` would be 0); the message names the inputs and,
-    for a mechanism with an explicit workspace, which condition on them fails.
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+    method : {"auto", "explicit", "rays"}
+        The algorithm (above).
+    n_y : int
+        Centres of the rays method's grid.
+    tol : float
+        Tolerance of the rays method's refinement, relative to the length scale.
+
+    Returns
+    -------
+    MIC
+        ``radius`` and ``center_y`` [L].
+
+    Raises
+    ------
+    ValueError
+        When no centre on the positive y axis is a regular reachable point
+        (``radius`` would be 0); the message names the inputs and, for a mechanism
+        with an explicit workspace, which condition on them fails.
     """
     _v.choice("method", method, ("auto", "explicit", "rays"))
     n_y = _v.integer("n_y", n_y, 1)
@@ -197,7 +246,18 @@ def _mic(mech, method="auto", n_y=48, tol=1e-6):
 def no_mic_message(mech) -> str:
     """Why ``mech`` has no MIC, in terms of its inputs (one line): for a mechanism with
     an explicit workspace its ``no_mic_reason()`` (for the five-bar, the first condition
-    on ``r1, r2, r3`` and the mode that fails), else the bare finding."""
+    on ``r1, r2, r3`` and the mode that fails), else the bare finding.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+
+    Returns
+    -------
+    str
+        The message.
+    """
     head = f"{mech!r} has no singularity-free disk centred on the y axis (MIC radius 0)"
     explicit = mech.explicit_workspace()
     if explicit is None:
@@ -207,7 +267,15 @@ def no_mic_message(mech) -> str:
 
 @dataclass(frozen=True)
 class Region:
-    """A region as a boolean ``mask`` on a :class:`~mechopt.core.quadrature.Grid`."""
+    """A region as a boolean ``mask`` on a :class:`~mechopt.core.quadrature.Grid`.
+
+    Parameters
+    ----------
+    grid : mechopt.core.quadrature.Grid
+        The raster (cell centres and step [L]).
+    mask : ndarray of bool
+        The cells inside the region, shape of the grid.
+    """
 
     grid: Grid
     mask: np.ndarray
@@ -218,7 +286,13 @@ class Region:
 
     def points(self):
         """``(x, y)`` of the cell centres inside the region (1-D arrays, row-major
-        order: those of ``X[mask], Y[mask]`` for ``X, Y = grid.points()``)."""
+        order: those of ``X[mask], Y[mask]`` for ``X, Y = grid.points()``).
+
+        Returns
+        -------
+        x, y : ndarray
+            Read-only arrays [L].
+        """
         return self._points
 
     @cached_property
@@ -230,6 +304,23 @@ class Region:
         return x, y
 
     def mean(self, values) -> float:
+        """The area mean of a field over the region.
+
+        Parameters
+        ----------
+        values : ndarray
+            The field at every cell of the grid (its shape).
+
+        Returns
+        -------
+        float
+            The mean over the region's cells (mid-point rule).
+
+        Raises
+        ------
+        ValueError
+            For an empty region (no mean exists).
+        """
         return self.grid.mean(values, self.mask)
 
 
@@ -250,9 +341,26 @@ def usable_region(mech, step=None, center=None) -> Region:
     of the cell holding the centre is returned. The area converges at first
     order in ``step`` (default ``length_scale/400``).
 
-    Raises ValueError naming the inputs when the centre is singular or
-    unreachable, or when the raster is too coarse for the region (its cell next
-    to the centre lies outside it: a usable workspace thinner than about a cell).
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+    step : float, optional
+        The raster step [L] (default ``length_scale/400``).
+    center : float, optional
+        Ordinate of the MIC centre [L] (default: :func:`mic`'s).
+
+    Returns
+    -------
+    Region
+        The usable workspace.
+
+    Raises
+    ------
+    ValueError
+        Naming the inputs, when the centre is singular or unreachable, or when the
+        raster is too coarse for the region (its cell next to the centre lies
+        outside it: a usable workspace thinner than about a cell).
     """
     given = step is not None
     step = _v.positive_size("step", step) if given else _default_step(mech)
@@ -340,7 +448,26 @@ def _component(free, i, j):
 
 
 def unusable_message(mech, step, center, given_step=False, r_mic=None) -> str:
-    """Why :func:`usable_region` found no region, in terms of the inputs (one line)."""
+    """Why :func:`usable_region` found no region, in terms of the inputs (one line).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+    step : float
+        The raster step used [L].
+    center : float
+        Ordinate of the MIC centre [L].
+    given_step : bool
+        Whether the caller chose the step (the message then names a finer one).
+    r_mic : float, optional
+        The MIC radius [L], for the bound on the step.
+
+    Returns
+    -------
+    str
+        The message.
+    """
     s0 = np.sign(mech.type2_function(*center))
     if not (np.isfinite(s0) and s0 != 0):
         return (f"{mech!r}: the centre {_v.show(tuple(center))} is singular or unreachable, so it lies "
@@ -361,6 +488,20 @@ def gcw(mech, gamma: float = 0.5, usable: Region | None = None) -> Region:
     Liu 2006 sec. 3.2.3 step 1 (Fig. 25). It may be empty (``area == 0``): Liu's
     design (0.4, 2.33, 0.27) has no GCW at ``gamma = 0.5``, a result, not an error.
     The LCI is evaluated at the usable cells only.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+    gamma : float
+        The LCI level, in (0, 1).
+    usable : Region, optional
+        The usable workspace (default: :func:`usable_region` at its defaults).
+
+    Returns
+    -------
+    Region
+        The GCW (possibly empty).
     """
     gamma = _v.open_unit_interval("gamma", gamma)
     usable = usable_region(mech) if usable is None else usable
@@ -384,6 +525,18 @@ def largest_square(region: Region):
     cells matter). Returns ``(side, center_y)``; accurate to about one cell.
     A region that does not meet the y axis (an empty one included) holds no such
     square: ``(0.0, nan)``.
+
+    Parameters
+    ----------
+    region : Region
+        A raster region.
+
+    Returns
+    -------
+    side : float
+        The square's side [L].
+    center_y : float
+        Ordinate of its centre [L].
     """
     mask = region.mask
     grid = region.grid
@@ -417,7 +570,20 @@ def largest_square(region: Region):
 def joint_ranges(mech, region: Region):
     """``((q1_lo, q1_hi), (q2_lo, q2_hi))`` of the actuator coordinates over a region
     (rad for angular joints). For the five-bar the angles follow Le eq. (17)-(18)
-    without wrapping, so the ranges are continuous. NaN bounds for an empty region."""
+    without wrapping, so the ranges are continuous. NaN bounds for an empty region.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+    region : Region
+        A raster region.
+
+    Returns
+    -------
+    tuple
+        ``((q1_lo, q1_hi), (q2_lo, q2_hi))`` [rad or L].
+    """
     if not region.mask.any():
         return (math.nan, math.nan), (math.nan, math.nan)
     x, y = region.points()
@@ -448,6 +614,26 @@ def largest_square_at(predicate, center_y: float, half_max: float, n_inner: int 
     monotone in the side and bisection finds the largest one (to ``tol`` relative
     to ``half_max``). Each candidate is checked on ``n_edge`` points per edge and
     an ``n_inner`` x ``n_inner`` interior grid.
+
+    Parameters
+    ----------
+    predicate : callable
+        ``predicate(x, y)`` -> boolean array, True where the constraints hold.
+    center_y : float
+        Ordinate of the centre [L].
+    half_max : float
+        The largest half side [L].
+    n_inner : int
+        Interior grid nodes per side.
+    n_edge : int
+        Points per edge.
+    tol : float
+        Tolerance of the bisection, relative to ``half_max``.
+
+    Returns
+    -------
+    float
+        The side [L] (0 when no square holds).
     """
     u = np.linspace(-1.0, 1.0, n_edge)
     one = np.ones_like(u)

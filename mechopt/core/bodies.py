@@ -99,12 +99,38 @@ class Shapes:
     @classmethod
     def default(cls, unit: str = "mm", **changes) -> "Shapes":
         """The sizes of :data:`MM_DEFAULTS` in ``unit`` (``"mm"``, ``"cm"``, ``"m"``,
-        ``"in"``), with ``changes`` [unit] applied."""
+        ``"in"``), with ``changes`` [unit] applied.
+
+        Parameters
+        ----------
+        unit : str
+            ``"mm"``, ``"cm"``, ``"m"`` or ``"in"``.
+        **changes : 
+            Sizes to change [unit].
+
+        Returns
+        -------
+        Shapes
+            The sizes.
+        """
         f = 1.0 / _UNIT_MM[_v.choice("unit", unit, tuple(_UNIT_MM))]
         return cls(**{**{k: v * f for k, v in MM_DEFAULTS.items()}, **changes})
 
     def width(self, name: str, kind: str) -> float:
-        """The diameter [L] of the body ``name`` of ``kind``."""
+        """The diameter [L] of the body ``name`` of ``kind``.
+
+        Parameters
+        ----------
+        name : str
+            The body's name.
+        kind : str
+            Its kind.
+
+        Returns
+        -------
+        float
+            The diameter [L].
+        """
         if name in self.widths:
             return float(self.widths[name])
         return {"housing": self.housing_diameter, "guide": self.guide_width,
@@ -117,6 +143,21 @@ class Body:
 
     ``x0, y0, x1, y1`` are arrays [L, task frame] of the shape of the poses (a fixed
     body's are broadcast to it); ``width`` is the capsule's diameter [L].
+
+    Parameters
+    ----------
+    name : str
+        The body's name.
+    kind : str
+        One of :data:`KINDS`.
+    joints : tuple of str
+        The joints it carries (adjacency).
+    ends : tuple of str
+        The names of its two end points.
+    x0, y0, x1, y1 : ndarray
+        End points [L, task frame], the poses' shape.
+    width : float
+        The capsule's diameter [L].
     """
 
     name: str
@@ -137,7 +178,35 @@ class Body:
     @classmethod
     def make(cls, name, kind, joints, ends, start, end, shapes: Shapes, shape=None):
         """A body of ``kind`` from its end points ``start = (x0, y0)``, ``end = (x1, y1)``
-        (arrays or numbers, broadcast to ``shape``), its width from ``shapes``."""
+        (arrays or numbers, broadcast to ``shape``), its width from ``shapes``.
+
+        Parameters
+        ----------
+        name : str
+            The body's name.
+        kind : str
+            Its kind.
+        joints : tuple of str
+            The joints it carries.
+        ends : tuple of str
+            The names of its end points.
+        start, end : tuple
+            ``(x, y)`` end points [L], arrays or numbers.
+        shapes : Shapes
+            The sizes.
+        shape : tuple, optional
+            The poses' shape to broadcast to.
+
+        Returns
+        -------
+        Body
+            The body.
+
+        Raises
+        ------
+        ValueError
+            For a kind not in :data:`KINDS`.
+        """
         if kind not in KINDS:
             raise ValueError(f"body kind must be one of {', '.join(map(repr, KINDS))}, got {kind!r}")
         pts = [np.asarray(v, dtype=float) for v in (*start, *end)]

@@ -277,14 +277,40 @@ def _names(node) -> set:
 
 @dataclass(frozen=True)
 class Condition:
-    """A parsed condition: :meth:`evaluate` it on columns; ``names`` it uses."""
+    """A parsed condition: :meth:`evaluate` it on columns; ``names`` it uses.
+
+    Parameters
+    ----------
+    text : str
+        The condition as written.
+    tree : object
+        The parsed expression.
+    names : frozenset of str
+        The column names it uses.
+    """
 
     text: str
     tree: object
     names: frozenset
 
     def evaluate(self, columns: Mapping) -> np.ndarray:
-        """Boolean array over the rows of ``columns`` (a DataFrame or a dict of arrays)."""
+        """Boolean array over the rows of ``columns`` (a DataFrame or a dict of arrays).
+
+        Parameters
+        ----------
+        columns : DataFrame or dict
+            Columns by name (arrays of one length).
+
+        Returns
+        -------
+        ndarray of bool
+            One value per row.
+
+        Raises
+        ------
+        ValueError
+            One line naming a column the condition uses that ``columns`` lacks.
+        """
         missing = sorted(n for n in self.names if n not in columns)
         if missing:
             raise ValueError(f"where: unknown name {missing[0]!r}")
@@ -299,7 +325,27 @@ class Condition:
 def parse_condition(text, names: Iterable[str] | None = None, param: str = "where") -> Condition:
     """Parse ``text`` (grammar in the module docstring). With ``names``, every
     name in the condition must be one of them. Raises ValueError with one line
-    naming ``param``, the position and what was expected."""
+    naming ``param``, the position and what was expected.
+
+    Parameters
+    ----------
+    text : str
+        The condition (``"r_mic > 0.8 and gci > 0.6"``).
+    names : iterable of str, optional
+        The allowed column names.
+    param : str
+        The option's name, for the message.
+
+    Returns
+    -------
+    Condition
+        The parsed condition.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``param``, the position and what was expected.
+    """
     if not isinstance(text, str):
         raise ValueError(f"{param} must be a string, got {text!r}")
     tree = _Parser(text, param).parse()

@@ -67,15 +67,50 @@ class DesignSpec:
 
     # --- the variables --------------------------------------------------------------
     def lower_bounds(self, lmin) -> list:
-        """Lower bound of each of :attr:`lengths` [L] given the shortest link ``lmin``."""
+        """Lower bound of each of :attr:`lengths` [L] given the shortest link ``lmin``.
+
+        Parameters
+        ----------
+        lmin : float
+            The shortest link [L].
+
+        Returns
+        -------
+        list of float
+            One bound per length [L].
+        """
         return [lmin] * len(self.lengths)
 
     def validity(self, v, lmax) -> float:
-        """<= 0 when the variables describe a mechanism (normalised by ``lmax``)."""
+        """<= 0 when the variables describe a mechanism (normalised by ``lmax``).
+
+        Parameters
+        ----------
+        v : dict
+            The design: ``{name: value}`` over :attr:`lengths` [L].
+        lmax : float
+            The longest link allowed [L].
+
+        Returns
+        -------
+        float
+            The validity measure (dimensionless); -1 by default.
+        """
         return -1.0
 
     def size_of(self, v) -> float:
-        """:meth:`size` from the lengths of ``v`` alone (``size_from_lengths`` specs)."""
+        """:meth:`size` from the lengths of ``v`` alone (``size_from_lengths`` specs).
+
+        Parameters
+        ----------
+        v : dict
+            The design: ``{name: value}`` over :attr:`lengths` [L].
+
+        Returns
+        -------
+        float
+            The size [L].
+        """
         from types import SimpleNamespace
 
         return float(self.size(SimpleNamespace(**{n: v[n] for n in self.lengths}), {}))
@@ -84,34 +119,142 @@ class DesignSpec:
         """An upper bound [L] of :meth:`size` over designs with every length <= ``lmax``
         (the reference range of the ``size`` objective's hypervolume). Default: three times
         ``lmax`` per design variable (every size here counts each length at most three
-        times, the bipod's struts, bounded by ``lmax``, included)."""
+        times, the bipod's struts, bounded by ``lmax``, included).
+
+        Parameters
+        ----------
+        lmax : float
+            The longest link allowed [L].
+
+        Returns
+        -------
+        float
+            The bound [L].
+        """
         return 3.0 * len(self.lengths) * lmax
 
     # --- the mechanism ----------------------------------------------------------------
     def build(self, v, mode, strokes=None, pad=0.0):
         """The mechanism of the design ``v`` in working ``mode``; with
         :attr:`derived_strokes`, ``strokes = ((lo1, hi1), (lo2, hi2))`` [L] are the
-        actuator ranges over the task and ``pad`` [L] widens each."""
+        actuator ranges over the task and ``pad`` [L] widens each.
+
+        Parameters
+        ----------
+        v : dict
+            The design: ``{name: value}`` over :attr:`lengths` [L].
+        mode : str
+            A working mode of :attr:`modes`.
+        strokes : tuple, optional
+            ``((lo1, hi1), (lo2, hi2))`` [L], with :attr:`derived_strokes`.
+        pad : float
+            Widening of each stroke [L].
+
+        Returns
+        -------
+        PlanarMechanism
+            The mechanism.
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: each spec implements it.
+        """
         raise NotImplementedError(f"{type(self).__name__} does not build its mechanism")
 
     def positions(self, v, mode, x, y):
         """``(q1, q2)`` [L] at task points ``(x, y)`` (NaN out of reach), for
-        :attr:`derived_strokes` specs: the strokes are their ranges over the task."""
+        :attr:`derived_strokes` specs: the strokes are their ranges over the task.
+
+        Parameters
+        ----------
+        v : dict
+            The design: ``{name: value}`` over :attr:`lengths` [L].
+        mode : str
+            A working mode.
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+
+        Returns
+        -------
+        q1, q2 : ndarray
+            Actuator positions [L], NaN out of reach.
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: each spec implements it.
+        """
         raise NotImplementedError(f"{type(self).__name__} derives no strokes")
 
     def to_mech(self, mech, x, y):
-        """Task-frame points in the mechanism's own frame (default: the same)."""
+        """Task-frame points in the mechanism's own frame (default: the same).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+
+        Returns
+        -------
+        x, y : ndarray
+            The points in the mechanism's frame [L].
+        """
         return x, y
 
     # --- what is measured -------------------------------------------------------------
     def size(self, mech, derived) -> float:
         """The ``size`` objective [L] of ``mech`` (``derived``: the evaluation's derived
-        values, e.g. strokes); each spec's docstring says which lengths it sums."""
+        values, e.g. strokes); each spec's docstring says which lengths it sums.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        derived : dict
+            The evaluation's derived values (strokes, ...).
+
+        Returns
+        -------
+        float
+            The size [L].
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: each spec implements it.
+        """
         raise NotImplementedError(f"{type(self).__name__} defines no size")
 
     def joints(self, mech, x, y) -> list:
         """``[(jx, jy), ...]`` arrays of every joint position [L, task frame] with the
-        platform at task points ``(x, y)`` (the ``footprint`` objective)."""
+        platform at task points ``(x, y)`` (the ``footprint`` objective).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+
+        Returns
+        -------
+        list of tuple
+            ``[(jx, jy), ...]`` arrays [L, task frame].
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: each spec implements it.
+        """
         raise NotImplementedError(f"{type(self).__name__} defines no joints")
 
     def links(self, mech, x, y, shapes=None) -> list:
@@ -121,7 +264,29 @@ class DesignSpec:
         :class:`~mechopt.core.bodies.Shapes`; default :meth:`Shapes.default()
         <mechopt.core.bodies.Shapes.default>`, millimetres), their end points arrays of
         the shape of ``x``; NaN where the pose is out of reach. Two bodies carrying a
-        common joint name are adjacent (:mod:`mechopt.core.bodies`)."""
+        common joint name are adjacent (:mod:`mechopt.core.bodies`).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        shapes : mechopt.core.bodies.Shapes, optional
+            Widths and sizes of the bodies [L].
+
+        Returns
+        -------
+        list of mechopt.core.bodies.Body
+            The bodies as capsules.
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: each spec implements it.
+        """
         raise NotImplementedError(f"{type(self).__name__} declares no links")
 
     def joint_speeds(self, mech, x, y, radius=0.0) -> dict:
@@ -130,18 +295,64 @@ class DesignSpec:
         platform speed [L/L], over the platform positions within ``radius`` [L] of each
         task point ``(x, y)`` (arrays; ``inf`` where no bound holds, e.g. a disc that
         reaches a type-I singularity). With ``radius = 0`` it is the speed at the pose:
-        the norm of the point's Jacobian ``d(point)/d(platform)``."""
+        the norm of the point's Jacobian ``d(point)/d(platform)``.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        radius : float
+            Radius [L] of the platform positions about each task point.
+
+        Returns
+        -------
+        dict
+            ``{name: ndarray}``, speed bounds [L/L].
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: each spec implements it.
+        """
         raise NotImplementedError(f"{type(self).__name__} declares no joint speeds")
 
     def holes(self, mech) -> list:
         """``[(x, y), ...]``: one point [L, task frame] in each bounded component of the
         complement of the reachable set; the reach certificate requires none of them
-        inside the task (:mod:`mechopt.analysis.task`, "reach")."""
+        inside the task (:mod:`mechopt.analysis.task`, "reach").
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+
+        Returns
+        -------
+        list of tuple
+            ``[(x, y), ...]`` [L, task frame] (default none).
+        """
         return []
 
     # --- bounds on the reach (input checks, the placement search) ----------------------
     def placement_scale(self, v, lmax) -> float:
-        """Length [L] over which a free task placement is searched (the design's reach)."""
+        """Length [L] over which a free task placement is searched (the design's reach).
+
+        Parameters
+        ----------
+        v : dict
+            The design: ``{name: value}`` over :attr:`lengths` [L].
+        lmax : float
+            The longest link allowed [L].
+
+        Returns
+        -------
+        float
+            The length [L] (default ``lmax``).
+        """
         return lmax
 
     def placement_above_base(self, mode) -> bool:
@@ -149,16 +360,49 @@ class DesignSpec:
         (``task_y`` from half the task's height up), for ``mode`` (None with
         ``mode="any"``): its reachable set is symmetric about the base line (the
         five-bar), so the mirrored half adds nothing, or lies above it (the bipod's
-        ``"up"`` branch)."""
+        ``"up"`` branch).
+
+        Parameters
+        ----------
+        mode : str or None
+            A working mode, or None for ``mode="any"``.
+
+        Returns
+        -------
+        bool
+            False by default.
+        """
         return False
 
     def reach_radius(self, lmax) -> float:
         """No design within the length bounds reaches a point farther than this [L] from
-        the base midpoint (a necessary condition, checked before any run)."""
+        the base midpoint (a necessary condition, checked before any run).
+
+        Parameters
+        ----------
+        lmax : float
+            The longest link allowed [L].
+
+        Returns
+        -------
+        float
+            The radius [L] (default infinite).
+        """
         return math.inf
 
     def x_reach(self, lmax) -> float:
-        """No design within the length bounds reaches ``|x|`` beyond this [L]."""
+        """No design within the length bounds reaches ``|x|`` beyond this [L].
+
+        Parameters
+        ----------
+        lmax : float
+            The longest link allowed [L].
+
+        Returns
+        -------
+        float
+            The bound [L] (default infinite).
+        """
         return math.inf
 
     # --- the figure of the chosen design ----------------------------------------------
@@ -166,21 +410,86 @@ class DesignSpec:
         """The legs with the platform at the task point ``(px, py)`` (``(mx, my)`` in the
         mechanism's frame): ``(chains, bases)``, ``chains`` a list of polylines
         ``[(x, y), ...]`` (one per leg, base to platform) and ``bases`` the base-side
-        joints to mark, all in the task frame [L]."""
+        joints to mark, all in the task frame [L].
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        px : float
+            Task point abscissa [L, task frame].
+        py : float
+            Task point ordinate [L, task frame].
+        mx : float
+            The point's abscissa in the mechanism's frame [L].
+        my : float
+            Its ordinate in the mechanism's frame [L].
+
+        Returns
+        -------
+        chains : list
+            Polylines ``[(x, y), ...]`` [L], one per leg.
+        bases : list
+            Base-side joints ``(x, y)`` [L].
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: each spec implements it.
+        """
         raise NotImplementedError(f"{type(self).__name__} draws no sketch")
 
     def actuator_paths(self, mech, strokes) -> list:
         """Segments ``((x0, y0), (x1, y1))`` [L] drawn under the legs: the actuators'
-        travel over the task (``strokes`` as in :meth:`build`). Default none."""
+        travel over the task (``strokes`` as in :meth:`build`). Default none.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        strokes : tuple
+            As in :meth:`build`.
+
+        Returns
+        -------
+        list
+            Segments ``((x0, y0), (x1, y1))`` [L].
+        """
         return []
 
     def joint_arc_radius(self, mech, leg):
         """Radius [L] of the arc drawn about the base joint of ``leg`` (0 or 1) over its
-        joint range, or None for no arc (prismatic actuators)."""
+        joint range, or None for no arc (prismatic actuators).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        leg : int
+            0 or 1.
+
+        Returns
+        -------
+        float or None
+            The radius [L].
+        """
         return None
 
     def variable_lines(self, variables, unit) -> list:
         """The figure's text lines naming the design: ``variables`` holds the lengths
-        and ``mode``."""
+        and ``mode``.
+
+        Parameters
+        ----------
+        variables : dict
+            The lengths [unit] and ``mode``.
+        unit : str
+            The length unit.
+
+        Returns
+        -------
+        list of str
+            The lines.
+        """
         return [f"{self.name} ({variables['mode']}): " + ", ".join(
             f"{k} = {variables[k]:.4g} {unit}" for k in self.lengths)]

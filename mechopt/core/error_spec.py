@@ -50,19 +50,89 @@ class ErrorSpec:
     joints: tuple = ()
 
     def check(self, mech) -> None:
-        """ValueError when the error model does not cover this instance (default: all do)."""
+        """ValueError when the error model does not cover this instance (default: all do).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The mechanism.
+
+        Raises
+        ------
+        ValueError
+            One line, when the error model does not cover this instance.
+        """
 
     def circles(self, mech, q1, q2, d):
         """``(c1x, c1y, r1, c2x, c2y, r2)`` [L], exact, at actuator values ``q1, q2`` with
-        the scalar deviations ``d`` (``{name: array}``, a missing name is 0)."""
+        the scalar deviations ``d`` (``{name: array}``, a missing name is 0).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The mechanism.
+        q1 : array_like
+            First actuator value [rad or L].
+        q2 : array_like
+            Second actuator value [rad or L].
+        d : dict
+            ``{name: array}`` of scalar deviations (a missing name is 0) [L or rad].
+
+        Returns
+        -------
+        tuple of ndarray
+            ``(c1x, c1y, r1, c2x, c2y, r2)`` [L].
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class.
+        """
         raise NotImplementedError(f"{type(self).__name__} declares no circles")
 
     def circle_jacobian(self, mech, q1, q2):
         """Array ``(..., 6, K)``: the derivatives of :meth:`circles`' six numbers with
-        respect to the ``K`` scalars (order of :attr:`scalars`), at zero deviation."""
+        respect to the ``K`` scalars (order of :attr:`scalars`), at zero deviation.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The mechanism.
+        q1 : array_like
+            First actuator value [rad or L].
+        q2 : array_like
+            Second actuator value [rad or L].
+
+        Returns
+        -------
+        ndarray
+            Shape ``(..., 6, K)``.
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class.
+        """
         raise NotImplementedError(f"{type(self).__name__} declares no circle derivatives")
 
     def centre_curvature(self, mech, q1, q2, half):
         """``(k1, k2)`` [L]: bounds over the box ``|d_k| <= half[k]`` of the distance of each
-        circle centre from its first-order value. Default: 0 (affine centres)."""
+        circle centre from its first-order value. Default: 0 (affine centres).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The mechanism.
+        q1 : array_like
+            First actuator value [rad or L].
+        q2 : array_like
+            Second actuator value [rad or L].
+        half : dict
+            ``{name: half width}`` of the tolerance box.
+
+        Returns
+        -------
+        k1, k2 : float or ndarray
+            The bounds [L].
+        """
         return 0.0, 0.0

@@ -100,6 +100,18 @@ def lens_area(r_a, r_b, d):
     Handles every relative position (disjoint, tangent, one inside the other,
     ``d = 0``, zero radii). Vectorised; raises ValueError for negative or
     non-finite input.
+
+    Parameters
+    ----------
+    r_a, r_b : array_like
+        The radii [L], >= 0.
+    d : array_like
+        Distance between the centres [L], >= 0.
+
+    Returns
+    -------
+    ndarray or float
+        The area [L^2].
     """
     r_a, r_b, d = _arrays(r_a=r_a, r_b=r_b, d=d)
     _nonneg("r_a", r_a)
@@ -133,7 +145,16 @@ def annuli_intersection_area(c1, r1_in, r1_out, c2, r2_in, r2_out, half_plane=No
         the x axis: the intersection is then symmetric about it and the result
         is exactly half of the whole area.
 
-    Returns the area, broadcast over all inputs (formula in the module docstring).
+    Returns
+    -------
+    ndarray or float
+        The area [L^2], broadcast over all inputs (formula in the module docstring).
+
+    Raises
+    ------
+    ValueError
+        For centres that are not finite points, negative radii, an inner radius above
+        the outer one, an unknown ``half_plane`` or one with a centre off the x axis.
     """
     c1 = np.asarray(c1, dtype=float)
     c2 = np.asarray(c2, dtype=float)
@@ -178,6 +199,18 @@ def chord_integral(r, u0, u1):
     The area between the u axis and a half circle of radius ``r`` [L] centred at
     ``u = 0``, over ``[u0, u1]``; the limits are clipped to ``[-r, r]`` (the
     integrand is 0 outside). Negative if ``u1 < u0``.
+
+    Parameters
+    ----------
+    r : array_like
+        The radius [L], >= 0.
+    u0, u1 : array_like
+        The limits [L].
+
+    Returns
+    -------
+    ndarray or float
+        The integral [L^2] (negative when ``u1 < u0``).
     """
     r, u0, u1 = _arrays(r=r, u0=u0, u1=u1)
     _nonneg("r", r)
@@ -192,7 +225,20 @@ def chord_integral(r, u0, u1):
 
 
 def interval_overlap(lo1, hi1, lo2, hi2):
-    """Length of ``[lo1, hi1] ^ [lo2, hi2]``: ``max(0, min(hi1, hi2) - max(lo1, lo2))``."""
+    """Length of ``[lo1, hi1] ^ [lo2, hi2]``: ``max(0, min(hi1, hi2) - max(lo1, lo2))``.
+
+    Parameters
+    ----------
+    lo1, hi1 : array_like
+        The first interval.
+    lo2, hi2 : array_like
+        The second interval.
+
+    Returns
+    -------
+    ndarray or float
+        The length (0 when disjoint).
+    """
     lo1, hi1, lo2, hi2 = (np.asarray(v, dtype=float) for v in (lo1, hi1, lo2, hi2))
     out = np.maximum(0.0, np.minimum(hi1, hi2) - np.maximum(lo1, lo2))
     return _scalar_or_array(np.asarray(out))
@@ -203,7 +249,22 @@ def _ramp2(t):
 
 
 def box_area_diff_above(a1, b1, a2, b2, c):
-    """Area of ``{(x, y) in [a1, b1] x [a2, b2] : x - y > c}`` (ramp form, module docstring)."""
+    """Area of ``{(x, y) in [a1, b1] x [a2, b2] : x - y > c}`` (ramp form, module docstring).
+
+    Parameters
+    ----------
+    a1, b1 : array_like
+        The x range.
+    a2, b2 : array_like
+        The y range.
+    c : array_like
+        The threshold.
+
+    Returns
+    -------
+    ndarray or float
+        The area.
+    """
     a1, b1, a2, b2, c = (np.asarray(v, dtype=float) for v in (a1, b1, a2, b2, c))
     out = 0.5 * (_ramp2(b1 - a2 - c) - _ramp2(b1 - b2 - c) - _ramp2(a1 - a2 - c)
                  + _ramp2(a1 - b2 - c))
@@ -211,7 +272,22 @@ def box_area_diff_above(a1, b1, a2, b2, c):
 
 
 def box_area_sum_below(a1, b1, a2, b2, c):
-    """Area of ``{(x, y) in [a1, b1] x [a2, b2] : x + y < c}`` (ramp form, module docstring)."""
+    """Area of ``{(x, y) in [a1, b1] x [a2, b2] : x + y < c}`` (ramp form, module docstring).
+
+    Parameters
+    ----------
+    a1, b1 : array_like
+        The x range.
+    a2, b2 : array_like
+        The y range.
+    c : array_like
+        The threshold.
+
+    Returns
+    -------
+    ndarray or float
+        The area.
+    """
     a1, b1, a2, b2, c = (np.asarray(v, dtype=float) for v in (a1, b1, a2, b2, c))
     out = 0.5 * (_ramp2(c - a1 - a2) - _ramp2(c - b1 - a2) - _ramp2(c - a1 - b2)
                  + _ramp2(c - b1 - b2))

@@ -74,6 +74,16 @@ def two_smax_squared(a, b, c, d):
     instead of two keeps the compiled LCI loop at 1.8e8 points/s, against 4e7.)
 
     Scalars or arrays; compiled kernels call it too (:func:`mechopt.core.jit.jitable`).
+
+    Parameters
+    ----------
+    a, b, c, d : float or ndarray
+        The entries of ``[[a, b], [c, d]]``.
+
+    Returns
+    -------
+    float or ndarray
+        ``2 s_max^2`` (the entries' unit squared).
     """
     S = a * a + b * b + c * c + d * d
     return S + np.sqrt(((a - d) ** 2 + (b + c) ** 2) * ((a + d) ** 2 + (b - c) ** 2))
@@ -87,6 +97,16 @@ def lci_of_entries(a, b, c, d):
     NaN for the zero matrix (0/0) and for NaN entries; every caller maps those to 0.
     The LCI is invariant under scaling the matrix and swapping its rows, so the
     five-bar kernels pass a scaled, row-swapped Jacobian (no division per entry).
+
+    Parameters
+    ----------
+    a, b, c, d : float or ndarray
+        The entries of ``[[a, b], [c, d]]``.
+
+    Returns
+    -------
+    float or ndarray
+        The LCI, in [0, 1] (NaN for the zero matrix).
     """
     return 2.0 * abs(a * d - b * c) / two_smax_squared(a, b, c, d)
 
@@ -108,6 +128,16 @@ def singular_values(J):
 
     ``s_max = sqrt(two_smax_squared / 2)`` (:func:`two_smax_squared`: no cancellation)
     on the scaled entries (:func:`_scaled_entries`), then ``s_min = |det| / s_max``.
+
+    Parameters
+    ----------
+    J : array_like
+        Jacobians, shape ``(..., 2, 2)`` (``q_dot = J p_dot``).
+
+    Returns
+    -------
+    s_max, s_min : ndarray
+        The singular values, shape ``(...)`` (the unit of ``J``).
     """
     a, b, c, d, e = _scaled_entries(J)
     s_max = np.sqrt(0.5 * two_smax_squared(a, b, c, d))
@@ -120,7 +150,18 @@ def singular_values(J):
 
 def lci(J):
     """Local conditioning index ``s_min/s_max`` in [0, 1] (:func:`lci_of_entries` on the
-    scaled entries, :func:`_scaled_entries`); 0 where J is NaN or zero."""
+    scaled entries, :func:`_scaled_entries`); 0 where J is NaN or zero.
+
+    Parameters
+    ----------
+    J : array_like
+        Jacobians, shape ``(..., 2, 2)`` (``q_dot = J p_dot``).
+
+    Returns
+    -------
+    ndarray
+        The LCI (dimensionless).
+    """
     a, b, c, d, _ = _scaled_entries(J)
     with np.errstate(invalid="ignore", divide="ignore"):
         out = lci_of_entries(a, b, c, d)
@@ -128,19 +169,52 @@ def lci(J):
 
 
 def velocity_extremes(J):
-    """``(|V|max, |V|min) = (1/s_min, 1/s_max)`` for a unit input rate (Liu eq. 10)."""
+    """``(|V|max, |V|min) = (1/s_min, 1/s_max)`` for a unit input rate (Liu eq. 10).
+
+    Parameters
+    ----------
+    J : array_like
+        Jacobians, shape ``(..., 2, 2)`` (``q_dot = J p_dot``).
+
+    Returns
+    -------
+    v_max, v_min : ndarray
+        ``1/s_min`` and ``1/s_max`` (inf where ``s_min = 0``).
+    """
     s_max, s_min = singular_values(J)
     with np.errstate(divide="ignore"):
         return 1.0 / s_min, 1.0 / s_max
 
 
 def payload_extremes(J):
-    """``(|tau|max, |tau|min) = (s_max, s_min)`` for a unit actuator effort (Liu eq. 13)."""
+    """``(|tau|max, |tau|min) = (s_max, s_min)`` for a unit actuator effort (Liu eq. 13).
+
+    Parameters
+    ----------
+    J : array_like
+        Jacobians, shape ``(..., 2, 2)`` (``q_dot = J p_dot``).
+
+    Returns
+    -------
+    s_max, s_min : ndarray
+        The singular values of ``J``.
+    """
     return singular_values(J)
 
 
 def stiffness_extremes(J):
-    """``(|D|max, |D|min) = (1/s_min^2, 1/s_max^2)``, K = J^T J, k_p = 1 (Liu eq. 16-18)."""
+    """``(|D|max, |D|min) = (1/s_min^2, 1/s_max^2)``, K = J^T J, k_p = 1 (Liu eq. 16-18).
+
+    Parameters
+    ----------
+    J : array_like
+        Jacobians, shape ``(..., 2, 2)`` (``q_dot = J p_dot``).
+
+    Returns
+    -------
+    d_max, d_min : ndarray
+        ``1/s_min^2`` and ``1/s_max^2``.
+    """
     s_max, s_min = singular_values(J)
     with np.errstate(divide="ignore"):
         return 1.0 / s_min**2, 1.0 / s_max**2
@@ -152,13 +226,34 @@ def tqi(J):
     For a 2x2 matrix ``||J||_F ||J^-1||_F = kappa + 1/kappa`` with ``kappa`` the
     2-norm condition number, so ``TQI = 2 / (kappa + 1/kappa) = 2 kappa / (kappa^2 + 1)``;
     written here as ``2 LCI / (1 + LCI^2)``, which is 0 at a singularity.
+
+    Parameters
+    ----------
+    J : array_like
+        Jacobians, shape ``(..., 2, 2)`` (``q_dot = J p_dot``).
+
+    Returns
+    -------
+    ndarray
+        The TQI, in [0, 1] (dimensionless).
     """
     c = lci(J)
     return 2.0 * c / (1.0 + c * c)
 
 
 def manipulability(J):
-    """Yoshikawa manipulability of the forward map ``p_dot = J^-1 theta_dot``: ``1/|det J|``."""
+    """Yoshikawa manipulability of the forward map ``p_dot = J^-1 theta_dot``: ``1/|det J|``.
+
+    Parameters
+    ----------
+    J : array_like
+        Jacobians, shape ``(..., 2, 2)`` (``q_dot = J p_dot``).
+
+    Returns
+    -------
+    ndarray
+        ``1/|det J|`` (inf at type-II singularities).
+    """
     a, b, c, d = _entries(J)
     with np.errstate(divide="ignore"):
         return 1.0 / np.abs(a * d - b * c)
@@ -166,7 +261,18 @@ def manipulability(J):
 
 def local_indices(J) -> dict:
     """All local indices of :data:`LOCAL_INDEX_NAMES` at once (one closed-form SVD;
-    the LCI by :func:`lci`)."""
+    the LCI by :func:`lci`).
+
+    Parameters
+    ----------
+    J : array_like
+        Jacobians, shape ``(..., 2, 2)`` (``q_dot = J p_dot``).
+
+    Returns
+    -------
+    dict
+        ``{name: ndarray}`` keyed by :data:`LOCAL_INDEX_NAMES`.
+    """
     s_max, s_min = singular_values(J)
     with np.errstate(divide="ignore", invalid="ignore"):
         out = {

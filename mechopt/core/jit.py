@@ -42,7 +42,13 @@ OPTIONS = dict(nogil=True, error_model="numpy")
 
 
 def numba_wanted() -> bool:
-    """numba is installed (found, not imported) and ``MECHOPT_NO_NUMBA`` does not disable it."""
+    """numba is installed (found, not imported) and ``MECHOPT_NO_NUMBA`` does not disable it.
+
+    Returns
+    -------
+    bool
+        Whether numba will be used.
+    """
     if os.environ.get(ENV_VAR, "") not in ("", "0"):
         return False
     return importlib.util.find_spec("numba") is not None
@@ -67,7 +73,13 @@ def _source_digest() -> str:
 def cache_dir() -> Path:
     """Where the compiled kernels are cached: ``numba-<digest>`` (:func:`_source_digest`)
     under ``$NUMBA_CACHE_DIR`` when it is set, else under ``$XDG_CACHE_HOME/mechopt``
-    (``~/.cache/mechopt``)."""
+    (``~/.cache/mechopt``).
+
+    Returns
+    -------
+    Path
+        The folder.
+    """
     base = os.environ.get("NUMBA_CACHE_DIR") or (
         Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "mechopt")
     return Path(base) / f"numba-{_source_digest()}"
@@ -75,7 +87,13 @@ def cache_dir() -> Path:
 
 def load_numba():
     """The numba module, imported on the first call (None when :data:`HAVE_NUMBA` is
-    False). Registers the formulas marked :func:`jitable` so far."""
+    False). Registers the formulas marked :func:`jitable` so far.
+
+    Returns
+    -------
+    module or None
+        numba.
+    """
     global _numba
     if _numba is None and HAVE_NUMBA:
         import numba
@@ -100,7 +118,23 @@ def load_numba():
 
 def use_numba(flag=None) -> bool:
     """Whether a kernel's compiled path runs: ``flag=None`` when numba is available,
-    else ``flag`` (True without numba is an error naming the extra to install)."""
+    else ``flag`` (True without numba is an error naming the extra to install).
+
+    Parameters
+    ----------
+    flag : bool, optional
+        Force the compiled path on (True) or off (False).
+
+    Returns
+    -------
+    bool
+        Whether the compiled path runs.
+
+    Raises
+    ------
+    ValueError
+        For ``flag=True`` without numba (naming the ``fast`` extra).
+    """
     if flag is None:
         return HAVE_NUMBA
     if flag and not HAVE_NUMBA:
@@ -110,7 +144,20 @@ def use_numba(flag=None) -> bool:
 
 def select(cond, a, b):
     """``a`` where ``cond``, else ``b``: ``np.where`` for arrays; in compiled code the
-    branch ``a if cond else b`` on scalars (both are evaluated first in either case)."""
+    branch ``a if cond else b`` on scalars (both are evaluated first in either case).
+
+    Parameters
+    ----------
+    cond : bool or ndarray
+        The condition.
+    a, b : float or ndarray
+        The two choices.
+
+    Returns
+    -------
+    float or ndarray
+        The selection.
+    """
     return np.where(cond, a, b)
 
 
@@ -121,7 +168,18 @@ def jitable(fn):
     numba compiles it, with :data:`OPTIONS`, for the kernels that call it and links it
     into them, where LLVM inlines the small ones (numba's own IR inlining,
     ``inline="always"``, is not used: it multiplies the compile time of kernels that
-    call many formulas). Nothing is imported before numba is loaded (:func:`load_numba`)."""
+    call many formulas). Nothing is imported before numba is loaded (:func:`load_numba`).
+
+    Parameters
+    ----------
+    fn : callable
+        A plain Python function of scalars or arrays.
+
+    Returns
+    -------
+    callable
+        ``fn`` unchanged.
+    """
     options = dict(error_model=OPTIONS["error_model"])
     if _numba is not None:
         from numba.extending import register_jitable
@@ -138,7 +196,20 @@ def njit(fn=None, *, signature=None):
 
     Loads numba. Without ``signature`` it compiles on the first call, for the argument
     types of that call; with one, now. Where no cache can be written (e.g. a read-only
-    installation) it compiles without the cache."""
+    installation) it compiles without the cache.
+
+    Parameters
+    ----------
+    fn : callable, optional
+        The function (omitted when used as ``@njit(signature=...)``).
+    signature : str or tuple, optional
+        numba signature(s) to compile eagerly.
+
+    Returns
+    -------
+    callable
+        The compiled function, ``fn``, or a decorator.
+    """
     def wrap(f):
         nb = load_numba()
         if nb is None:

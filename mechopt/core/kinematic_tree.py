@@ -88,7 +88,17 @@ class TreeJoint:
 
 @dataclass(frozen=True)
 class ClosureFrame:
-    """A closure frame: the platform point ``point`` [L] in the frame of ``body``."""
+    """A closure frame: the platform point ``point`` [L] in the frame of ``body``.
+
+    Parameters
+    ----------
+    name : str
+        The closure's name.
+    body : str
+        The body it is fixed in.
+    point : tuple of float
+        The platform point in that body's frame [L].
+    """
 
     name: str
     body: str
@@ -102,6 +112,15 @@ class KinematicTree:
     ``joints`` are in tree order (a body's parent joint before the joints it carries);
     ``closure`` holds the two :class:`ClosureFrame` (leg 1, leg 2); ``name`` is the
     mechanism's ``cli_name``. The constructor checks the structure (ValueError, one line).
+
+    Parameters
+    ----------
+    name : str
+        The mechanism's name.
+    joints : tuple of TreeJoint
+        The joints in tree order.
+    closure : tuple of ClosureFrame
+        The two closure frames.
     """
 
     name: str
@@ -144,6 +163,23 @@ class KinematicTree:
         return tuple(j.name for j in self.joints if j.actuated)
 
     def joint(self, name) -> TreeJoint:
+        """The joint named ``name``.
+
+        Parameters
+        ----------
+        name : str
+            A joint's name.
+
+        Returns
+        -------
+        TreeJoint
+            The joint.
+
+        Raises
+        ------
+        ValueError
+            One line, when the tree has no such joint.
+        """
         for j in self.joints:
             if j.name == name:
                 return j
@@ -154,7 +190,13 @@ class KinematicTree:
         included) in its own frame [L]: the revolute joints it carries (at their
         origins), its own revolute parent joint (at ``(0, 0)``) and its closure frame
         (the platform pin). A body with two or more pins is a rigid link of fixed pin
-        distances (what the DXF drawings show)."""
+        distances (what the DXF drawings show).
+
+        Returns
+        -------
+        dict
+            ``{body: [(name, (x, y)), ...]}`` [L].
+        """
         out = {b: [] for b in (BASE, *self.bodies)}
         for j in self.joints:
             if j.kind == "revolute":
@@ -167,13 +209,35 @@ class KinematicTree:
     # --- changes of frame and unit ----------------------------------------------------
     def shifted(self, dx, dy) -> "KinematicTree":
         """The same tree with the base frame moved: the joints on ``"base"`` at
-        ``origin + (dx, dy)`` [L] (e.g. the mechanism placed in the task frame)."""
+        ``origin + (dx, dy)`` [L] (e.g. the mechanism placed in the task frame).
+
+        Parameters
+        ----------
+        dx, dy : float
+            The shift [L].
+
+        Returns
+        -------
+        KinematicTree
+            A new tree.
+        """
         js = tuple(replace(j, origin=(j.origin[0] + dx, j.origin[1] + dy)) if j.parent == BASE else j
                    for j in self.joints)
         return replace(self, joints=js)
 
     def scaled(self, factor) -> "KinematicTree":
-        """Every length multiplied by ``factor`` (e.g. mm -> m); prismatic limits too."""
+        """Every length multiplied by ``factor`` (e.g. mm -> m); prismatic limits too.
+
+        Parameters
+        ----------
+        factor : float
+            The factor, > 0.
+
+        Returns
+        -------
+        KinematicTree
+            A new tree.
+        """
         f = float(factor)
         js = []
         for j in self.joints:
@@ -185,7 +249,18 @@ class KinematicTree:
         return replace(self, joints=tuple(js), closure=cl)
 
     def with_limits(self, limits: dict) -> "KinematicTree":
-        """The tree with the joints named in ``limits`` (``{name: (lo, hi)}``) limited so."""
+        """The tree with the joints named in ``limits`` (``{name: (lo, hi)}``) limited so.
+
+        Parameters
+        ----------
+        limits : dict
+            ``{joint: (lo, hi)}`` [rad or L].
+
+        Returns
+        -------
+        KinematicTree
+            A new tree.
+        """
         for n in limits:
             self.joint(n)
         js = tuple(replace(j, limits=tuple(map(float, limits[j.name]))) if j.name in limits else j
@@ -196,7 +271,18 @@ class KinematicTree:
     def forward(self, q: dict) -> dict:
         """Poses of every body frame for joint values ``q`` (``{joint name: array}``,
         broadcastable): ``{body: (x, y, angle)}`` arrays [L, L, rad] in the base frame,
-        and ``{closure name: (x, y, angle)}`` for the closure frames."""
+        and ``{closure name: (x, y, angle)}`` for the closure frames.
+
+        Parameters
+        ----------
+        q : dict
+            ``{joint name: array}`` [rad or L].
+
+        Returns
+        -------
+        dict
+            ``{body or closure name: (x, y, angle)}`` [L, L, rad].
+        """
         z = np.zeros(np.broadcast(*[np.asarray(v, float) for v in q.values()]).shape)
         pose = {BASE: (z, z, z)}
         for j in self.joints:

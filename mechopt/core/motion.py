@@ -55,6 +55,11 @@ def trapezoidal_profile(p0, p1, v_max, a_max, t):
     -------
     dict with ``t``, ``x``, ``y``, ``xd``, ``yd``, ``xdd``, ``ydd`` (arrays) and ``T0``,
     ``Tf`` (floats).
+
+    Raises
+    ------
+    ValueError
+        For non-positive speed or acceleration, or non-finite points or times.
     """
     v = _v.positive_length("v_max", v_max)
     a = _v.positive_length("a_max", a_max)
@@ -86,7 +91,19 @@ def trapezoidal_profile(p0, p1, v_max, a_max, t):
 
 def wu2008_trajectory(n: int = 651):
     """The motion of Wu Table 3 (``(-0.25, 0.5) -> (0.25, 0.5)`` m, 1 m/s, 6.67 m/s^2) at
-    ``n`` equally spaced times over ``[0, Tf]``; ``T0 = 0.150 s``, ``Tf = 0.650 s``."""
+    ``n`` equally spaced times over ``[0, Tf]``; ``T0 = 0.150 s``, ``Tf = 0.650 s``.
+
+    Parameters
+    ----------
+    n : int
+        Number of times.
+
+    Returns
+    -------
+    dict
+        ``t`` [s], ``x, y`` [m], ``xd, yd`` [m/s], ``xdd, ydd`` [m/s^2] arrays
+        (:func:`trapezoidal_profile`).
+    """
     from mechopt.data import published_values
 
     pub = published_values("wu2008")
@@ -110,6 +127,27 @@ def profile(kind, tau, accel_fraction: float = 1.0 / 3.0, jerk_fraction: float =
     trapezoid). Both have the cruise speed of the area condition
     ``v (1 - f) = 1`` (the speed curve of each acceleration phase is symmetric about its
     midpoint). Piecewise polynomial, evaluated exactly phase by phase.
+
+    Parameters
+    ----------
+    kind : str
+        ``"cycloidal"``, ``"trapezoidal"`` or ``"s-curve"``.
+    tau : array_like
+        Normalised time, in [0, 1].
+    accel_fraction : float
+        ``f``, in (0, 0.5].
+    jerk_fraction : float
+        ``r``, in [0, 0.5].
+
+    Returns
+    -------
+    s, sd, sdd : ndarray
+        Normalised position, speed and acceleration.
+
+    Raises
+    ------
+    ValueError
+        For an unknown kind or fractions out of range.
     """
     _v.choice("profile", kind, PROFILES)
     tau = np.clip(np.asarray(tau, dtype=float), 0.0, 1.0)
@@ -181,19 +219,57 @@ class _Spline:
 
 
 def segment_path(p0, p1):
-    """A path of one straight piece from ``p0`` to ``p1`` [L]."""
+    """A path of one straight piece from ``p0`` to ``p1`` [L].
+
+    Parameters
+    ----------
+    p0, p1 : tuple of float
+        The ends [L].
+
+    Returns
+    -------
+    list
+        One piece (its ``length`` [L] and position/derivatives in arc length).
+    """
     return [_Segment(p0, p1)]
 
 
 def polyline_path(points):
     """A path of one C2 piece: the natural cubic spline through ``points`` ((n, 2) [L],
-    n >= 2; two points give the segment), parameterised by chord length."""
+    n >= 2; two points give the segment), parameterised by chord length.
+
+    Parameters
+    ----------
+    points : array_like
+        Shape (n, 2) [L], n >= 2.
+
+    Returns
+    -------
+    list
+        One piece.
+    """
     return [_Spline(points)]
 
 
 def read_path_csv(path):
     """The points of a CSV file with columns ``x`` and ``y`` (a header row; other
-    columns ignored) as an ``(n, 2)`` array [L]."""
+    columns ignored) as an ``(n, 2)`` array [L].
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+
+    Returns
+    -------
+    ndarray
+        Shape (n, 2) [L].
+
+    Raises
+    ------
+    ValueError
+        One line, for an unreadable file, missing columns or non-numeric values.
+    """
     import csv
 
     try:
@@ -217,7 +293,25 @@ def pick_and_place_path(box, contains=None):
     centred on the box's middle height; three straight pieces, each from rest to rest.
     With ``contains(x, y) -> bool array`` (a task region's test), the cycle is shrunk
     about the box's centre by ``0.95^k`` (the smallest ``k <= 40``) until its four corners
-    lie in the region (a circle's or a polygon's bounding box is larger than it)."""
+    lie in the region (a circle's or a polygon's bounding box is larger than it).
+
+    Parameters
+    ----------
+    box : tuple of float
+        ``(xmin, xmax, ymin, ymax)`` [L].
+    contains : callable, optional
+        ``contains(x, y) -> bool array``, a task region's test.
+
+    Returns
+    -------
+    list
+        Three straight pieces (up, across, down).
+
+    Raises
+    ------
+    ValueError
+        For an invalid box, or a region that no shrunk cycle fits in.
+    """
     xmin, xmax, ymin, ymax = _v.finite_numbers("box", box, 4, "(xmin, xmax, ymin, ymax)")
     if not (xmax > xmin and ymax >= ymin):
         raise ValueError(f"box must have xmin < xmax and ymin <= ymax, got {box!r}")
@@ -237,7 +331,31 @@ def timed_motion(path, cycle_time, kind: str = "cycloidal", n: int = 401, **shap
     """The path run within ``cycle_time`` [s] (module docstring), sampled at ``n`` equal
     time steps: dict of arrays ``t`` [s], ``x, y`` [L], ``xd, yd`` [L/s], ``xdd, ydd``
     [L/s^2], and ``piece`` (index of the piece). ``shape``: ``accel_fraction``,
-    ``jerk_fraction`` of :func:`profile`."""
+    ``jerk_fraction`` of :func:`profile`.
+
+    Parameters
+    ----------
+    path : list
+        Pieces (:func:`segment_path`, :func:`polyline_path`, :func:`pick_and_place_path`).
+    cycle_time : float
+        Duration [s], > 0.
+    kind : str
+        Profile of each piece (:func:`profile`).
+    n : int
+        Number of time steps.
+    **shape : 
+        ``accel_fraction``, ``jerk_fraction`` of :func:`profile`.
+
+    Returns
+    -------
+    dict
+        The arrays named above.
+
+    Raises
+    ------
+    ValueError
+        For a non-positive cycle time or invalid settings.
+    """
     T = _v.finite_number("cycle_time", cycle_time)
     if not T > 0:
         raise ValueError(f"cycle_time must be > 0 [s], got {cycle_time!r}")

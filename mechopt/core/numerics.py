@@ -79,6 +79,11 @@ def golden_section_max(f, a, b, *, tol=None, max_iter=None, stop=None, start=Non
     GoldenSection
         The final bracket and interior points, and the best point evaluated: the first,
         in the order of evaluation (``start`` first), of those of the largest value.
+
+    Raises
+    ------
+    ValueError
+        When none of ``tol``, ``max_iter`` and ``stop`` is given (the search would not end).
     """
     if tol is None and max_iter is None and stop is None:
         raise ValueError("golden_section_max needs tol, max_iter or stop to end, got none of them")

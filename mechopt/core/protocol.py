@@ -51,7 +51,29 @@ class Parameter:
     """A declared input of a mechanism (a constructor argument, or an option of its
     evaluation): ``name`` (a Python identifier; the CLI option is ``--name`` with
     dashes), ``kind`` (:data:`PARAMETER_KINDS`), ``unit`` ([L], deg, ...), ``help``,
-    ``default`` (:data:`REQUIRED` when it must be given) and ``choices``."""
+    ``default`` (:data:`REQUIRED` when it must be given) and ``choices``.
+
+    Parameters
+    ----------
+    name : str
+        A Python identifier; the option is ``--name`` with dashes.
+    kind : str
+        One of :data:`PARAMETER_KINDS`.
+    unit : str
+        The unit as shown in help texts ([L], deg, ...).
+    help : str
+        One line for ``--help``.
+    default : object, optional
+        The default; :data:`REQUIRED` (the default) when the parameter must be given.
+    choices : sequence of str, optional
+        The allowed strings, exactly for kind ``"choice"``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown kind, or choices given for another kind than ``"choice"`` (or missing
+        for it).
+    """
 
     __slots__ = ("name", "kind", "unit", "help", "default", "choices")
 
@@ -99,7 +121,26 @@ def _coordinates(name, v):
 
 def as_points(x, y):
     """Broadcast ``x`` and ``y`` to float arrays of a common shape (coordinates
-    beyond :data:`POINT_MAX` become NaN: unreachable)."""
+    beyond :data:`POINT_MAX` become NaN: unreachable).
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae of platform points [L] (base frame).
+    y : array_like
+        Ordinates [L]; broadcast with ``x``.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(x, y)`` as float arrays broadcast to one shape; coordinates beyond
+        :data:`POINT_MAX` are NaN (unreachable).
+
+    Raises
+    ------
+    ValueError
+        When a coordinate is not numeric or ``x`` and ``y`` do not broadcast.
+    """
     if (type(x) is np.ndarray and type(y) is np.ndarray and x.dtype == np.float64
             and y.dtype == np.float64 and x.shape == y.shape):
         # the kinematics pass their points on to one another: nothing to convert or
@@ -171,11 +212,28 @@ class PlanarMechanism(ABC):
 
     @classmethod
     def from_parameters(cls, **values) -> "PlanarMechanism":
-        """The mechanism of the declared :attr:`parameters` (keyword values)."""
+        """The mechanism of the declared :attr:`parameters` (keyword values).
+
+        Parameters
+        ----------
+        **values : 
+            The declared :attr:`parameters` as keywords.
+
+        Returns
+        -------
+        PlanarMechanism
+            The mechanism.
+        """
         return cls(**values)
 
     def parameter_values(self) -> dict:
-        """``{name: value}`` of the declared :attr:`parameters` of this instance."""
+        """``{name: value}`` of the declared :attr:`parameters` of this instance.
+
+        Returns
+        -------
+        dict
+            ``{name: value}``.
+        """
         return {p.name: getattr(self, p.name) for p in self.parameters}
 
     def summary(self, **options) -> dict:
@@ -183,17 +241,53 @@ class PlanarMechanism(ABC):
         ``mechopt evaluate``, as ``{name: float or str}`` with the keys
         :attr:`summary_keys`; options of :attr:`summary_options`. Default: none.
         The one entry point of a mechanism's numbers (:func:`mechopt.analysis.evaluate.evaluate`
-        calls it)."""
+        calls it).
+
+        Parameters
+        ----------
+        **options : 
+            Options of :attr:`summary_options` (a quadrature, ...).
+
+        Returns
+        -------
+        dict
+            ``{key: float or str}`` with the keys :attr:`summary_keys`, in the mechanism's
+            units.
+        """
         return {}
 
     @abstractmethod
     def with_mode(self, mode: str) -> "PlanarMechanism":
-        """The same dimensions in another working mode (one of :attr:`modes`)."""
+        """The same dimensions in another working mode (one of :attr:`modes`).
+
+        Parameters
+        ----------
+        mode : str
+            One of :attr:`modes`.
+
+        Returns
+        -------
+        PlanarMechanism
+            A new instance.
+        """
 
     @abstractmethod
     def assembly_of(self, x, y):
         """Array of strings: the assembly mode (:attr:`assembly_modes`) of each pose,
-        i.e. the ``fk`` solution that returns it."""
+        i.e. the ``fk`` solution that returns it.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray of str
+            The assembly mode of each pose.
+        """
 
     # --- to implement -------------------------------------------------------
     @abstractmethod
@@ -202,28 +296,108 @@ class PlanarMechanism(ABC):
 
         ``A`` has shape ``(..., 2, 2)``, ``b`` shape ``(..., 2)`` holds the diagonal
         of ``B``; both are NaN where ``reachable`` is False.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        A : ndarray
+            Shape ``(..., 2, 2)``.
+        b : ndarray
+            Shape ``(..., 2)``: the diagonal of ``B``.
+        reachable : ndarray of bool
+            Where every leg assembles.
         """
 
     @abstractmethod
     def ik(self, x, y):
-        """Inverse kinematics in the mechanism's working mode: ``(q1, q2, reachable)``."""
+        """Inverse kinematics in the mechanism's working mode: ``(q1, q2, reachable)``.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        q1, q2 : ndarray
+            Actuator coordinates [rad or L]; NaN where unreachable.
+        reachable : ndarray of bool
+            Where the point is reached in the working mode.
+        """
 
     @abstractmethod
     def fk(self, q1, q2, assembly):
-        """Forward kinematics for one assembly mode: ``(x, y, valid)``."""
+        """Forward kinematics for one assembly mode: ``(x, y, valid)``.
+
+        Parameters
+        ----------
+        q1 : array_like
+            First actuator coordinate [rad or L].
+        q2 : array_like
+            Second actuator coordinate [rad or L]; broadcast with ``q1``.
+        assembly : str
+            One of :attr:`assembly_modes`.
+
+        Returns
+        -------
+        x, y : ndarray
+            The platform point [L]; NaN where invalid.
+        valid : ndarray of bool
+            Where the legs assemble in that mode.
+        """
 
     @abstractmethod
     def reachable(self, x, y):
-        """Boolean array: the point can be reached (all legs assemble)."""
+        """Boolean array: the point can be reached (all legs assemble).
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray of bool
+            True where every leg assembles (and, with stroke limits, within them).
+        """
 
     @abstractmethod
     def serial_clearance(self, x, y):
         """Signed distance from a point to the boundary of the reachable set
-        (positive inside). Exact: the boundary is made of type-I loci."""
+        (positive inside). Exact: the boundary is made of type-I loci.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The signed distance [L], positive inside.
+        """
 
     @abstractmethod
     def bounding_box(self):
-        """``(xmin, xmax, ymin, ymax)`` enclosing every reachable point."""
+        """``(xmin, xmax, ymin, ymax)`` enclosing every reachable point.
+
+        Returns
+        -------
+        tuple of float
+            ``(xmin, xmax, ymin, ymax)`` [L].
+        """
 
     @property
     @abstractmethod
@@ -239,6 +413,16 @@ class PlanarMechanism(ABC):
         ``factor * p`` of the scaled mechanism has the same LCI and TQI as ``p``;
         areas scale as ``factor^2``; the Jacobian scales as ``1/factor`` for angular
         joints and is unchanged for prismatic ones (``q`` is then a length).
+
+        Parameters
+        ----------
+        factor : float
+            The scale factor, > 0.
+
+        Returns
+        -------
+        PlanarMechanism
+            A new instance.
         """
 
     @property
@@ -281,7 +465,20 @@ class PlanarMechanism(ABC):
 
 
     def jacobian(self, x, y):
-        """``J = B^-1 A`` with ``q_dot = J p_dot``; shape ``(..., 2, 2)``, NaN where unreachable."""
+        """``J = B^-1 A`` with ``q_dot = J p_dot``; shape ``(..., 2, 2)``, NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            ``J``, shape ``(..., 2, 2)`` [rad/L for cranks, dimensionless for sliders].
+        """
         A, b, _ = self.closure(x, y)
         with np.errstate(divide="ignore", invalid="ignore"):
             return A / b[..., :, None]
@@ -291,6 +488,18 @@ class PlanarMechanism(ABC):
 
         Zero on the type-II locus and changes sign across it; NaN where unreachable.
         Dimensionless, so root finding needs no scale.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The sine, in [-1, 1] (dimensionless).
         """
         A, _, _ = self.closure(x, y)
         det = A[..., 0, 0] * A[..., 1, 1] - A[..., 0, 1] * A[..., 1, 0]
@@ -300,42 +509,171 @@ class PlanarMechanism(ABC):
             return det / (n1 * n2)
 
     def singular_values(self, x, y):
-        """``(s_max, s_min)`` of J at each point."""
+        """``(s_max, s_min)`` of J at each point.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        s_max, s_min : ndarray
+            The largest and smallest singular values of ``J`` (its unit); NaN where
+            unreachable.
+        """
         return _ix.singular_values(self.jacobian(x, y))
 
     def lci(self, x, y):
-        """Local conditioning index ``1/kappa_J`` in [0, 1]; 0 where unreachable or singular."""
+        """Local conditioning index ``1/kappa_J`` in [0, 1]; 0 where unreachable or singular.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            ``s_min / s_max`` of ``J`` (dimensionless, Liu 2006 eq. 3).
+        """
         return _ix.lci(self.jacobian(x, y))
 
     def tqi(self, x, y):
-        """Transmission quality index (Stan 2008 eq. 9); 0 where unreachable or singular."""
+        """Transmission quality index (Stan 2008 eq. 9); 0 where unreachable or singular.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The TQI (dimensionless).
+        """
         return _ix.tqi(self.jacobian(x, y))
 
     def velocity_extremes(self, x, y):
-        """``(|V|max, |V|min)`` of Liu eq. (10)."""
+        """``(|V|max, |V|min)`` of Liu eq. (10).
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        v_max, v_min : ndarray
+            ``(1/s_min, 1/s_max)``: the largest and smallest platform speed for unit
+            actuator speeds [L/rad for cranks, dimensionless for sliders] (Liu 2006 eq.
+            10).
+        """
         return _ix.velocity_extremes(self.jacobian(x, y))
 
     def payload_extremes(self, x, y):
-        """``(|tau|max, |tau|min)`` of Liu eq. (13)."""
+        """``(|tau|max, |tau|min)`` of Liu eq. (13).
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        tau_max, tau_min : ndarray
+            ``(s_max, s_min)`` of ``J``: the largest and smallest platform force [N per
+            unit actuator effort] (Liu 2006 eq. 13).
+        """
         return _ix.payload_extremes(self.jacobian(x, y))
 
     def stiffness_extremes(self, x, y):
-        """``(|D|max, |D|min)`` of Liu eq. (18) with unit actuator stiffness."""
+        """``(|D|max, |D|min)`` of Liu eq. (18) with unit actuator stiffness.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        d_max, d_min : ndarray
+            ``(1/s_min^2, 1/s_max^2)``: the largest and smallest platform deflection for a
+            unit force, ``K = J^T J`` with unit actuator stiffness (Liu 2006 eq. 16-18).
+        """
         return _ix.stiffness_extremes(self.jacobian(x, y))
 
     def manipulability(self, x, y):
-        """``sqrt(det(J^-1 J^-T)) = 1/|det J|`` (Yoshikawa), inf at type-II singularities."""
+        """``sqrt(det(J^-1 J^-T)) = 1/|det J|`` (Yoshikawa), inf at type-II singularities.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The manipulability [L^2/rad^2 for cranks].
+        """
         return _ix.manipulability(self.jacobian(x, y))
 
     def local_indices(self, x, y) -> dict:
-        """Every local index of :data:`mechopt.core.indices.LOCAL_INDEX_NAMES`."""
+        """Every local index of :data:`mechopt.core.indices.LOCAL_INDEX_NAMES`.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        dict
+            ``{name: ndarray}``, one array per index.
+        """
         return _ix.local_indices(self.jacobian(x, y))
 
     def raster_mean(self, local, step=None, cells: int = RASTER_CELLS) -> float:
         """Area mean of ``local(x, y)`` (e.g. ``self.tqi``) over the reachable set, by the
         mid-point rule on square cells of side ``step`` [L] (default: the smaller side
         of :meth:`bounding_box` / ``cells``); first-order error in ``step``. NaN when
-        nothing is reachable."""
+        nothing is reachable.
+
+        Parameters
+        ----------
+        local : callable
+            ``local(x, y)`` -> array of the local quantity.
+        step : float, optional
+            Cell side [L].
+        cells : int
+            Cells along the smaller side of the box when ``step`` is None.
+
+        Returns
+        -------
+        float
+            The area mean of ``local`` over the reachable cells; NaN when none is reachable.
+
+        Raises
+        ------
+        ValueError
+            For a non-positive or non-finite ``step``.
+        """
         from mechopt.core import validation as _v
         from mechopt.core.quadrature import grid_over
 
@@ -359,7 +697,28 @@ class PlanarMechanism(ABC):
 
         The type-I measure is compared squared: near a serial boundary it grows
         like the square root of the distance (a leg folding), so a pose on the
-        boundary up to rounding has a measure of order sqrt(eps) ~ 1e-8."""
+        boundary up to rounding has a measure of order sqrt(eps) ~ 1e-8.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+        tol : float
+            The threshold of both dimensionless measures (default
+            :data:`mechopt.core.validation.RESOLUTION`), >= 0.
+
+        Returns
+        -------
+        ndarray of str
+            The class of each point.
+
+        Raises
+        ------
+        ValueError
+            For a negative or non-finite ``tol``.
+        """
         tol = _v.finite_number("tol", tol)
         if tol < 0.0:
             raise ValueError(f"tol must be >= 0, got {_v.show(tol)}")

@@ -89,7 +89,23 @@ class Accuracy:
 
     def absolute(self, span: float | None = None) -> float:
         """The absolute part ``abs + of_span * span`` [record's unit]; ``span`` is
-        required when ``of_span`` is set (ValueError otherwise)."""
+        required when ``of_span`` is set (ValueError otherwise).
+
+        Parameters
+        ----------
+        span : float, optional
+            The span [record's unit] (required with ``of_span``).
+
+        Returns
+        -------
+        float
+            The absolute part [record's unit].
+
+        Raises
+        ------
+        ValueError
+            When ``of_span`` is set and ``span`` is not given.
+        """
         if not self.of_span:
             return self.abs
         if span is None:
@@ -138,7 +154,20 @@ ACCURACY = {
 
 def cite(paper: str, where: str) -> str:
     """``"<Author> <year> <where>"``, e.g. ``cite("liu2006", "sec. 2.2")`` is
-    ``"Liu 2006 sec. 2.2"``: the source of a row of ``paper``."""
+    ``"Liu 2006 sec. 2.2"``: the source of a row of ``paper``.
+
+    Parameters
+    ----------
+    paper : str
+        The paper's key.
+    where : str
+        The place in it (``"sec. 2.2"``).
+
+    Returns
+    -------
+    str
+        The citation.
+    """
     name, year = paper[:-4], paper[-4:]
     return f"{name.capitalize()} {year} {where}"
 
@@ -147,7 +176,27 @@ def cite(paper: str, where: str) -> str:
 class Record:
     """One printed number of a data file: ``value`` [``unit``] printed with ``digits``
     decimals at ``source`` of ``paper``, for ``design``; ``accuracy`` names its class
-    in :data:`ACCURACY`."""
+    in :data:`ACCURACY`.
+
+    Parameters
+    ----------
+    paper : str
+        The paper's key (``"liu2006"``).
+    design : str
+        The design the number belongs to.
+    quantity : str
+        What the number is.
+    value : float
+        The printed number [unit].
+    unit : str
+        Its unit.
+    digits : int
+        Printed decimals.
+    source : str
+        Where the paper prints it.
+    accuracy : str
+        A key of :data:`ACCURACY`.
+    """
 
     paper: str
     design: str
@@ -178,7 +227,18 @@ def _open(paper: str):
 
 def load(paper: str) -> pd.DataFrame:
     """The published values of ``paper`` (e.g. ``"liu2006"``) as a DataFrame (the
-    columns of the data file)."""
+    columns of the data file).
+
+    Parameters
+    ----------
+    paper : str
+        The paper's key.
+
+    Returns
+    -------
+    DataFrame
+        The data file's rows.
+    """
     with _open(paper) as fh:
         return pd.read_csv(fh, comment="#", dtype={"design": str})
 
@@ -186,7 +246,18 @@ def load(paper: str) -> pd.DataFrame:
 @lru_cache(maxsize=None)
 def records(paper: str) -> tuple:
     """Every :class:`Record` of ``mechopt/data/<paper>.csv``, in the order of the file
-    (read once)."""
+    (read once).
+
+    Parameters
+    ----------
+    paper : str
+        The paper's key.
+
+    Returns
+    -------
+    tuple of Record
+        The records.
+    """
     with _open(paper) as fh:
         rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
     return tuple(Record(paper, r["design"], r["quantity"], float(r["value"]), r["unit"],
@@ -225,7 +296,18 @@ def lookup(paper: str, quantity: str, design: str | None = None) -> Record:
 
 
 def printed_half_unit(digits: int) -> float:
-    """Half a unit of the last printed decimal: 0.00005 for 4 decimals."""
+    """Half a unit of the last printed decimal: 0.00005 for 4 decimals.
+
+    Parameters
+    ----------
+    digits : int
+        Printed decimals.
+
+    Returns
+    -------
+    float
+        ``0.5 * 10**-digits``.
+    """
     return 0.5 * 10.0 ** (-int(digits))
 
 
@@ -251,6 +333,11 @@ def tolerance(record: Record, *, accuracy=None, span: float | None = None) -> fl
         from printed digits propagated through a formula.
     span : float, optional
         The span of a class with ``of_span`` [``record.unit``].
+
+    Returns
+    -------
+    float
+        The tolerance [``record.unit``].
     """
     acc = _accuracy(record, accuracy)
     return max(printed_half_unit(record.digits), acc.rel * abs(record.value), acc.absolute(span))
@@ -322,6 +409,11 @@ def not_reported(quantity: str, source: str, reproduced, unit: str, note: str = 
         Our unit.
     note, kind : str
         As in :func:`compare`.
+
+    Returns
+    -------
+    dict
+        The row (the columns of table.csv).
     """
     _check_kind(kind)
     return dict(quantity=quantity, source=source, paper=np.nan, reproduced=reproduced, unit=unit,
@@ -330,7 +422,24 @@ def not_reported(quantity: str, source: str, reproduced, unit: str, note: str = 
 
 def claim_row(quantity: str, source: str, holds: bool, evidence: str) -> dict:
     """A checked claim of the paper: status ``holds``/``fails``, the evidence in the note
-    (``reproduced`` is 1.0 or 0.0 so that the column stays numeric)."""
+    (``reproduced`` is 1.0 or 0.0 so that the column stays numeric).
+
+    Parameters
+    ----------
+    quantity : str
+        The claim's name.
+    source : str
+        Where the paper states it.
+    holds : bool
+        Whether it holds.
+    evidence : str
+        What shows it.
+
+    Returns
+    -------
+    dict
+        The row.
+    """
     return dict(quantity=quantity, source=source, paper=np.nan, reproduced=float(bool(holds)),
                 unit="-", rel_error=np.nan, status="holds" if holds else "fails", kind="claim",
                 note=evidence)
@@ -338,7 +447,18 @@ def claim_row(quantity: str, source: str, holds: bool, evidence: str) -> dict:
 
 def counts(table: pd.DataFrame) -> dict:
     """The honest counts of a table: ``match``/``differs`` over the ``computed`` rows
-    only; the other kinds and ``not-reported`` rows counted on their own."""
+    only; the other kinds and ``not-reported`` rows counted on their own.
+
+    Parameters
+    ----------
+    table : DataFrame
+        A reproduction table (table.csv).
+
+    Returns
+    -------
+    dict
+        Counts by kind and status.
+    """
     kind = table["kind"] if "kind" in table else pd.Series("computed", index=table.index)
     status = table["status"]
     comp = kind == "computed"

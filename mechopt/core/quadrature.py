@@ -50,6 +50,16 @@ def gauss_legendre(n: int):
     problem costs about 1 ms for ``n = 48`` and the optimisation loops (Stan 2008's TQI
     and k_av integrals, Wu 2008's dynamics scans) ask for the same orders hundreds of
     times. Exact for polynomials of degree ``2 n - 1``.
+
+    Parameters
+    ----------
+    n : int
+        The number of nodes.
+
+    Returns
+    -------
+    nodes, weights : ndarray
+        Read-only arrays.
     """
     g, gw = np.polynomial.legendre.leggauss(n)
     g.flags.writeable = False
@@ -81,6 +91,27 @@ def disk_rule(radius, rule: str = "area", n_r: int = DEFAULT_N_R, n_theta: int =
 
     ``sum(w * f(cx + dx, cy + dy))`` is the mean of ``f`` over the disk of the
     given radius under the named rule (see the module docstring).
+
+    Parameters
+    ----------
+    radius : float
+        The disk's radius [L], >= 0.
+    rule : str
+        ``"area"`` or ``"polar"`` (module docstring).
+    n_r, n_theta : int
+        Nodes in radius and angle.
+
+    Returns
+    -------
+    dx, dy : ndarray
+        Nodes relative to the centre [L].
+    w : ndarray
+        Weights, summing to 1.
+
+    Raises
+    ------
+    ValueError
+        For an unknown rule, a negative radius or too many nodes.
     """
     _v.choice("quadrature", rule, QUADRATURES)
     radius = _v.nonnegative_length("radius", radius)
@@ -92,7 +123,17 @@ def disk_rule(radius, rule: str = "area", n_r: int = DEFAULT_N_R, n_theta: int =
 
 @dataclass(frozen=True)
 class Grid:
-    """A raster of square cells of side ``step`` whose centres are ``x`` x ``y``."""
+    """A raster of square cells of side ``step`` whose centres are ``x`` x ``y``.
+
+    Parameters
+    ----------
+    x : ndarray
+        Cell centres along x [L].
+    y : ndarray
+        Cell centres along y [L].
+    step : float
+        The cells' side [L].
+    """
 
     x: np.ndarray
     y: np.ndarray
@@ -107,15 +148,50 @@ class Grid:
         return (self.y.size, self.x.size)
 
     def points(self):
-        """``(X, Y)`` arrays of shape ``(ny, nx)``: row index is y."""
+        """``(X, Y)`` arrays of shape ``(ny, nx)``: row index is y.
+
+        Returns
+        -------
+        X, Y : ndarray
+            Cell centres [L], shape ``(ny, nx)``.
+        """
         return np.meshgrid(self.x, self.y)
 
     def area(self, mask) -> float:
-        """Area of the cells where ``mask`` is True (mid-point rule)."""
+        """Area of the cells where ``mask`` is True (mid-point rule).
+
+        Parameters
+        ----------
+        mask : ndarray of bool
+            Cells, the grid's shape.
+
+        Returns
+        -------
+        float
+            The area [L^2].
+        """
         return float(np.count_nonzero(mask)) * self.cell_area
 
     def mean(self, values, mask) -> float:
-        """Area mean of ``values`` over the cells where ``mask`` is True."""
+        """Area mean of ``values`` over the cells where ``mask`` is True.
+
+        Parameters
+        ----------
+        values : ndarray
+            A field on the grid.
+        mask : ndarray of bool
+            Cells, the grid's shape.
+
+        Returns
+        -------
+        float
+            The mean.
+
+        Raises
+        ------
+        ValueError
+            For an empty mask.
+        """
         if not np.any(mask):
             raise ValueError("cannot average over an empty region")
         return float(np.mean(np.asarray(values)[mask]))
@@ -124,7 +200,25 @@ class Grid:
 def grid_over(box, step) -> Grid:
     """Cell-centred grid covering ``box = (xmin, xmax, ymin, ymax)`` with cells of ``step``
     (at most :data:`MAX_NODES` cells; ``step`` may be of any positive magnitude, as the
-    lengths of a design scale it)."""
+    lengths of a design scale it).
+
+    Parameters
+    ----------
+    box : tuple of float
+        ``(xmin, xmax, ymin, ymax)`` [L].
+    step : float
+        The cells' side [L], > 0.
+
+    Returns
+    -------
+    Grid
+        The grid.
+
+    Raises
+    ------
+    ValueError
+        For an invalid box or step, or more than :data:`MAX_NODES` cells.
+    """
     step = _v.positive_size("step", step)
     xmin, xmax, ymin, ymax = _v.finite_numbers("box", box, 4, "(xmin, xmax, ymin, ymax)")
     if not (xmin <= xmax and ymin <= ymax):

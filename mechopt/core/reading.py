@@ -23,7 +23,31 @@ def open_regular(path, what: str, limit: int):
     """``(fd, size)`` of ``path`` opened for reading if it is a regular file (not a
     link, FIFO, device or folder) of at most ``limit`` bytes; FileNotFoundError passes,
     anything else is a one-line ValueError. Opening never blocks (O_NONBLOCK: a FIFO
-    without a writer does not hang the open)."""
+    without a writer does not hang the open).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    what : str
+        What it is, for the message.
+    limit : int
+        The largest size [bytes].
+
+    Returns
+    -------
+    fd : int
+        An open file descriptor (the caller closes it).
+    size : int
+        The size [bytes].
+
+    Raises
+    ------
+    FileNotFoundError
+        When it does not exist.
+    ValueError
+        One line, for anything but a regular file within the limit.
+    """
     flags = os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
     try:
         fd = os.open(path, flags)
@@ -48,7 +72,20 @@ def open_regular(path, what: str, limit: int):
 
 
 def inside(path, root) -> bool:
-    """``path`` (its folder resolved, links followed) lies inside ``root`` (resolved)."""
+    """``path`` (its folder resolved, links followed) lies inside ``root`` (resolved).
+
+    Parameters
+    ----------
+    path : str or Path
+        A path.
+    root : str or Path
+        A folder.
+
+    Returns
+    -------
+    bool
+        Whether it lies inside.
+    """
     base = os.path.realpath(root)
     here = os.path.realpath(os.path.dirname(os.path.abspath(path)))
     return here == base or here.startswith(base.rstrip(os.sep) + os.sep)

@@ -67,7 +67,23 @@ class BodySpec:
     ``length`` [L] (the tube length for the law; 0 for point masses), ``joints`` (the
     names of the joints it connects, first the frame's origin) and ``com`` (the centre
     of mass along the body from its first joint, as a fraction of ``length``; for a rod,
-    measured back from the platform joint)."""
+    measured back from the platform joint).
+
+    Parameters
+    ----------
+    name : str
+        The body's name.
+    kind : str
+        One of :data:`BODY_KINDS`.
+    length : float
+        Tube length [L] (0 for point masses).
+    joints : tuple of str
+        The joints it connects, first the frame's origin.
+    com : float
+        Centre of mass along the body, a fraction of ``length``.
+    leg : int
+        The leg it belongs to (0: none).
+    """
 
     name: str
     kind: str
@@ -81,7 +97,25 @@ class BodySpec:
 class RigidBody:
     """A body with its masses: ``mass`` [kg], ``com`` ``(cx, cy)`` [m] in the body frame
     (origin at the first joint, x along the body), ``inertia`` [kg m^2] about the centre
-    of mass (axis normal to the plane), ``length`` [m], ``joints``, ``kind``."""
+    of mass (axis normal to the plane), ``length`` [m], ``joints``, ``kind``.
+
+    Parameters
+    ----------
+    name : str
+        The body's name.
+    kind : str
+        Its kind.
+    mass : float
+        [kg].
+    com : tuple of float
+        ``(cx, cy)`` [m] in the body frame.
+    inertia : float
+        About the centre of mass [kg m^2].
+    length : float
+        [m].
+    joints : tuple of str
+        The joints it connects.
+    """
 
     name: str
     kind: str
@@ -101,7 +135,13 @@ class RigidBody:
         object.__setattr__(self, "com", (cx, cy))
 
     def as_dict(self) -> dict:
-        """The body for ``bodies.json``: SI units."""
+        """The body for ``bodies.json``: SI units.
+
+        Returns
+        -------
+        dict
+            The body's fields (SI units).
+        """
         return {"name": self.name, "kind": self.kind, "mass_kg": self.mass,
                 "com_m": list(self.com), "com_along": (self.com[0] / self.length
                                                        if self.length > 0 else 0.0),
@@ -125,6 +165,30 @@ class MassLaw:
     a solid bar); ``motor``, ``payload``, ``carriage`` [kg] the point masses;
     ``rotor_inertia`` [kg m^2] and ``gear_ratio`` (motor turns per actuator unit: -
     for cranks, rad/m for sliders) the actuators' reflected inertia.
+
+    Parameters
+    ----------
+    material : str
+        A key of :data:`MATERIALS`.
+    density : float, optional
+        [kg/m^3] (default: the material's).
+    outer : float
+        The square tube's side [m].
+    wall : float
+        Its wall [m].
+    motor : float
+        Motor mass [kg].
+    payload : float
+        Payload mass [kg].
+    carriage : float
+        Carriage mass [kg].
+    rotor_inertia : float
+        [kg m^2].
+    gear_ratio : float
+        Motor turns per actuator unit.
+    extra : dict
+        Additional data carried with the law (not read by :meth:`body`; not a key
+        :meth:`from_dict` accepts).
     """
 
     material: str = "aluminium"
@@ -154,7 +218,23 @@ class MassLaw:
 
     @classmethod
     def from_dict(cls, d: dict) -> "MassLaw":
-        """The law from a JSON object with keys of the fields (unknown keys refused)."""
+        """The law from a JSON object with keys of the fields (unknown keys refused).
+
+        Parameters
+        ----------
+        d : dict
+            The law's fields.
+
+        Returns
+        -------
+        MassLaw
+            The law.
+
+        Raises
+        ------
+        ValueError
+            One line naming an unknown key.
+        """
         names = {f for f in cls.__dataclass_fields__ if f != "extra"}
         bad = sorted(set(d) - names)
         if bad:
@@ -168,7 +248,20 @@ class MassLaw:
         return b * b - h * h, (b ** 4 - h ** 4) / 12.0
 
     def body(self, spec: BodySpec, length_unit: float = 1.0) -> RigidBody:
-        """The :class:`RigidBody` of a declaration (lengths [L] times ``length_unit`` [m/L])."""
+        """The :class:`RigidBody` of a declaration (lengths [L] times ``length_unit`` [m/L]).
+
+        Parameters
+        ----------
+        spec : BodySpec
+            The declaration.
+        length_unit : float
+            Metres per length unit [m/L].
+
+        Returns
+        -------
+        RigidBody
+            The body.
+        """
         L = spec.length * length_unit
         if spec.kind in ("link", "cylinder", "rod"):
             A, Is = self.section
@@ -181,7 +274,18 @@ class MassLaw:
 
 
 def cross(a, b):
-    """z component of ``a x b`` for arrays of shape ``(..., 2)``."""
+    """z component of ``a x b`` for arrays of shape ``(..., 2)``.
+
+    Parameters
+    ----------
+    a, b : ndarray
+        Shape ``(..., 2)``.
+
+    Returns
+    -------
+    ndarray
+        The z component.
+    """
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
@@ -191,7 +295,22 @@ def _perp(a):
 
 def point_kinematics(frame, com):
     """``(c, c_dot, c_ddot, omega, alpha)`` of the point ``com = (cx, cy)`` [m] fixed in the
-    body of ``frame = (O, Od, Odd, r, rd, rdd)`` (module docstring for the formulas)."""
+    body of ``frame = (O, Od, Odd, r, rd, rdd)`` (module docstring for the formulas).
+
+    Parameters
+    ----------
+    frame : tuple of ndarray
+        ``(O, Od, Odd, r, rd, rdd)``.
+    com : tuple of float
+        ``(cx, cy)`` [m] in the body frame.
+
+    Returns
+    -------
+    c, c_dot, c_ddot : ndarray
+        Position [m], velocity [m/s], acceleration [m/s^2], shape ``(..., 2)``.
+    omega, alpha : ndarray
+        Angular velocity [rad/s] and acceleration [rad/s^2].
+    """
     O, Od, Odd, r, rd, rdd = frame
     r2 = np.sum(r * r, axis=-1)
     w = cross(r, rd) / r2
@@ -208,7 +327,20 @@ def point_kinematics(frame, com):
 
 
 def fixed_frame(point, shape):
-    """Frame of a body fixed to the base at ``point`` (x axis along +x)."""
+    """Frame of a body fixed to the base at ``point`` (x axis along +x).
+
+    Parameters
+    ----------
+    point : tuple of float
+        The origin [m].
+    shape : tuple
+        The poses' shape.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(O, Od, Odd, r, rd, rdd)``.
+    """
     O = np.broadcast_to(np.asarray(point, float), shape + (2,))
     z = np.zeros(shape + (2,))
     ex = np.broadcast_to(np.array([1.0, 0.0]), shape + (2,))
@@ -216,19 +348,54 @@ def fixed_frame(point, shape):
 
 
 def translating_frame(O, Od, Odd):
-    """Frame of a body that translates with its origin (x axis along +x)."""
+    """Frame of a body that translates with its origin (x axis along +x).
+
+    Parameters
+    ----------
+    O, Od, Odd : ndarray
+        Origin position, velocity, acceleration, shape ``(..., 2)``.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(O, Od, Odd, r, rd, rdd)``.
+    """
     z = np.zeros(O.shape)
     return O, Od, Odd, np.broadcast_to(np.array([1.0, 0.0]), O.shape), z, z
 
 
 def segment_frame(start, end):
     """Frame of the body from the point ``start = (X, Xd, Xdd)`` to ``end`` (each of shape
-    ``(..., 2)``): origin at the start, x axis towards the end."""
+    ``(..., 2)``): origin at the start, x axis towards the end.
+
+    Parameters
+    ----------
+    start : tuple of ndarray
+        ``(X, Xd, Xdd)`` of the start point.
+    end : tuple of ndarray
+        The same of the end point.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(O, Od, Odd, r, rd, rdd)``.
+    """
     (X, Xd, Xdd), (Y, Yd, Ydd) = start, end
     return X, Xd, Xdd, Y - X, Yd - Xd, Ydd - Xdd
 
 
 def stack2(x, y):
-    """``(..., 2)`` array of two coordinates."""
+    """``(..., 2)`` array of two coordinates.
+
+    Parameters
+    ----------
+    x, y : array_like
+        The coordinates.
+
+    Returns
+    -------
+    ndarray
+        Shape ``(..., 2)``.
+    """
     return np.stack(np.broadcast_arrays(x, y), -1)
 

@@ -36,7 +36,15 @@ _NUMBER = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*
 
 @dataclass(frozen=True)
 class Quantity:
-    """A number with the unit written after it (``unit`` empty for a bare number)."""
+    """A number with the unit written after it (``unit`` empty for a bare number).
+
+    Parameters
+    ----------
+    value : float
+        The number.
+    unit : str
+        The unit as written (empty: none).
+    """
 
     value: float
     unit: str = ""
@@ -47,7 +55,25 @@ class Quantity:
 
 def parse(text, what) -> Quantity:
     """``"0.5m/s"`` -> ``Quantity(0.5, "m/s")``; spaces inside the unit are dropped
-    (``"2 N m"`` is ``"2Nm"``). ``what`` names the option in the error."""
+    (``"2 N m"`` is ``"2Nm"``). ``what`` names the option in the error.
+
+    Parameters
+    ----------
+    text : str
+        A number with an optional unit (``"0.5m/s"``).
+    what : str
+        The option's name, for the message.
+
+    Returns
+    -------
+    Quantity
+        The number and its unit.
+
+    Raises
+    ------
+    ValueError
+        One line, for text that is not a number with an optional unit.
+    """
     m = _NUMBER.fullmatch(str(text))
     if not m:
         raise ValueError(f"{what} must be a number with an optional unit (e.g. 0.5m/s), got {text!r}")
@@ -56,14 +82,53 @@ def parse(text, what) -> Quantity:
 
 
 def base_unit(kind, task_unit, angular) -> str:
-    """The unit an option of ``kind`` is stated in, for a task in ``task_unit``."""
+    """The unit an option of ``kind`` is stated in, for a task in ``task_unit``.
+
+    Parameters
+    ----------
+    kind : str
+        ``"length"``, ``"speed"``, ``"force"``, ``"effort"`` or ``"rate"``.
+    task_unit : str
+        The task's length unit.
+    angular : bool
+        Whether the actuators are cranks (efforts in N m, rates in rad/s) or sliders.
+
+    Returns
+    -------
+    str
+        The unit (``"mm/s"``, ``"N m"``, ...).
+    """
     return {"length": task_unit, "speed": f"{task_unit}/s", "force": "N",
             "effort": "N m" if angular else "N",
             "rate": "rad/s" if angular else f"{task_unit}/s"}[kind]
 
 
 def to_base(q, kind, task_unit, angular, what) -> float:
-    """``q`` (a :class:`Quantity` or a number) in :func:`base_unit` of ``kind``."""
+    """``q`` (a :class:`Quantity` or a number) in :func:`base_unit` of ``kind``.
+
+    Parameters
+    ----------
+    q : Quantity or float
+        The value (a bare number is already in the base unit).
+    kind : str
+        ``"length"``, ``"speed"``, ``"force"``, ``"effort"`` or ``"rate"``.
+    task_unit : str
+        The task's length unit.
+    angular : bool
+        Whether the actuators are cranks (efforts in N m, rates in rad/s) or sliders.
+    what : str
+        The option's name, for the message.
+
+    Returns
+    -------
+    float
+        The value in :func:`base_unit`.
+
+    Raises
+    ------
+    ValueError
+        One line, for a unit that is not one of the kind's.
+    """
     if not isinstance(q, Quantity):
         return q
     if not q.unit:

@@ -64,7 +64,20 @@ STEP_FLOOR = 1e-15
 
 
 def show(value, width: int = 80) -> str:
-    """``repr(value)`` on one line, shortened to ``width`` characters (for messages)."""
+    """``repr(value)`` on one line, shortened to ``width`` characters (for messages).
+
+    Parameters
+    ----------
+    value : object
+        Any value.
+    width : int
+        The largest length.
+
+    Returns
+    -------
+    str
+        The text.
+    """
     text = " ".join(repr(value).split())
     return text if len(text) <= width else text[: width - 3] + "..."
 
@@ -79,7 +92,20 @@ def _refuse_non_real(name: str, value):
 
 
 def real_array_dtype(name: str, array) -> None:
-    """Refuse arrays of booleans, complex numbers or objects (one line naming ``name``)."""
+    """Refuse arrays of booleans, complex numbers or objects (one line naming ``name``).
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    array : ndarray
+        The array.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, for booleans, complex numbers or objects.
+    """
     kind = getattr(getattr(array, "dtype", None), "kind", None)
     if kind in ("b", "c"):
         what = "booleans" if kind == "b" else "complex numbers"
@@ -96,7 +122,25 @@ def _as_float(name: str, value) -> float:
 
 
 def finite_number(name: str, value) -> float:
-    """Return ``value`` as a float, or raise if it is NaN or infinite."""
+    """Return ``value`` as a float, or raise if it is NaN or infinite.
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    float
+        The value.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, when it is not a finite real number.
+    """
     out = _as_float(name, value)
     if not math.isfinite(out):
         raise ValueError(f"{name} must be finite, got {show(value)}")
@@ -111,7 +155,26 @@ def _length_range(name: str, out: float, value) -> float:
 
 
 def positive_length(name: str, value) -> float:
-    """A link length: finite, strictly positive, in [LENGTH_MIN, LENGTH_MAX]."""
+    """A link length: finite, strictly positive, in [LENGTH_MIN, LENGTH_MAX].
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    float
+        The length [L].
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, when it is not a positive finite length in
+        the admissible range.
+    """
     out = finite_number(name, value)
     if out <= 0.0:
         raise ValueError(f"{name} must be a positive finite length, got {show(value)}")
@@ -120,7 +183,26 @@ def positive_length(name: str, value) -> float:
 
 def nonnegative_length(name: str, value) -> float:
     """A length that may vanish (e.g. the half base distance r3 of a five-bar),
-    at most LENGTH_MAX (tiny values act as 0: such lengths are only added to others)."""
+    at most LENGTH_MAX (tiny values act as 0: such lengths are only added to others).
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    float
+        The length [L].
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, when it is negative, not finite or too
+        large.
+    """
     out = finite_number(name, value)
     if out < 0.0:
         raise ValueError(f"{name} must be a non-negative finite length, got {show(value)}")
@@ -130,7 +212,25 @@ def nonnegative_length(name: str, value) -> float:
 def positive_size(name: str, value) -> float:
     """A derived size (e.g. a raster step): finite and strictly positive, of any
     magnitude (a step of a design of lengths 1e-12 is smaller still; the callers
-    bound the work it implies)."""
+    bound the work it implies).
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    float
+        The size.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, when it is not finite and positive.
+    """
     out = finite_number(name, value)
     if not out > 0.0:
         raise ValueError(f"{name} must be a positive finite length, got {show(value)}")
@@ -140,7 +240,26 @@ def positive_size(name: str, value) -> float:
 def position(name: str, value) -> float:
     """A point's coordinate used by an analysis (e.g. a disk centre): finite,
     ``|value| <= POINT_MAX`` (workspaces of admissible designs reach up to a few
-    LENGTH_MAX from the origin)."""
+    LENGTH_MAX from the origin).
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    float
+        The coordinate [L].
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, when it is not finite or beyond
+        ``POINT_MAX``.
+    """
     out = finite_number(name, value)
     if abs(out) > POINT_MAX:
         raise ValueError(f"{name} must lie in [-{POINT_MAX:g}, {POINT_MAX:g}] (farther than any "
@@ -149,7 +268,26 @@ def position(name: str, value) -> float:
 
 
 def coordinate(name: str, value) -> float:
-    """A signed position (e.g. a stroke limit): finite, ``|value| <= LENGTH_MAX``."""
+    """A signed position (e.g. a stroke limit): finite, ``|value| <= LENGTH_MAX``.
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    float
+        The coordinate [L].
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, when it is not finite or beyond
+        ``LENGTH_MAX``.
+    """
     out = finite_number(name, value)
     if abs(out) > LENGTH_MAX:
         raise ValueError(f"{name} must lie in [-{LENGTH_MAX:g}, {LENGTH_MAX:g}], got {show(value)}")
@@ -157,7 +295,29 @@ def coordinate(name: str, value) -> float:
 
 
 def integer(name: str, value, minimum: int | None = None, maximum: int | None = None) -> int:
-    """A whole number (``3``, ``3.0`` or ``"3"``) within ``[minimum, maximum]``."""
+    """A whole number (``3``, ``3.0`` or ``"3"``) within ``[minimum, maximum]``.
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+    minimum : int, optional
+        The smallest allowed.
+    maximum : int, optional
+        The largest allowed.
+
+    Returns
+    -------
+    int
+        The number.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, when it is not a whole number in the range.
+    """
     _refuse_non_real(name, value)
     if isinstance(value, numbers.Integral):
         out = int(value)
@@ -178,7 +338,30 @@ def integer(name: str, value, minimum: int | None = None, maximum: int | None = 
 
 
 def finite_numbers(name: str, value, n: int, what: str | None = None) -> tuple:
-    """A sequence of exactly ``n`` finite numbers, e.g. a point or a box."""
+    """A sequence of exactly ``n`` finite numbers, e.g. a point or a box.
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+    n : int
+        How many numbers.
+    what : str, optional
+        What they are, for the message (``"a point (x, y)"``).
+
+    Returns
+    -------
+    tuple of float
+        The numbers.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, when it is not a sequence of ``n`` finite
+        numbers.
+    """
     what = what or f"{n} numbers"
     try:
         items = list(value)
@@ -190,7 +373,28 @@ def finite_numbers(name: str, value, n: int, what: str | None = None) -> tuple:
 
 
 def choice(name: str, value, allowed: Sequence[str] | Iterable[str]) -> str:
-    """A string that must be one of ``allowed``."""
+    """A string that must be one of ``allowed``.
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+    allowed : iterable of str
+        The allowed strings.
+
+    Returns
+    -------
+    str
+        The value.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, listing the allowed strings, for another
+        value.
+    """
     allowed = tuple(allowed)
     try:
         ok = bool(value in allowed)
@@ -204,7 +408,25 @@ def choice(name: str, value, allowed: Sequence[str] | Iterable[str]) -> str:
 
 
 def open_unit_interval(name: str, value) -> float:
-    """A threshold strictly between 0 and 1 (e.g. the LCI level gamma)."""
+    """A threshold strictly between 0 and 1 (e.g. the LCI level gamma).
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    float
+        The value, in (0, 1).
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, outside (0, 1).
+    """
     out = finite_number(name, value)
     if not 0.0 < out < 1.0:
         raise ValueError(f"{name} must lie in the open interval (0, 1), got {show(value)}")
@@ -212,7 +434,27 @@ def open_unit_interval(name: str, value) -> float:
 
 
 def step(name: str, value, upper: float) -> float:
-    """A lattice step in ``(0, upper]``."""
+    """A lattice step in ``(0, upper]``.
+
+    Parameters
+    ----------
+    name : str
+        The value's name, for the message.
+    value : object
+        The value to check.
+    upper : float
+        The largest step.
+
+    Returns
+    -------
+    float
+        The step.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and the value, outside (0, upper].
+    """
     out = finite_number(name, value)
     if not 0.0 < out <= upper:
         raise ValueError(f"{name} must lie in (0, {upper}], got {value!r}")
@@ -234,7 +476,23 @@ POLYGON_VERTICES_MAX = 5_000
 
 def weights(text: str):
     """Weights of a sweep: ``"0:1:0.1"`` (start:stop:step, inclusive) or ``"0,0.25,1"``;
-    each in [0, 1]. Returns a NumPy array."""
+    each in [0, 1]. Returns a NumPy array.
+
+    Parameters
+    ----------
+    text : str
+        The weights' text.
+
+    Returns
+    -------
+    ndarray
+        The weights, each in [0, 1].
+
+    Raises
+    ------
+    ValueError
+        One line, for a malformed text or a weight outside [0, 1].
+    """
     import numpy as np
 
     try:
@@ -262,7 +520,31 @@ def weights(text: str):
 
 def stroke(name_min: str, q_min, name_max: str, q_max, positive: bool = True):
     """An actuator range ``(lo, hi)`` with ``lo < hi``: strut lengths (``positive``)
-    or slider positions (any sign, as :func:`coordinate`)."""
+    or slider positions (any sign, as :func:`coordinate`).
+
+    Parameters
+    ----------
+    name_min : str
+        The lower limit's name.
+    q_min : object
+        The lower limit [L].
+    name_max : str
+        The upper limit's name.
+    q_max : object
+        The upper limit [L].
+    positive : bool
+        Strut lengths (positive) or slider positions (any sign).
+
+    Returns
+    -------
+    lo, hi : float
+        The range [L].
+
+    Raises
+    ------
+    ValueError
+        One line, for invalid limits or ``lo >= hi``.
+    """
     check = positive_length if positive else coordinate
     lo, hi = check(name_min, q_min), check(name_max, q_max)
     if not hi > lo:

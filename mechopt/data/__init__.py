@@ -35,5 +35,16 @@ def _rows(paper: str) -> tuple:
 
 def published_values(paper: str) -> dict:
     """Rows of ``mechopt/data/<paper>.csv`` as ``{(design, quantity): (value, unit, digits,
-    source)}`` (a new dict on each call; the file is read once)."""
+    source)}`` (a new dict on each call; the file is read once).
+
+    Parameters
+    ----------
+    paper : str
+        The paper's key (``"liu2006"``).
+
+    Returns
+    -------
+    dict
+        ``{(design, quantity): (value, unit, digits, source)}``.
+    """
     return dict(_rows(paper))

@@ -50,7 +50,23 @@ DEFAULT_SAMPLES = 200
 
 def parse_formats(text) -> tuple:
     """``"urdf,mjcf"`` -> ``("urdf", "mjcf")`` (None: every format); ValueError for an
-    unknown or empty one."""
+    unknown or empty one.
+
+    Parameters
+    ----------
+    text : str or None
+        A comma list of formats.
+
+    Returns
+    -------
+    tuple of str
+        The formats.
+
+    Raises
+    ------
+    ValueError
+        For an unknown or empty format.
+    """
     if text is None:
         return FORMATS
     names = tuple(dict.fromkeys(s.strip().lower() for s in str(text).split(",") if s.strip()))
@@ -83,6 +99,12 @@ def export(design, to, formats=None, samples: int = DEFAULT_SAMPLES, overwrite: 
     dict
         The content of ``export.json``: ``design_sha256``, ``files`` (name -> sha256),
         ``frames``, ``samples``, ``wall_time_s`` and the conventions.
+
+    Raises
+    ------
+    ValueError
+        One line, for an unreadable design, an unknown format, or a folder holding another
+        run.
     """
     from mechopt.core import validation as _v
     from mechopt.export import drawings, simulators

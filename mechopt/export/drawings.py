@@ -42,16 +42,59 @@ DXF_UNITS = {"mm": 4, "cm": 5, "m": 6, "in": 1}
 
 
 def frame_step(n: int) -> int:
-    """``k = ceil(n / MAX_FRAMES)``: the GIF shows the samples ``0, k, 2k, ...``."""
+    """``k = ceil(n / MAX_FRAMES)``: the GIF shows the samples ``0, k, 2k, ...``.
+
+    Parameters
+    ----------
+    n : int
+        Samples.
+
+    Returns
+    -------
+    int
+        ``k``.
+    """
     return max(1, math.ceil(n / MAX_FRAMES))
 
 
 def dxf_units(unit: str) -> int:
+    """The DXF ``$INSUNITS`` code of a length unit.
+
+    Parameters
+    ----------
+    unit : str
+        ``"mm"``, ``"cm"``, ``"m"`` or ``"in"``.
+
+    Returns
+    -------
+    int
+        The code.
+    """
     return DXF_UNITS[unit]
 
 
 def link_dxf(tree, body: str, width: float, unit: str, digest: str):
-    """The ezdxf document of one body (module docstring); lengths [L]."""
+    """The ezdxf document of one body (module docstring); lengths [L].
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    body : str
+        The body's name.
+    width : float
+        The link's width [L].
+    unit : str
+        The length unit.
+    digest : str
+        The design's digest (:func:`mechopt.export.source.design_digest`), written into the
+        file.
+
+    Returns
+    -------
+    ezdxf.document.Drawing
+        The document.
+    """
     import ezdxf
 
     pins = tree.pins()[body]
@@ -90,7 +133,20 @@ def pose_elements(tree, q: dict) -> list:
     ``"link"`` the polyline of a body's pins (bodies with two or more), ``"stroke"`` a
     prismatic joint's travel over its limits, ``"strut"`` the segment from a prismatic
     joint's parent body to its child (not drawn for a joint on the base: a guide), and
-    ``"pin"`` every body's single pin."""
+    ``"pin"`` every body's single pin.
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    q : dict
+        ``{joint: array}`` [rad or L].
+
+    Returns
+    -------
+    list of tuple
+        ``(kind, xs, ys)``.
+    """
     pose = tree.forward(q)
     pins = tree.pins()
     out = []
@@ -165,7 +221,24 @@ def _reach(ax, src, n=161):
 
 
 def draw_svg(src, tree, home_q: dict, path_xy, path, digest: str) -> None:
-    """Write the SVG (module docstring) to ``path``: the mechanism at ``home_q``."""
+    """Write the SVG (module docstring) to ``path``: the mechanism at ``home_q``.
+
+    Parameters
+    ----------
+    src : mechopt.export.source.DesignSource
+        The loaded design.
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    home_q : dict
+        Joint values at the task's centre.
+    path_xy : tuple of ndarray
+        The task's path ``(x, y)`` [L].
+    path : str or Path
+        The SVG file.
+    digest : str
+        The design's digest (:func:`mechopt.export.source.design_digest`), written into the
+        file.
+    """
     px, py = path_xy
     fig, ax = _axes(src, tree, px, py, f"{tree.name}: {src.record['repr']}")
     ax.plot(px, py, "--", color="tab:orange", lw=1, label="path")
@@ -181,7 +254,30 @@ def draw_svg(src, tree, home_q: dict, path_xy, path, digest: str) -> None:
 
 def path_frame(src, tree, q: dict, px, py):
     """``(figure, update, n_frames, step)`` of the animation along the path (samples
-    ``q``/``px``/``py`` of length n): ``update(i)`` draws frame ``i`` (sample ``i * step``)."""
+    ``q``/``px``/``py`` of length n): ``update(i)`` draws frame ``i`` (sample ``i * step``).
+
+    Parameters
+    ----------
+    src : mechopt.export.source.DesignSource
+        The loaded design.
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    q : dict
+        Joint values along the path.
+    px, py : ndarray
+        The path [L].
+
+    Returns
+    -------
+    figure : Figure
+        The figure.
+    update : callable
+        ``update(i)`` draws frame ``i``.
+    n_frames : int
+        Frames.
+    step : int
+        Samples per frame.
+    """
     n = len(px)
     step = frame_step(n)
     frames = list(range(0, n, step))
@@ -204,7 +300,29 @@ def path_frame(src, tree, q: dict, px, py):
 
 
 def write_gif(src, tree, q: dict, px, py, path, digest: str) -> int:
-    """Write the GIF (module docstring) to ``path``; returns the number of frames."""
+    """Write the GIF (module docstring) to ``path``; returns the number of frames.
+
+    Parameters
+    ----------
+    src : mechopt.export.source.DesignSource
+        The loaded design.
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    q : dict
+        Joint values along the path.
+    px, py : ndarray
+        The path [L].
+    path : str or Path
+        The GIF file.
+    digest : str
+        The design's digest (:func:`mechopt.export.source.design_digest`), written into the
+        file.
+
+    Returns
+    -------
+    int
+        The number of frames.
+    """
     from matplotlib.animation import FuncAnimation, PillowWriter
 
     class _Writer(PillowWriter):  # PillowWriter, with the digest as the GIF comment

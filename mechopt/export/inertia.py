@@ -25,7 +25,18 @@ WIDTH_RATIO = 0.1
 def link_width(tree) -> float:
     """Width of every link [L]: :data:`WIDTH_RATIO` times the longest distance between
     two pins of one body of ``tree`` (e.g. 18.4 mm for a mechanism whose longest link
-    is 184 mm)."""
+    is 184 mm).
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+
+    Returns
+    -------
+    float
+        The width [L].
+    """
     longest = 0.0
     for pins in tree.pins().values():
         for i, (_, a) in enumerate(pins):
@@ -39,7 +50,24 @@ def body_inertia(length: float, width: float):
     cylinder of mass :data:`MASS_KG` [kg], length ``length`` [m] along the body's x axis
     from its origin, diameter ``width`` [m]; ``com = (length / 2, 0, 0)`` [m], principal
     moments about the centre of mass [kg m^2]: ``Ixx = m r^2 / 2``,
-    ``Iyy = Izz = m (3 r^2 + length^2) / 12`` with ``r = width / 2``."""
+    ``Iyy = Izz = m (3 r^2 + length^2) / 12`` with ``r = width / 2``.
+
+    Parameters
+    ----------
+    length : float
+        The body's length [m].
+    width : float
+        Its diameter [m].
+
+    Returns
+    -------
+    mass : float
+        [kg].
+    com : tuple of float
+        [m].
+    inertia : tuple of float
+        ``(Ixx, Iyy, Izz)`` [kg m^2].
+    """
     m = MASS_KG
     r = 0.5 * float(width)
     L = float(length)

@@ -56,7 +56,20 @@ def _xyz(*v) -> str:
 
 
 def body_length(tree, body) -> float:
-    """Distance from the body's origin to its farthest pin [tree's unit]."""
+    """Distance from the body's origin to its farthest pin [tree's unit].
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    body : str
+        A body's name.
+
+    Returns
+    -------
+    float
+        The length [tree's unit].
+    """
     return max((math.hypot(*p) for _, p in tree.pins()[body]), default=0.0)
 
 
@@ -65,7 +78,21 @@ def _digest_comment(digest) -> str:
 
 
 def urdf(tree, digest: str) -> str:
-    """The URDF of ``tree`` (lengths in m; module docstring)."""
+    """The URDF of ``tree`` (lengths in m; module docstring).
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    digest : str
+        The design's digest (:func:`mechopt.export.source.design_digest`), written into the
+        file.
+
+    Returns
+    -------
+    str
+        The URDF text.
+    """
     w = link_width(tree)
     lines = ['<?xml version="1.0"?>', _digest_comment(digest), f'<robot name="{tree.name}">',
              f'  <link name="{BASE}"/>']
@@ -108,7 +135,21 @@ def urdf(tree, digest: str) -> str:
 
 
 def robot_yaml(tree, digest: str) -> str:
-    """The loop and the motors in the format of Gepetto's example-parallel-robots."""
+    """The loop and the motors in the format of Gepetto's example-parallel-robots.
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    digest : str
+        The design's digest (:func:`mechopt.export.source.design_digest`), written into the
+        file.
+
+    Returns
+    -------
+    str
+        The YAML text.
+    """
     a, b = CLOSURE_NAMES
     motors = ", ".join(f"'{n}'" for n in tree.actuated)
     return (f"# mechopt design sha256 {digest}\n"
@@ -121,7 +162,20 @@ def servo_gains(tree, kind: str):
     """``(kp, kv)`` of a position servo on a joint of ``kind``: critically damped at
     :data:`SERVO_HZ` for a reference inertia, the total placeholder mass of the bodies
     [kg] for a prismatic joint, that mass times the squared longest body length
-    [kg m^2] for a revolute one (tree lengths in m)."""
+    [kg m^2] for a revolute one (tree lengths in m).
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    kind : str
+        ``"revolute"`` or ``"prismatic"``.
+
+    Returns
+    -------
+    kp, kv : float
+        The gains (SI).
+    """
     from mechopt.export.inertia import MASS_KG
 
     mass = MASS_KG * len(tree.bodies)
@@ -132,7 +186,23 @@ def servo_gains(tree, kind: str):
 
 def mjcf(tree, digest: str, home: dict) -> str:
     """The MJCF of ``tree`` (lengths in m; module docstring); ``home``: every joint's
-    value at the task's centre (the keyframe ``home`` and its controls)."""
+    value at the task's centre (the keyframe ``home`` and its controls).
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    digest : str
+        The design's digest (:func:`mechopt.export.source.design_digest`), written into the
+        file.
+    home : dict
+        ``{joint: value}`` [rad or m] at the task's centre.
+
+    Returns
+    -------
+    str
+        The MJCF text.
+    """
     w = link_width(tree)
     children = {}
     for j in tree.joints:

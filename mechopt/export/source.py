@@ -28,12 +28,34 @@ _DESIGN_KEYS = ("mechanism_name", "variables", "task_placement", "repr", "unit")
 
 
 def canonical_json(obj) -> str:
-    """``obj`` as canonical JSON: sorted keys, no spaces, ASCII, no NaN."""
+    """``obj`` as canonical JSON: sorted keys, no spaces, ASCII, no NaN.
+
+    Parameters
+    ----------
+    obj : object
+        Plain JSON data.
+
+    Returns
+    -------
+    str
+        The text.
+    """
     return json.dumps(obj, sort_keys=True, separators=(",", ":"), ensure_ascii=True, allow_nan=False)
 
 
 def design_digest(record: dict) -> str:
-    """sha256 (hex) of :func:`canonical_json` of a design record (module docstring)."""
+    """sha256 (hex) of :func:`canonical_json` of a design record (module docstring).
+
+    Parameters
+    ----------
+    record : dict
+        A design record.
+
+    Returns
+    -------
+    str
+        The digest (hex).
+    """
     return hashlib.sha256(canonical_json(record).encode("ascii")).hexdigest()
 
 
@@ -53,7 +75,23 @@ def _read_json(path: Path, what: str) -> dict:
 
 def task_from_dict(d: dict):
     """The :class:`~mechopt.analysis.task.Task` of ``Task.to_dict()`` (run.json's
-    ``design.task``): :meth:`~mechopt.analysis.task.Task.from_dict`."""
+    ``design.task``): :meth:`~mechopt.analysis.task.Task.from_dict`.
+
+    Parameters
+    ----------
+    d : dict
+        What ``Task.to_dict()`` wrote.
+
+    Returns
+    -------
+    mechopt.analysis.task.Task
+        The task.
+
+    Raises
+    ------
+    ValueError
+        One line, for an invalid task.
+    """
     from mechopt.analysis.task import Task
 
     try:
@@ -66,7 +104,25 @@ def task_from_dict(d: dict):
 class DesignSource:
     """A loaded design: ``record`` (design.json as read), ``digest``, ``spec`` and
     ``mech`` (rebuilt), ``task`` (placed where the design covers it, task frame),
-    ``unit`` (the length unit [L]) and ``metres`` (one [L] in m)."""
+    ``unit`` (the length unit [L]) and ``metres`` (one [L] in m).
+
+    Parameters
+    ----------
+    record : dict
+        design.json as read.
+    digest : str
+        Its digest.
+    spec : mechopt.core.design_spec.DesignSpec
+        The design spec.
+    mech : PlanarMechanism
+        The mechanism, rebuilt.
+    task : mechopt.analysis.task.Task
+        The placed task.
+    unit : str
+        The length unit [L].
+    metres : float
+        One [L] in m.
+    """
 
     record: dict
     digest: str
@@ -79,7 +135,13 @@ class DesignSource:
     def tree(self):
         """The mechanism's :class:`~mechopt.core.kinematic_tree.KinematicTree` in the task
         frame [L], with the angular motors limited to the design's joint ranges (the strokes are
-        the mechanism's own)."""
+        the mechanism's own).
+
+        Returns
+        -------
+        mechopt.core.kinematic_tree.KinematicTree
+            The tree.
+        """
         tree = self.mech.kinematic_tree()
         ox, oy = self.spec.to_mech(self.mech, 0.0, 0.0)
         tree = tree.shifted(-float(ox), -float(oy))
@@ -90,13 +152,30 @@ class DesignSource:
         return tree
 
     def configuration(self, x, y) -> dict:
-        """Every joint of :meth:`tree` with the platform at task-frame points ``(x, y)`` [L]."""
+        """Every joint of :meth:`tree` with the platform at task-frame points ``(x, y)`` [L].
+
+        Parameters
+        ----------
+        x, y : array_like
+            Task-frame points [L].
+
+        Returns
+        -------
+        dict
+            ``{joint: ndarray}`` [rad or L].
+        """
         mx, my = self.spec.to_mech(self.mech, np.asarray(x, float), np.asarray(y, float))
         return self.mech.tree_configuration(mx, my)
 
     def home(self):
         """The task's centre ``(x, y)`` [L] (a region's bounding-box centre, a point
-        task's mean), or the first path sample if the centre is out of reach."""
+        task's mean), or the first path sample if the centre is out of reach.
+
+        Returns
+        -------
+        x, y : float
+            [L].
+        """
         t = self.task
         x, y = t.reference if t.is_region else (float(t.pts[:, 0].mean()), float(t.pts[:, 1].mean()))
         q = self.configuration(np.array([x]), np.array([y]))
@@ -110,7 +189,23 @@ def load(path) -> DesignSource:
     """Read ``design.json`` at ``path`` and the ``run.json`` in its folder (module
     docstring). ValueError (one line) for a file of another tool, a run.json of another
     run, an unknown mechanism, a mechanism that is not the one ``repr`` names or one
-    without a kinematic tree."""
+    without a kinematic tree.
+
+    Parameters
+    ----------
+    path : str or Path
+        design.json.
+
+    Returns
+    -------
+    DesignSource
+        The design.
+
+    Raises
+    ------
+    ValueError
+        One line, for the cases above.
+    """
     from mechopt.analysis.design_eval import get_spec
     from mechopt.analysis.task import UNITS
 
@@ -154,7 +249,22 @@ def path_samples(task, n: int):
     its first vertex (a circle: from angle 0), at ``n`` points of uniform arc length,
     ``t = k / n`` the arc-length fraction (``k = 0 .. n - 1``: the closing point is not
     repeated). A point task: its points in their order, ``t`` the fraction of the
-    polyline's length up to each (``n`` ignored). Lengths [L]."""
+    polyline's length up to each (``n`` ignored). Lengths [L].
+
+    Parameters
+    ----------
+    task : mechopt.analysis.task.Task
+        The task.
+    n : int
+        Points of a region's boundary.
+
+    Returns
+    -------
+    t : ndarray
+        Arc-length fractions.
+    x, y : ndarray
+        Points [L].
+    """
     if task.is_region:
         n = int(n)
         t = np.arange(n) / n

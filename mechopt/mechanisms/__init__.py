@@ -20,8 +20,19 @@ __all__ = ["registry", "get", "designed", "design_spec"]
 
 @lru_cache(maxsize=1)
 def registry() -> dict:
-    """``{cli_name: class}`` of every mechanism of this package, sorted by name: those
-    defined in its modules, or in a subpackage and exported by its ``__init__``."""
+    """Every mechanism of this package.
+
+    Returns
+    -------
+    dict
+        ``{cli_name: class}`` sorted by name: the mechanisms defined in its modules,
+        or in a subpackage and exported by its ``__init__``.
+
+    Raises
+    ------
+    RuntimeError
+        When two mechanisms declare the same ``cli_name``.
+    """
     from mechopt.core.protocol import PlanarMechanism
 
     found = {}
@@ -39,7 +50,23 @@ def registry() -> dict:
 
 
 def get(name: str):
-    """The mechanism class registered as ``name`` (e.g. ``"five-bar"``)."""
+    """The mechanism class registered as ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A ``cli_name`` (e.g. ``"five-bar"``).
+
+    Returns
+    -------
+    type
+        The :class:`~mechopt.core.protocol.PlanarMechanism` subclass.
+
+    Raises
+    ------
+    ValueError
+        One line naming the known mechanisms, for an unknown name.
+    """
     from mechopt.core import validation as _v
 
     return registry()[_v.choice("mechanism", name, tuple(registry()))]
@@ -48,13 +75,34 @@ def get(name: str):
 def designed() -> tuple:
     """Names of the mechanisms ``mechopt design`` sizes: every mechanism of
     :func:`registry` (in its order) with a
-    :attr:`~mechopt.core.protocol.PlanarMechanism.design_spec`."""
+    :attr:`~mechopt.core.protocol.PlanarMechanism.design_spec`.
+
+    Returns
+    -------
+    tuple of str
+        The names.
+    """
     return tuple(n for n, cls in registry().items() if cls.design_spec is not None)
 
 
 def design_spec(name: str):
-    """The design specification of mechanism ``name`` (one of :func:`designed`): a
-    :class:`~mechopt.core.design_spec.DesignSpec` instance."""
+    """The design specification of a mechanism.
+
+    Parameters
+    ----------
+    name : str
+        One of :func:`designed`.
+
+    Returns
+    -------
+    mechopt.core.design_spec.DesignSpec
+        An instance of the mechanism's spec.
+
+    Raises
+    ------
+    ValueError
+        One line naming the designed mechanisms, for another name.
+    """
     from mechopt.core import validation as _v
 
     return registry()[_v.choice("mechanism", name, designed())].design_spec()

@@ -64,7 +64,20 @@ class AsymmetricFiveBarDesignSpec(_fb.FiveBarDesignSpec):
 
     def size(self, mech, derived):
         """``a1 + c1 + a2 + c2 + 2 r3``: both legs and the base distance (the five-bar's
-        ``2 (r1 + r2 + r3)`` for equal legs)."""
+        ``2 (r1 + r2 + r3)`` for equal legs).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        derived : dict
+            The evaluation's derived values (strokes, ...).
+
+        Returns
+        -------
+        float
+            The size [L].
+        """
         return mech.a1 + mech.c1 + mech.a2 + mech.c2 + 2.0 * mech.r3
 
     def placement_scale(self, v, lmax):
@@ -77,7 +90,24 @@ class AsymmetricFiveBarDesignSpec(_fb.FiveBarDesignSpec):
 class AsymmetricFiveBar(PlanarMechanism):
     """``AsymmetricFiveBar(a1, c1, a2, c2, r3, mode="+-")``: cranks ``a_i``, distal links
     ``c_i`` [L] (> 0), half base distance ``r3`` [L] (>= 0), working mode as for the
-    symmetric five-bar."""
+    symmetric five-bar.
+
+    Parameters
+    ----------
+    a1, c1 : float
+        Crank and distal link of leg 1 (base joint ``(-r3, 0)``) [L], > 0.
+    a2, c2 : float
+        Crank and distal link of leg 2 (base joint ``(r3, 0)``) [L], > 0.
+    r3 : float
+        Half the base distance [L], >= 0.
+    mode : {"+-", "-+", "++", "--"}
+        Working mode (elbow signs, as for :class:`~mechopt.mechanisms.five_bar.model.FiveBar`).
+
+    Raises
+    ------
+    ValueError
+        One line, for a non-positive link, a negative ``r3`` or an unknown mode.
+    """
 
     cli_name = "asymmetric-five-bar"
     cli_help = "5R with unequal legs: reachable area, mean LCI and TQI (raster)"
@@ -129,39 +159,140 @@ class AsymmetricFiveBar(PlanarMechanism):
 
     # --- geometry: the five-bar's, with this mechanism's legs ---------------------------
     def elbows(self, x, y):
-        """``(b1x, b1y, b2x, b2y, reachable)`` of the working mode; NaN where unreachable."""
+        """``(b1x, b1y, b2x, b2y, reachable)`` of the working mode; NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        b1x, b1y, b2x, b2y : ndarray
+            The elbows [L].
+        reachable : ndarray of bool
+            Where both legs assemble.
+        """
         return _fb.legs_elbows(x, y, self.r3, self._legs())
 
     def bodies(self):
-        """The declared bodies (:func:`~mechopt.mechanisms.five_bar.model.legs_bodies`)."""
+        """The declared bodies (:func:`~mechopt.mechanisms.five_bar.model.legs_bodies`).
+
+        Returns
+        -------
+        list of mechopt.core.rigid_bodies.BodySpec
+            The bodies.
+        """
         return _fb.legs_bodies(self.r3, self._legs())
 
     def body_frames(self, x, y, xd, yd, xdd, ydd):
         """``(q, qd, qdd, frames)`` along a motion of ``P``
-        (:func:`~mechopt.mechanisms.five_bar.model.legs_body_frames`)."""
+        (:func:`~mechopt.mechanisms.five_bar.model.legs_body_frames`).
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [L] along the motion.
+        xd, yd : array_like
+            Velocities [L/s].
+        xdd, ydd : array_like
+            Accelerations [L/s^2].
+
+        Returns
+        -------
+        q, qd, qdd : ndarray
+            Actuator positions [rad], rates and accelerations (per second, per second
+            squared).
+        frames : dict
+            Per body its frame along the motion (:mod:`mechopt.core.rigid_bodies`).
+        """
         return _fb.legs_body_frames(x, y, xd, yd, xdd, ydd, self.r3, self._legs())
 
     def closure(self, x, y):
-        """``A p_dot = B theta_dot``: ``a_i = P - B_i``, ``B_ii = (B_i - A_i) x a_i``."""
+        """``A p_dot = B theta_dot``: ``a_i = P - B_i``, ``B_ii = (B_i - A_i) x a_i``.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        A : ndarray
+            Shape ``(..., 2, 2)``.
+        b : ndarray
+            Shape ``(..., 2)``: the diagonal of ``B``.
+        reachable : ndarray of bool
+            Where every leg assembles.
+        """
         return _fb.legs_closure(x, y, self.r3, self._legs())
 
     def reachable(self, x, y):
         return _fb.legs_reachable(x, y, self.r3, self._legs())
 
     def serial_clearance(self, x, y):
-        """Signed distance to the nearest of the four circles bounding the legs' annuli."""
+        """Signed distance to the nearest of the four circles bounding the legs' annuli.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The signed distance [L], positive inside.
+        """
         return _fb.legs_serial_clearance(x, y, self.r3, self._legs())
 
     def bounding_box(self):
         return _fb.legs_bounding_box(self.r3, self._legs())
 
     def ik(self, x, y):
-        """Crank angles (rad) of the working mode, unwrapped as by :meth:`~mechopt.FiveBar.ik`."""
+        """Crank angles (rad) of the working mode, unwrapped as by :meth:`~mechopt.FiveBar.ik`.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        q1, q2 : ndarray
+            Actuator coordinates [rad or L]; NaN where unreachable.
+        reachable : ndarray of bool
+            Where the point is reached in the working mode.
+        """
         return _fb.legs_ik(x, y, self.r3, self._legs())
 
     def fk(self, theta1, theta2, assembly: str = "up"):
         """Intersection of the distal circles about ``B_1``, ``B_2``; ``"up"``: ``P`` left of
-        ``B1 -> B2``. Returns ``(x, y, valid)``."""
+        ``B1 -> B2``. Returns ``(x, y, valid)``.
+
+        Parameters
+        ----------
+        theta1 : array_like
+            Crank angle of leg 1 [rad].
+        theta2 : array_like
+            Crank angle of leg 2 [rad]; broadcast with ``theta1``.
+        assembly : str
+            One of :attr:`assembly_modes`.
+
+        Returns
+        -------
+        x, y : ndarray
+            The platform point [L]; NaN where invalid.
+        valid : ndarray of bool
+            Where the legs assemble in that mode.
+        """
         return _fb.legs_fk(theta1, theta2, self.r3, self._legs(), assembly)
 
     def assembly_of(self, x, y):
@@ -169,11 +300,30 @@ class AsymmetricFiveBar(PlanarMechanism):
 
     def kinematic_tree(self):
         """Bodies and joints, the loop cut at the platform (the five-bar's
-        :func:`~mechopt.mechanisms.five_bar.model.legs_tree` with this mechanism's legs)."""
+        :func:`~mechopt.mechanisms.five_bar.model.legs_tree` with this mechanism's legs).
+
+        Returns
+        -------
+        mechopt.core.kinematic_tree.KinematicTree
+            The tree.
+        """
         return _fb.legs_tree(self.cli_name, self.r3, self._legs())
 
     def tree_configuration(self, x, y) -> dict:
-        """Every joint of :meth:`kinematic_tree` at ``(x, y)``."""
+        """Every joint of :meth:`kinematic_tree` at ``(x, y)``.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        dict
+            ``{joint: ndarray}`` [rad or rad].
+        """
         return _fb.legs_tree_configuration(x, y, self.r3, self._legs())
 
     # --- global numbers -----------------------------------------------------------
@@ -182,7 +332,19 @@ class AsymmetricFiveBar(PlanarMechanism):
         mid-point rule on a raster of :data:`~mechopt.core.quadrature.RASTER_CELLS` cells
         across the bounding box's smaller side (first-order error in the cell size). An
         empty workspace is a result: area 0 and NaN means, also for legs that never meet
-        (an empty bounding box, e.g. ``r3`` beyond both legs' reach)."""
+        (an empty bounding box, e.g. ``r3`` beyond both legs' reach).
+
+        Parameters
+        ----------
+        **options : 
+            Options of :attr:`summary_options` (a quadrature, ...).
+
+        Returns
+        -------
+        dict
+            ``{key: float or str}`` with the keys :attr:`summary_keys`, in the mechanism's
+            units.
+        """
         empty = {"workspace_area": 0.0, "mean_lci": float("nan"), "mean_tqi": float("nan"),
                  "quadrature": f"raster-{RASTER_CELLS}"}
         box = self.bounding_box()

@@ -66,7 +66,20 @@ class BiglideDesignSpec(GuideDesignSpec):
     modes, default_mode = MODES, "--"
 
     def raw(self, v, mode):
-        """The design with placeholder strokes (its inverse kinematics ignores them)."""
+        """The design with placeholder strokes (its inverse kinematics ignores them).
+
+        Parameters
+        ----------
+        v : dict
+            The design's lengths [L].
+        mode : str
+            A working mode.
+
+        Returns
+        -------
+        Biglide
+            The mechanism.
+        """
         return Biglide(v["l1"], v["l2"], -1.0, 1.0, mode=mode)
 
     def positions(self, v, mode, x, y):
@@ -77,12 +90,27 @@ class BiglideDesignSpec(GuideDesignSpec):
         return Biglide(v["l1"], v["l2"], a1 - pad, b1 + pad, a2 - pad, b2 + pad, mode=mode)
 
     def size(self, mech, derived):
-        """``2 l1 + 2 l2``: the guide distance and the two links (strokes reported apart)."""
+        """``2 l1 + 2 l2``: the guide distance and the two links (strokes reported apart).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        derived : dict
+            The evaluation's derived values (strokes, ...).
+
+        Returns
+        -------
+        float
+            The size [L].
+        """
         return 2.0 * (mech.l1 + mech.l2)
 
 
 class Biglide(TwoSliderMechanism):
     """Biglide (PRRRP) ``Biglide(l1, l2, q1_min, q1_max, q2_min=None, q2_max=None, mode="--")``.
+
+    See the module docstring for the kinematics, singularities and references.
 
     Parameters
     ----------
@@ -98,7 +126,10 @@ class Biglide(TwoSliderMechanism):
     mode : {"--", "++", "+-", "-+"}
         Signs ``s1 s2`` of Stan eq. (5); ``"-"`` puts the slider below ``P``.
 
-    See the module docstring for the kinematics, singularities and references.
+    Raises
+    ------
+    ValueError
+        One line, for non-positive lengths or an invalid stroke or mode.
     """
 
     cli_name = "biglide"
@@ -145,12 +176,34 @@ class Biglide(TwoSliderMechanism):
         )
 
     def with_mode(self, mode: str) -> "Biglide":
-        """The same dimensions in another working mode."""
+        """The same dimensions in another working mode.
+
+        Parameters
+        ----------
+        mode : str
+            One of :attr:`modes`.
+
+        Returns
+        -------
+        PlanarMechanism
+            A new instance.
+        """
         return Biglide(self.l1, self.l2, self.q1_min, self.q1_max, self.q2_min, self.q2_max, mode)
 
     def scaled(self, factor: float) -> "Biglide":
         """Every length (``l1``, ``l2``, the stroke limits) multiplied by ``factor``
-        (the Jacobian of these prismatic actuators is unchanged)."""
+        (the Jacobian of these prismatic actuators is unchanged).
+
+        Parameters
+        ----------
+        factor : float
+            The scale factor, > 0.
+
+        Returns
+        -------
+        PlanarMechanism
+            A new instance.
+        """
         f = _v.positive_length("factor", factor)
         return Biglide(self.l1 * f, self.l2 * f, self.q1_min * f, self.q1_max * f,
                        self.q2_min * f, self.q2_max * f, self.mode)
@@ -164,6 +217,17 @@ class Biglide(TwoSliderMechanism):
         the whole x range (``inf`` when it contains that leg's guide, i.e. ``l2 >= 2 l1``);
         ``quadrature`` names the rule of the GTQI: ``"adaptive-1d"`` (exact area, adaptive
         1-D quadrature of the TQI's column integrals, relative tolerance 1e-10).
+
+        Parameters
+        ----------
+        **options : 
+            Options of :attr:`summary_options` (a quadrature, ...).
+
+        Returns
+        -------
+        dict
+            ``{key: float or str}`` with the keys :attr:`summary_keys`, in the mechanism's
+            units.
         """
         w = self.workspace_area()
         ti = self.tqi_integral()
@@ -187,6 +251,18 @@ class Biglide(TwoSliderMechanism):
         and the result is their minimum. Outside it is minus the largest constraint
         violation (``|x - g_i| - l2``, ``q_i_min - q_i`` or ``q_i - q_i_max``): negative,
         but not the distance.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The signed distance [L], positive inside.
         """
         x, y = as_points(x, y)
         L = self.l2

@@ -107,6 +107,22 @@ def bipod_workspace_area(b, q1_min, q1_max, q2_min, q2_max, branch="up"):
     :func:`mechopt.core.geometry.annuli_intersection_area`); half of it for the
     branches ``"up"``/``"down"``. No validation beyond the geometric one: use
     :class:`Bipod` for checked single designs.
+
+    Parameters
+    ----------
+    b : array_like
+        Base distance [L], > 0.
+    q1_min, q1_max : array_like
+        Stroke of strut 1 [L].
+    q2_min, q2_max : array_like
+        Stroke of strut 2 [L].
+    branch : str
+        ``"up"``, ``"down"`` or ``"full"``.
+
+    Returns
+    -------
+    ndarray or float
+        The area [L^2].
     """
     _v.choice("branch", branch, BRANCHES)
     b = np.asarray(b, dtype=float)
@@ -124,6 +140,22 @@ def bipod_tqi_integral(b, q1_min, q1_max, q2_min, q2_max, branch="up"):
     per half plane: the box area minus the three corners cut off by the triangle
     inequalities ``q1 - q2 <= b``, ``q2 - q1 <= b``, ``q1 + q2 >= b`` (disjoint
     for positive strut lengths; ramp formulas of :mod:`mechopt.core.geometry`).
+
+    Parameters
+    ----------
+    b : array_like
+        Base distance [L], > 0.
+    q1_min, q1_max : array_like
+        Stroke of strut 1 [L].
+    q2_min, q2_max : array_like
+        Stroke of strut 2 [L].
+    branch : str
+        ``"up"``, ``"down"`` or ``"full"``.
+
+    Returns
+    -------
+    ndarray or float
+        The integral [L^2] (TQI is dimensionless; Stan 2008 eq. 9).
     """
     _v.choice("branch", branch, BRANCHES)
     a1, b1, a2, b2, c = (np.asarray(v, dtype=float) for v in (q1_min, q1_max, q2_min, q2_max, b))
@@ -165,7 +197,20 @@ class BipodDesignSpec(DesignSpec):
         return Bipod(v["b"], lo(a1), b1 + pad, lo(a2), b2 + pad, branch=mode)
 
     def size(self, mech, derived):
-        """``b + q1_max + q2_max``: the base and both struts at full extension."""
+        """``b + q1_max + q2_max``: the base and both struts at full extension.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        derived : dict
+            The evaluation's derived values (strokes, ...).
+
+        Returns
+        -------
+        float
+            The size [L].
+        """
         return mech.b + mech.q1_max + mech.q2_max
 
     def joints(self, mech, x, y):
@@ -179,7 +224,24 @@ class BipodDesignSpec(DesignSpec):
         """The housings of the strut pivots (discs about ``A_i = (-+b/2, 0)`` in the task
         frame, ``"housing1"``, ``"housing2"``) and the struts ``A_i P`` (``"strut1"``,
         ``"strut2"``: one capsule each, cylinder and rod together), joints ``A1, A2, P``;
-        NaN where the pose is out of reach."""
+        NaN where the pose is out of reach.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        shapes : mechopt.core.bodies.Shapes, optional
+            Widths and sizes of the bodies [L].
+
+        Returns
+        -------
+        list of mechopt.core.bodies.Body
+            The bodies as capsules.
+        """
         shapes = shapes or Shapes.default()
         x, y = as_points(x, y)
         ok = mech.reachable(*self.to_mech(mech, x, y))
@@ -193,7 +255,24 @@ class BipodDesignSpec(DesignSpec):
         return out
 
     def joint_speeds(self, mech, x, y, radius=0.0):
-        """The pivots ``A_i``: 0; the tool ``P``: 1."""
+        """The pivots ``A_i``: 0; the tool ``P``: 1.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        radius : float
+            Radius [L] of the platform positions about each task point.
+
+        Returns
+        -------
+        dict
+            ``{name: ndarray}``, speed bounds [L/L].
+        """
         x, y = as_points(x, y)
         return {"A1": np.zeros_like(x), "A2": np.zeros_like(x), "P": np.ones_like(x)}
 
@@ -238,6 +317,8 @@ class BipodErrorSpec(ErrorSpec):
 class Bipod(PlanarMechanism):
     """Bipod (RPRPR) ``Bipod(b, q1_min, q1_max, q2_min=None, q2_max=None, branch="up")``.
 
+    See the module docstring for the kinematics, singularities and references.
+
     Parameters
     ----------
     b : float
@@ -250,7 +331,10 @@ class Bipod(PlanarMechanism):
         Working region: ``y >= 0`` (Stan's), ``y <= 0`` or both. Exposed as
         ``mode`` (one of ``modes``) for code written for any mechanism.
 
-    See the module docstring for the kinematics, singularities and references.
+    Raises
+    ------
+    ValueError
+        One line, for a non-positive base or an invalid stroke or branch.
     """
 
     cli_name = "bipod"
@@ -295,11 +379,33 @@ class Bipod(PlanarMechanism):
         return self.branch
 
     def with_branch(self, branch: str) -> "Bipod":
-        """The same dimensions on another branch."""
+        """The same dimensions on another branch.
+
+        Parameters
+        ----------
+        branch : str
+            ``"up"``, ``"down"`` or ``"full"``.
+
+        Returns
+        -------
+        Bipod
+            A new instance.
+        """
         return Bipod(self.b, self.q1_min, self.q1_max, self.q2_min, self.q2_max, branch)
 
     def with_mode(self, mode: str) -> "Bipod":
-        """The same dimensions on another branch (the Bipod's working mode)."""
+        """The same dimensions on another branch (the Bipod's working mode).
+
+        Parameters
+        ----------
+        mode : str
+            One of :attr:`modes`.
+
+        Returns
+        -------
+        PlanarMechanism
+            A new instance.
+        """
         return self.with_branch(mode)
 
     def summary(self) -> dict:
@@ -309,6 +415,17 @@ class Bipod(PlanarMechanism):
         exact area mean of the TQI (Stan eq. 9), ``tqi_integral`` [L^2] its
         numerator, ``q1_min_over_b`` Stan's design variable (eq. 11); ``quadrature`` names
         how the mean is taken: ``"exact"`` (closed form, no quadrature).
+
+        Parameters
+        ----------
+        **options : 
+            Options of :attr:`summary_options` (a quadrature, ...).
+
+        Returns
+        -------
+        dict
+            ``{key: float or str}`` with the keys :attr:`summary_keys`, in the mechanism's
+            units.
         """
         return {
             "workspace_area": self.workspace_area(),
@@ -320,7 +437,18 @@ class Bipod(PlanarMechanism):
 
     def scaled(self, factor: float) -> "Bipod":
         """``b`` and the strokes multiplied by ``factor`` (the Jacobian of these
-        prismatic actuators is unchanged, areas scale as ``factor^2``)."""
+        prismatic actuators is unchanged, areas scale as ``factor^2``).
+
+        Parameters
+        ----------
+        factor : float
+            The scale factor, > 0.
+
+        Returns
+        -------
+        PlanarMechanism
+            A new instance.
+        """
         f = _v.positive_length("factor", factor)
         return Bipod(self.b * f, self.q1_min * f, self.q1_max * f, self.q2_min * f,
                      self.q2_max * f, self.branch)
@@ -346,7 +474,13 @@ class Bipod(PlanarMechanism):
         motor on ``A_i`` (on the frame), the cylinder pivoting about ``A_i`` (a tube as
         long as the retracted strut, ``q_i_min``) and the rod sliding in it (a tube as
         long as the stroke, ``q_i_max - q_i_min``, from ``P`` back into the cylinder,
-        joined to it at the prismatic joint ``C_i``); the payload at ``P``."""
+        joined to it at the prismatic joint ``C_i``); the payload at ``P``.
+
+        Returns
+        -------
+        list of mechopt.core.rigid_bodies.BodySpec
+            The bodies.
+        """
         from mechopt.core.rigid_bodies import BodySpec
 
         out = []
@@ -362,7 +496,25 @@ class Bipod(PlanarMechanism):
         With ``u_i = (P - A_i) / q_i`` the closure ``q_i^2 = |P - A_i|^2`` differentiated
         once and twice gives ``q_dot_i = u_i . P_dot`` and ``q_ddot_i = u_i . P_ddot +
         (|P_dot|^2 - q_dot_i^2) / q_i``. The cylinder's frame has its origin at ``A_i``,
-        the rod's at ``P``, both with the x axis along ``P - A_i``; NaN where unreachable."""
+        the rod's at ``P``, both with the x axis along ``P - A_i``; NaN where unreachable.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [L] along the motion.
+        xd, yd : array_like
+            Velocities [L/s].
+        xdd, ydd : array_like
+            Accelerations [L/s^2].
+
+        Returns
+        -------
+        q, qd, qdd : ndarray
+            Actuator positions [L], rates and accelerations (per second, per second
+            squared).
+        frames : dict
+            Per body its frame along the motion (:mod:`mechopt.core.rigid_bodies`).
+        """
         from mechopt.core import rigid_bodies as _b
 
         x, y = as_points(x, y)
@@ -385,7 +537,20 @@ class Bipod(PlanarMechanism):
 
     # --- kinematics ------------------------------------------------------------
     def strut_lengths(self, x, y):
-        """``(q1, q2)`` of Stan eq. (6) at any point, ignoring strokes and branch."""
+        """``(q1, q2)`` of Stan eq. (6) at any point, ignoring strokes and branch.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        q1, q2 : ndarray
+            The strut lengths [L].
+        """
         x, y = as_points(x, y)
         return np.hypot(x, y), np.hypot(x - self.b, y)
 
@@ -398,13 +563,41 @@ class Bipod(PlanarMechanism):
 
     def reachable(self, x, y):
         """Both strut lengths within their strokes (to ``LIMIT_RTOL * length_scale``)
-        and ``y`` on the branch's side."""
+        and ``y`` on the branch's side.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray of bool
+            True where every leg assembles (and, with stroke limits, within them).
+        """
         x, y = as_points(x, y)
         q1, q2 = self.strut_lengths(x, y)
         return self._within_strokes(q1, q2, LIMIT_RTOL) & self._in_branch(y)
 
     def ik(self, x, y):
-        """Strut lengths (Stan eq. 6) ``(q1, q2, reachable)`` [L]; NaN where unreachable."""
+        """Strut lengths (Stan eq. 6) ``(q1, q2, reachable)`` [L]; NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        q1, q2 : ndarray
+            Actuator coordinates [rad or L]; NaN where unreachable.
+        reachable : ndarray of bool
+            Where the point is reached in the working mode.
+        """
         x, y = as_points(x, y)
         q1, q2 = self.strut_lengths(x, y)
         ok = self.reachable(x, y)
@@ -417,6 +610,24 @@ class Bipod(PlanarMechanism):
         is False (and ``x``, ``y`` NaN) where the struts cannot meet
         (``|q1 - q2| <= b <= q1 + q2`` fails) or, with ``limits=True``, where a
         strut length lies outside its stroke.
+
+        Parameters
+        ----------
+        q1 : array_like
+            Length of strut 1 [L].
+        q2 : array_like
+            Length of strut 2 [L]; broadcast with ``q1``.
+        assembly : str
+            ``"up"`` (``y >= 0``) or ``"down"``.
+        limits : bool
+            Whether strut lengths outside their strokes are invalid.
+
+        Returns
+        -------
+        x, y : ndarray
+            The platform point [L]; NaN where invalid.
+        valid : ndarray of bool
+            Where the legs assemble in that mode.
         """
         _v.choice("assembly", assembly, ASSEMBLY_MODES)
         q1, q2 = as_points(q1, q2)
@@ -433,13 +644,43 @@ class Bipod(PlanarMechanism):
         return np.where(valid, x, np.nan), np.where(valid, y, np.nan), valid
 
     def assembly_of(self, x, y):
-        """``"up"`` where ``y >= 0``, else ``"down"``."""
+        """``"up"`` where ``y >= 0``, else ``"down"``.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray of str
+            The assembly mode of each pose.
+        """
         x, y = as_points(x, y)
         return np.where(y >= 0, "up", "down")
 
     def closure(self, x, y):
         """``A = [P - A1; P - A2]``, ``b = (q1, q2)``: the halved derivative of
-        ``q_i^2 = |P - A_i|^2``. NaN where unreachable."""
+        ``q_i^2 = |P - A_i|^2``. NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        A : ndarray
+            Shape ``(..., 2, 2)``.
+        b : ndarray
+            Shape ``(..., 2)``: the diagonal of ``B``.
+        reachable : ndarray of bool
+            Where every leg assembles.
+        """
         x, y = as_points(x, y)
         q1, q2, ok = self.ik(x, y)
         nan = np.where(ok, 0.0, np.nan)
@@ -454,7 +695,13 @@ class Bipod(PlanarMechanism):
         ``cylinder<i>``, x along the strut), the actuated prismatic ``q<i>`` along that x
         axis from ``A_i`` (body ``rod<i>``, its origin at the strut's end: ``q_i`` is the
         strut length, limited to the stroke) and the closure frame at the origin of
-        ``rod<i>``: the platform point."""
+        ``rod<i>``: the platform point.
+
+        Returns
+        -------
+        mechopt.core.kinematic_tree.KinematicTree
+            The tree.
+        """
         joints, closure = [], []
         for i, ((ax, ay), lim) in enumerate(zip(self.base_joints, self.joint_limits), 1):
             joints += [TreeJoint(f"base{i}", "revolute", BASE, f"cylinder{i}", (ax, ay)),
@@ -466,7 +713,20 @@ class Bipod(PlanarMechanism):
     def tree_configuration(self, x, y) -> dict:
         """Every joint of :meth:`kinematic_tree` at ``(x, y)``: ``base<i>`` the strut's
         angle ``atan2(y, x - x_Ai)`` [rad], ``q<i>`` its length from :meth:`ik`; NaN out
-        of reach."""
+        of reach.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        dict
+            ``{joint: ndarray}`` [L or rad].
+        """
         x, y = as_points(x, y)
         q1, q2, ok = self.ik(x, y)
         out = {}
@@ -484,6 +744,18 @@ class Bipod(PlanarMechanism):
         reachable set this is the exact distance to its boundary; outside it is
         negative but not the distance. The stroke-limit arcs are joint limits,
         not type-I loci (the Bipod has none, see the module docstring).
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The signed distance [L], positive inside.
         """
         x, y = as_points(x, y)
         q1, q2 = self.strut_lengths(x, y)
@@ -496,7 +768,13 @@ class Bipod(PlanarMechanism):
 
     def bounding_box(self):
         """``(xmin, xmax, ymin, ymax)``: the intersection of the two outer disks'
-        boxes, cut to the branch's half plane."""
+        boxes, cut to the branch's half plane.
+
+        Returns
+        -------
+        tuple of float
+            ``(xmin, xmax, ymin, ymax)`` [L].
+        """
         xmin = max(-self.q1_max, self.b - self.q2_max)
         xmax = min(self.q1_max, self.b + self.q2_max)
         r = min(self.q1_max, self.q2_max)
@@ -508,11 +786,23 @@ class Bipod(PlanarMechanism):
         return (self.b, self.q1_min, self.q1_max, self.q2_min, self.q2_max, self.branch)
 
     def workspace_area(self) -> float:
-        """Exact area W [L^2] of the workspace on this branch (Stan eq. 8)."""
+        """Exact area W [L^2] of the workspace on this branch (Stan eq. 8).
+
+        Returns
+        -------
+        float
+            The area [L^2].
+        """
         return float(bipod_workspace_area(*self._design()))
 
     def tqi_integral(self) -> float:
-        """Exact ``int_W TQI dA`` [L^2] (module docstring)."""
+        """Exact ``int_W TQI dA`` [L^2] (module docstring).
+
+        Returns
+        -------
+        float
+            The integral [L^2].
+        """
         return float(bipod_tqi_integral(*self._design()))
 
     def gtqi(self, method: str = "exact", step=None) -> float:
@@ -525,6 +815,18 @@ class Bipod(PlanarMechanism):
         box / :data:`~mechopt.core.quadrature.RASTER_CELLS`); its error is first order
         in ``step`` (boundary cells): for Stan's design 9e-4 relative at ``step = 2``
         mm, 4e-5 at the default (0.325 mm), 3e-6 at 0.1 mm. NaN for an empty workspace.
+
+        Parameters
+        ----------
+        method : str
+            ``"exact"`` or ``"raster"``.
+        step : float, optional
+            Raster cell side [L].
+
+        Returns
+        -------
+        float
+            The GTQI (dimensionless).
         """
         _v.choice("method", method, GTQI_METHODS)
         if method == "exact":

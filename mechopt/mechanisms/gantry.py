@@ -126,6 +126,12 @@ def dimensional_synthesis(b, h, theta_1S):
     --------
     Wu sec. 4.2 (theta_1S = 15 deg): d1 = 433, l = 707.1, stroke = 900 [mm];
     Table 1 (theta_1S = 10 deg): d1 = 357, l = 616.4, stroke = 900 [mm].
+
+    Raises
+    ------
+    ValueError
+        One line, for a non-positive ``b`` or ``h``, or ``theta_1S`` outside
+        (0, pi/4).
     """
     b = _v.positive_length("b", b)
     h = _v.positive_length("h", h)
@@ -161,6 +167,22 @@ def check_synthesis(b, h, theta_1S, scales=(1.0,), unit: str = "") -> None:
     ``l = k2 b``, stroke ``k3 b + h``), so the message names the range of ``b`` that
     works for this ``theta_1S``, the largest ``b + h``, and the range of ``theta_1S``
     that works for this ``b`` (``k1``, ``k2`` grow with ``theta_1S``).
+
+    Parameters
+    ----------
+    b, h : float
+        The task rectangle [L].
+    theta_1S : float
+        Smallest link angle [rad].
+    scales : tuple of float
+        Factors the lengths must also be admissible under.
+    unit : str
+        The length unit, for the message.
+
+    Raises
+    ------
+    ValueError
+        One line, when a length is not admissible.
     """
     _, d1, l, stroke = dimensional_synthesis(b, h, theta_1S)
     lo = _v.LENGTH_MIN / min(min(scales), 1.0)
@@ -211,6 +233,21 @@ def k_av_literal_of_design(theta_1S):
 
     ``theta_1S`` in rad, in (0, pi/4). Decreases from +inf to 1 over that interval
     (Wu sec. 4.3: "k_av descends when theta_1 varies from 0 to 90 deg").
+
+    Parameters
+    ----------
+    theta_1S : array_like
+        Smallest link angle [rad], in (0, pi/4).
+
+    Returns
+    -------
+    ndarray or float
+        ``k_av`` (dimensionless).
+
+    Raises
+    ------
+    ValueError
+        For an angle outside (0, pi/4).
     """
     try:
         th = np.asarray(theta_1S, dtype=float)
@@ -255,7 +292,20 @@ class GantryDesignSpec(GuideDesignSpec):
         return Gantry(v["d1"], v["l"], hi - lo, q_min=lo, mode=mode)
 
     def size(self, mech, derived):
-        """``2 d1 + 3 l``: the column distance and the three equal links (Wu Fig. 1)."""
+        """``2 d1 + 3 l``: the column distance and the three equal links (Wu Fig. 1).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        derived : dict
+            The evaluation's derived values (strokes, ...).
+
+        Returns
+        -------
+        float
+            The size [L].
+        """
         return 2.0 * mech.d1 + 3.0 * mech.l
 
     def links(self, mech, x, y, shapes=None):
@@ -263,7 +313,24 @@ class GantryDesignSpec(GuideDesignSpec):
         ``l2 > 0`` also the parallelogram of leg 1 (Wu Fig. 1): the third link ``"link3"``
         from ``S3 = S1 + (0, l2)`` to ``A3 = A + (0, l2)``, the platform ``A A3``
         (``"platform"``), carriage 1 spanning ``S1 S3`` and its guide ``l2`` longer. With
-        ``l2 = 0`` (the designed gantries) the third link lies on the first: not drawn."""
+        ``l2 = 0`` (the designed gantries) the third link lies on the first: not drawn.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        shapes : mechopt.core.bodies.Shapes, optional
+            Widths and sizes of the bodies [L].
+
+        Returns
+        -------
+        list of mechopt.core.bodies.Body
+            The bodies as capsules.
+        """
         bodies = super().links(mech, x, y, shapes)
         if mech.l2 == 0:
             return bodies
@@ -281,7 +348,24 @@ class GantryDesignSpec(GuideDesignSpec):
 
     def joint_speeds(self, mech, x, y, radius=0.0):
         """Those of :meth:`GuideDesignSpec.joint_speeds`; ``S3`` moves with ``S1`` and
-        ``A3`` with the platform."""
+        ``A3`` with the platform.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        radius : float
+            Radius [L] of the platform positions about each task point.
+
+        Returns
+        -------
+        dict
+            ``{name: ndarray}``, speed bounds [L/L].
+        """
         out = super().joint_speeds(mech, x, y, radius)
         out.update(S3=out["S1"], A3=out["A"])
         return out
@@ -289,6 +373,12 @@ class GantryDesignSpec(GuideDesignSpec):
 
 class Gantry(TwoSliderMechanism):
     """Wu 2008 gantry ``Gantry(d1, l, stroke, q_min=0, l2=0, d2=0, mode="--")``.
+
+    Lengths may be in any consistent unit [L]; angles are in rad. The actuator
+    coordinates are lengths, so the Jacobian is dimensionless and invariant under a
+    change of length unit (see :meth:`scaled`). The kinematics, the exact area and
+    ``k_av`` are those of the two-slider topology (:mod:`mechopt.mechanisms.sliders`)
+    with the columns as guides (leg 1 on the left) and the platform offset ``l2/2``.
 
     Parameters
     ----------
@@ -310,11 +400,10 @@ class Gantry(TwoSliderMechanism):
         ``(xmin, xmax, ymin, ymax)`` of the rectangular task workspace ``W_t`` [L]
         (Wu Fig. 2: ``Q1Q2Q3Q4``); set by :meth:`from_synthesis`.
 
-    Lengths may be in any consistent unit [L]; angles are in rad. The actuator
-    coordinates are lengths, so the Jacobian is dimensionless and invariant under a
-    change of length unit (see :meth:`scaled`). The kinematics, the exact area and
-    ``k_av`` are those of the two-slider topology (:mod:`mechopt.mechanisms.sliders`)
-    with the columns as guides (leg 1 on the left) and the platform offset ``l2/2``.
+    Raises
+    ------
+    ValueError
+        One line, for invalid lengths, strokes or mode (``l <= d1`` included).
     """
 
     cli_name = "gantry"
@@ -382,6 +471,29 @@ class Gantry(TwoSliderMechanism):
         on the boundary of the reachable set. A task whose machine has a length outside
         the admissible range is refused in terms of ``b``, ``h``, ``theta_1S``
         (:func:`check_synthesis`).
+
+        Parameters
+        ----------
+        b, h : float
+            Task width and height [L].
+        theta_1S : float
+            Smallest link angle [rad], in (0, pi/4).
+        l2 : float
+            Platform height [L].
+        d2 : float
+            Platform half-width [L].
+        task_y_min : float
+            Lower edge of the task rectangle [L].
+
+        Returns
+        -------
+        Gantry
+            The design.
+
+        Raises
+        ------
+        ValueError
+            One line, in terms of ``b``, ``h``, ``theta_1S``.
         """
         check_synthesis(b, h, theta_1S)
         d, d1, l, stroke = dimensional_synthesis(b, h, theta_1S)
@@ -396,7 +508,31 @@ class Gantry(TwoSliderMechanism):
                         length_unit="mm") -> "Gantry":
         """The design of Wu's synthesis (eq. 10-16) for a ``b x h`` task and ``theta_1S``
         [deg], task rectangle at its place (:meth:`from_synthesis`), lengths in
-        ``length_unit``; its lengths in metres (the dynamics' unit) must be admissible too."""
+        ``length_unit``; its lengths in metres (the dynamics' unit) must be admissible too.
+
+        Parameters
+        ----------
+        b, h : float
+            Task width and height [length_unit].
+        theta_1s_deg : float
+            Smallest link angle [deg], in (0, 45).
+        d2 : float
+            Platform half-width [length_unit].
+        l2 : float
+            Platform height [length_unit].
+        length_unit : str
+            ``"mm"`` or ``"m"``.
+
+        Returns
+        -------
+        Gantry
+            The design.
+
+        Raises
+        ------
+        ValueError
+            One line, for invalid inputs or a machine whose lengths are not admissible.
+        """
         unit = _v.choice("length_unit", length_unit, tuple(_LENGTH_UNITS))
         deg = _v.finite_number("theta_1s_deg", theta_1s_deg)
         if not 0.0 < deg < 45.0:
@@ -408,7 +544,13 @@ class Gantry(TwoSliderMechanism):
         return g
 
     def parameter_values(self) -> dict:
-        """The synthesis inputs of :meth:`from_parameters` (None if made otherwise)."""
+        """The synthesis inputs of :meth:`from_parameters` (None if made otherwise).
+
+        Returns
+        -------
+        dict
+            ``{name: value}``.
+        """
         if self.synthesis_inputs is None:
             return {k: getattr(self, k) for k in ("d1", "l", "stroke", "q_min", "l2", "d2", "mode")}
         return dict(self.synthesis_inputs)
@@ -418,7 +560,18 @@ class Gantry(TwoSliderMechanism):
                 f"q_min={self.q_min!r}, l2={self.l2!r}, d2={self.d2!r}, mode={self.mode!r})")
 
     def with_mode(self, mode: str) -> "Gantry":
-        """The same dimensions in another working mode."""
+        """The same dimensions in another working mode.
+
+        Parameters
+        ----------
+        mode : str
+            One of :attr:`modes`.
+
+        Returns
+        -------
+        PlanarMechanism
+            A new instance.
+        """
         return Gantry(self.d1, self.l, self.stroke, self.q_min, self.l2, self.d2, mode,
                       self.task_workspace)
 
@@ -426,6 +579,16 @@ class Gantry(TwoSliderMechanism):
         """Every length (and the task rectangle) multiplied by ``factor``, e.g. 1e-3 for mm -> m.
 
         With prismatic actuators the Jacobian does not change (a five-bar's scales as 1/D).
+
+        Parameters
+        ----------
+        factor : float
+            The scale factor, > 0.
+
+        Returns
+        -------
+        PlanarMechanism
+            A new instance.
         """
         f = _v.positive_length("factor", factor)
         tw = None if self.task_workspace is None else tuple(f * v for v in self.task_workspace)
@@ -447,7 +610,13 @@ class Gantry(TwoSliderMechanism):
         """The declared bodies of Wu's machine (sec. 5, Table 2; the table of
         :mod:`mechopt.mechanisms.gantry_dynamics`): carriages on ``B_1``, ``B_2``; links
         ``A1B1``, ``A2B2`` and the parallelogram's ``A3B3`` (``B_3 = B_1 + (0, l2)``,
-        ``A_3 = A_1 + (0, l2)``); counterweights hanging at ``-q_i``; the platform."""
+        ``A_3 = A_1 + (0, l2)``); counterweights hanging at ``-q_i``; the platform.
+
+        Returns
+        -------
+        list of mechopt.core.rigid_bodies.BodySpec
+            The bodies.
+        """
         from mechopt.core.rigid_bodies import BodySpec
 
         return (BodySpec("carriage1", "carriage", 0.0, ("B1",), leg=1),
@@ -461,7 +630,25 @@ class Gantry(TwoSliderMechanism):
 
     def body_frames(self, x, y, xd, yd, xdd, ydd):
         """``(q, qd, qdd, frames)`` of :meth:`bodies` along a motion of ``O' = (x, y)``
-        (:meth:`~mechopt.mechanisms.sliders.TwoSliderMechanism.slider_motion`)."""
+        (:meth:`~mechopt.mechanisms.sliders.TwoSliderMechanism.slider_motion`).
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [L] along the motion.
+        xd, yd : array_like
+            Velocities [L/s].
+        xdd, ydd : array_like
+            Accelerations [L/s^2].
+
+        Returns
+        -------
+        q, qd, qdd : ndarray
+            Actuator positions [L], rates and accelerations (per second, per second
+            squared).
+        frames : dict
+            Per body its frame along the motion (:mod:`mechopt.core.rigid_bodies`).
+        """
         from mechopt.core import rigid_bodies as _b
 
         q, qd, qdd, S, A = self.slider_motion(x, y, xd, yd, xdd, ydd)
@@ -481,7 +668,18 @@ class Gantry(TwoSliderMechanism):
         exactly Table 2 for the Table 1 machine, carried over to this link length
         otherwise) as ``{body: (mass [kg], com along the link from B [m], central inertia
         [kg m^2])}``, the lengths in metres with ``length_unit`` [m/L]; and the gravity
-        [m/s^2] of the table under the key ``"g"``."""
+        [m/s^2] of the table under the key ``"g"``.
+
+        Parameters
+        ----------
+        length_unit : float
+            Metres per length unit of this gantry [m/L].
+
+        Returns
+        -------
+        dict
+            ``{body: (mass, com, inertia)}`` and ``"g"``.
+        """
         from mechopt.mechanisms.gantry_dynamics import GantryInertia
 
         l = self.l * length_unit
@@ -509,6 +707,18 @@ class Gantry(TwoSliderMechanism):
         region (Wu Fig. 2). Outside the value is negative; its magnitude is the
         distance to the nearest violated piece, a lower bound of the distance to the
         set. Only the vertical sides are type-I loci; the arcs are joint limits.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The signed distance [L], positive inside.
         """
         x, y = as_points(x, y)
         base = self.l2 / 2.0
@@ -535,7 +745,13 @@ class Gantry(TwoSliderMechanism):
 
     # --- task workspace -------------------------------------------------------------
     def task_workspace_area(self) -> float:
-        """Area of the task rectangle ``W_t`` [L^2] (``b h``)."""
+        """Area of the task rectangle ``W_t`` [L^2] (``b h``).
+
+        Returns
+        -------
+        float
+            The area [L^2].
+        """
         xmin, xmax, ymin, ymax = self._task("task_workspace_area")
         return (xmax - xmin) * (ymax - ymin)
 
@@ -559,6 +775,24 @@ class Gantry(TwoSliderMechanism):
         ``inertia`` defaults to Wu's Table 2 carried over to this design's link length
         (:meth:`mechopt.mechanisms.gantry_dynamics.GantryInertia.wu2008_scaled`; Table 2 itself for
         the Table 1 design, ``theta_1S = 10`` deg).
+
+        Parameters
+        ----------
+        inertia : mechopt.mechanisms.gantry_dynamics.GantryInertia, optional
+            Masses and inertias (default: Wu's Table 2 carried over).
+        length_unit : str, optional
+            The unit of this gantry's lengths, ``"mm"`` or ``"m"`` (default: that of
+            :meth:`from_parameters`' inputs).
+
+        Returns
+        -------
+        mechopt.mechanisms.gantry_dynamics.GantryDynamics
+            The model in metres.
+
+        Raises
+        ------
+        ValueError
+            When the length unit is unknown and not given.
         """
         from mechopt.mechanisms import gantry_dynamics as _dyn  # late import: the dynamics is not needed otherwise
 
@@ -575,7 +809,23 @@ class Gantry(TwoSliderMechanism):
 
     def eta_d(self, n: int = 48, inertia=None, length_unit: str | None = None) -> float:
         """``eta_D`` of Wu eq. (44): the area mean of ``kappa_D`` over the task rectangle,
-        by an ``n x n`` Gauss-Legendre rule, of :meth:`dynamics` (same arguments)."""
+        by an ``n x n`` Gauss-Legendre rule, of :meth:`dynamics` (same arguments).
+
+        Parameters
+        ----------
+        n : int
+            Gauss-Legendre nodes per side.
+        inertia : mechopt.mechanisms.gantry_dynamics.GantryInertia, optional
+            Masses and inertias (default: Wu's Table 2 carried over).
+        length_unit : str, optional
+            The unit of this gantry's lengths, ``"mm"`` or ``"m"`` (default: that of
+            :meth:`from_parameters`' inputs).
+
+        Returns
+        -------
+        float
+            ``eta_D`` (dimensionless).
+        """
         return self.dynamics(inertia, length_unit).eta_d(n=n)
 
     def summary(self, inertia=None, n: int = 48, length_unit: str | None = None) -> dict:
@@ -640,6 +890,18 @@ def wu2008_gantry(theta_1S_deg: float = 10.0, unit: str = "mm") -> Gantry:
     mm, read from ``mechopt/data/wu2008.csv``); the task rectangle is placed at
     ``y in [300, 700]`` mm (:data:`WU2008_TASK_Y_MIN_MM`, an assumption).
     ``unit="m"`` returns the same machine in metres, as the dynamics needs.
+
+    Parameters
+    ----------
+    theta_1S_deg : float
+        10 (Table 1) or 15 (sec. 4.2) [deg].
+    unit : str
+        ``"mm"`` or ``"m"``.
+
+    Returns
+    -------
+    Gantry
+        The machine, with its task workspace.
     """
     unit = _v.choice("unit", unit, tuple(_LENGTH_UNITS))
     th = math.radians(_v.finite_number("theta_1S_deg", theta_1S_deg))

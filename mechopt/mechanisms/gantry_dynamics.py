@@ -100,7 +100,13 @@ ELLIPSE_KINDS = ("acceleration", "kinetic")
 
 def wu2008_published() -> dict:
     """Rows of ``mechopt/data/wu2008.csv`` as ``{(design, quantity): (value, unit, digits, source)}``
-    (:func:`mechopt.data.published_values`)."""
+    (:func:`mechopt.data.published_values`).
+
+    Returns
+    -------
+    dict
+        ``{(design, quantity): (value, unit, digits, source)}``.
+    """
     return published_values("wu2008")
 
 
@@ -131,6 +137,31 @@ class GantryInertia:
     counterweights hang at ``-q_i`` (eq. 23). The independent sympy derivation of
     ``tests/test_gantry_dynamics_independent.py`` checks ``M``, ``kappa_D``,
     ``eta_D`` and the Table 3 forces under these assumptions to 1e-9.
+
+    Parameters
+    ----------
+    m11, m21 : float
+        Slider masses [kg].
+    m12, m22 : float
+        Masses of the links ``A_iB_i`` [kg].
+    m13, m23 : float
+        Counterweight masses [kg].
+    m4 : float
+        Mass of the link ``A3B3`` [kg].
+    mN : float
+        Platform mass [kg].
+    I12, I22 : float
+        Link inertias about ``B_i`` [kg m^2].
+    s12, s22 : float, optional
+        Distances from ``B_i`` to the links' mass centres [m] (None: mid-link).
+    I4, s4 : float, optional
+        The same of ``A3B3`` (default: ``I12``, ``s12``).
+    m5 : float
+        Mass of the extra link ``A4B4`` of the symmetric variant [kg] (0: absent).
+    I5, s5 : float, optional
+        Its inertia [kg m^2] and offset [m].
+    g : float
+        Gravity [m/s^2].
     """
 
     m11: float
@@ -162,7 +193,13 @@ class GantryInertia:
 
     @classmethod
     def wu2008(cls) -> "GantryInertia":
-        """Wu 2008 Table 2 (from ``mechopt/data/wu2008.csv``); offsets at mid-link."""
+        """Wu 2008 Table 2 (from ``mechopt/data/wu2008.csv``); offsets at mid-link.
+
+        Returns
+        -------
+        GantryInertia
+            Table 2.
+        """
         pub = published_values("wu2008")
         names = ("m11", "m21", "m12", "m22", "m13", "m23", "m4", "mN", "I12", "I22")
         kw = {k: pub[("table2", k)][0] for k in names}
@@ -190,6 +227,18 @@ class GantryInertia:
           462 kg at ``l_0``.
 
         At ``l = l_0`` this is Table 2 (to rounding).
+
+        Parameters
+        ----------
+        l : float
+            The machine's link length [m].
+        l0 : float
+            The Table 1 design's link length [m].
+
+        Returns
+        -------
+        GantryInertia
+            The inertias.
         """
         l = _v.positive_length("l", l)
         l0 = _v.positive_length("l0", l0)
@@ -217,6 +266,11 @@ class GantryInertia:
         extra link copy the left ones (``m21 = m11``, ``m22 = m12``, ``I22 = I12``,
         ``s22 = s12``, ``m5 = m4``, ``I5 = I4``, ``s5 = s4``) and each counterweight is
         again half of all moving parts (the rule of sec. 6.2).
+
+        Returns
+        -------
+        GantryInertia
+            The variant's inertias.
         """
         sym = replace(self, m21=self.m11, m22=self.m12, I22=self.I12, s22=self.s12,
                       m5=self.m4, I5=self.I4 if self.I4 is not None else self.I12,
@@ -230,6 +284,20 @@ def rectangle_rule(box, n: int = 48):
 
     ``sum(w * f(x, y))`` is the area mean of ``f`` over the rectangle; exact for
     polynomials of degree ``2n - 1`` in each variable.
+
+    Parameters
+    ----------
+    box : tuple of float
+        ``(xmin, xmax, ymin, ymax)``.
+    n : int
+        Nodes per side.
+
+    Returns
+    -------
+    x, y : ndarray
+        The nodes.
+    w : ndarray
+        Weights summing to 1.
     """
     n = _v.integer("n", n, 1)
     xmin, xmax, ymin, ymax = _v.finite_numbers("box", box, 4, "(xmin, xmax, ymin, ymax)")
@@ -246,6 +314,19 @@ class GantryDynamics:
 
     See the module docstring for the model and the derivation of ``M``. All methods
     broadcast over arrays of platform positions; results are NaN where unreachable.
+
+    Parameters
+    ----------
+    gantry : Gantry
+        The machine, lengths in metres.
+    inertia : GantryInertia
+        Its masses and inertias.
+
+    Raises
+    ------
+    ValueError
+        One line, when ``gantry`` is not a :class:`~mechopt.Gantry` or ``inertia`` not a
+        :class:`GantryInertia`.
     """
 
     def __init__(self, gantry, inertia: GantryInertia):
@@ -306,7 +387,18 @@ class GantryDynamics:
 
     # --- inertia matrices --------------------------------------------------------------
     def mass_matrix(self, x, y):
-        """Task-space inertia matrix ``M(p)`` [kg], shape ``(..., 2, 2)``: ``T = 1/2 p_dot^T M p_dot``."""
+        """Task-space inertia matrix ``M(p)`` [kg], shape ``(..., 2, 2)``: ``T = 1/2 p_dot^T M p_dot``.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [m].
+
+        Returns
+        -------
+        ndarray
+            ``M`` [kg].
+        """
         t1, t2, _, _, _ = self._tan(x, y)
         mN = self.inertia.mN
         Mxx = np.full(t1.shape, mN)
@@ -321,7 +413,18 @@ class GantryDynamics:
         return np.stack([np.stack([Mxx, Mxy], -1), np.stack([Mxy, Myy], -1)], -2)
 
     def mass_matrix_dx(self, x, y):
-        """``dM/dx`` [kg/m] (``M`` does not depend on ``y``), using ``d tan(theta)/dx = 1/(l cos^3 theta)``."""
+        """``dM/dx`` [kg/m] (``M`` does not depend on ``y``), using ``d tan(theta)/dx = 1/(l cos^3 theta)``.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [m].
+
+        Returns
+        -------
+        ndarray
+            ``dM/dx`` [kg/m].
+        """
         t1, t2, c1, c2, _ = self._tan(x, y)
         l = self.gantry.l
         dxx = np.zeros(t1.shape)
@@ -334,27 +437,77 @@ class GantryDynamics:
         return np.stack([np.stack([dxx, dxy], -1), np.stack([dxy, dyy], -1)], -2)
 
     def inertia_matrix(self, x, y):
-        """``Lambda = (J^T)^-1 M`` of Wu eq. (42) [kg]: ``tau ~ Lambda a``."""
+        """``Lambda = (J^T)^-1 M`` of Wu eq. (42) [kg]: ``tau ~ Lambda a``.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [m].
+
+        Returns
+        -------
+        ndarray
+            ``Lambda`` [kg], shape ``(..., 2, 2)``.
+        """
         J = self.gantry.jacobian(x, y)
         M = self.mass_matrix(x, y)
         return _inv_t(J) @ M
 
     def kinetic_energy(self, x, y, xd, yd):
-        """``1/2 p_dot^T M p_dot`` [J]."""
+        """``1/2 p_dot^T M p_dot`` [J].
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [m].
+        xd, yd : array_like
+            Platform velocities [m/s].
+
+        Returns
+        -------
+        ndarray
+            [J].
+        """
         M = self.mass_matrix(x, y)
         xd, yd = np.asarray(xd, float), np.asarray(yd, float)
         return 0.5 * (M[..., 0, 0] * xd * xd + 2 * M[..., 0, 1] * xd * yd + M[..., 1, 1] * yd * yd)
 
     # --- indices ----------------------------------------------------------------------
     def kappa_d(self, x, y):
-        """``kappa_D = sigma_2 / sigma_1`` of ``(J^T)^-1 M`` (Wu eq. 43), >= 1; NaN where unreachable."""
+        """``kappa_D = sigma_2 / sigma_1`` of ``(J^T)^-1 M`` (Wu eq. 43), >= 1; NaN where unreachable.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [m].
+
+        Returns
+        -------
+        ndarray
+            ``kappa_D`` (dimensionless).
+        """
         s_max, s_min = _ix.singular_values(self.inertia_matrix(x, y))
         with np.errstate(divide="ignore", invalid="ignore"):
             return s_max / s_min
 
     def kappa_d_map(self, region=None, n: int = 101):
         """``(X, Y, kappa_D)`` on an ``n x n`` grid of cell centres over ``region``
-        (default the task workspace), for atlases such as Wu Fig. 6-7."""
+        (default the task workspace), for atlases such as Wu Fig. 6-7.
+
+        Parameters
+        ----------
+        region : tuple of float, optional
+            ``(xmin, xmax, ymin, ymax)`` [m] (default: the task workspace).
+        n : int
+            Cells per side.
+
+        Returns
+        -------
+        X, Y : ndarray
+            Cell centres [m].
+        kappa_D : ndarray
+            The index (dimensionless).
+        """
         box = self._region(region)
         n = _v.integer("n", n, 1)
         xmin, xmax, ymin, ymax = box
@@ -365,7 +518,25 @@ class GantryDynamics:
 
     def eta_d(self, region=None, n: int = 48) -> float:
         """``eta_D`` of Wu eq. (44): area mean of ``kappa_D`` over ``region``
-        (default the task workspace ``W_t``), by an ``n x n`` Gauss-Legendre rule."""
+        (default the task workspace ``W_t``), by an ``n x n`` Gauss-Legendre rule.
+
+        Parameters
+        ----------
+        region : tuple of float, optional
+            ``(xmin, xmax, ymin, ymax)`` [m] (default: the task workspace).
+        n : int
+            Gauss-Legendre nodes per side.
+
+        Returns
+        -------
+        float
+            ``eta_D`` (dimensionless).
+
+        Raises
+        ------
+        ValueError
+            For an invalid region or node count.
+        """
         x, y, w = rectangle_rule(self._region(region), n)
         k = self.kappa_d(x, y)
         if not np.all(np.isfinite(k)):
@@ -374,7 +545,25 @@ class GantryDynamics:
 
     def eta_d_std(self, region=None, n: int = 48) -> float:
         """Area standard deviation of ``kappa_D`` over ``region``: mechopt's reading of
-        the second global index the abstract announces (its formula is not printed)."""
+        the second global index the abstract announces (its formula is not printed).
+
+        Parameters
+        ----------
+        region : tuple of float, optional
+            ``(xmin, xmax, ymin, ymax)`` [m] (default: the task workspace).
+        n : int
+            Gauss-Legendre nodes per side.
+
+        Returns
+        -------
+        float
+            The standard deviation (dimensionless).
+
+        Raises
+        ------
+        ValueError
+            For an invalid region or node count.
+        """
         x, y, w = rectangle_rule(self._region(region), n)
         k = self.kappa_d(x, y)
         if not np.all(np.isfinite(k)):
@@ -402,6 +591,20 @@ class GantryDynamics:
         [m/s^2 per N], so ``major/minor = kappa_D``. ``kind="kinetic"``: Asada's GIE
         ``{p_dot : p_dot^T M p_dot <= 1}``, semi-axes ``1/sqrt(eig M)`` [m/s per sqrt(J)].
         ``angle`` [rad] is the direction of the major axis from the x axis, in (-pi/2, pi/2].
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [m].
+        kind : str
+            ``"acceleration"`` or ``"kinetic"``.
+
+        Returns
+        -------
+        major, minor : ndarray
+            Semi-axes [m/s^2 per N, or m/s per sqrt(J)].
+        angle : ndarray
+            Direction of the major axis [rad].
         """
         kind = _v.choice("kind", kind, ELLIPSE_KINDS)
         if kind == "acceleration":
@@ -421,7 +624,18 @@ class GantryDynamics:
 
     # --- forces -----------------------------------------------------------------------
     def gravity(self, x, y):
-        """Generalized gravity force ``G = dV/dp`` [N], shape ``(..., 2)``."""
+        """Generalized gravity force ``G = dV/dp`` [N], shape ``(..., 2)``.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [m].
+
+        Returns
+        -------
+        ndarray
+            ``G`` [N].
+        """
         t1, t2, _, _, _ = self._tan(x, y)
         g = self.inertia.g
         Gx = np.zeros(t1.shape)
@@ -433,7 +647,20 @@ class GantryDynamics:
         return g * np.stack([Gx, Gy], -1)
 
     def bias(self, x, y, xd, yd):
-        """Centrifugal and Coriolis terms ``x_dot M_x p_dot - 1/2 (p_dot^T M_x p_dot) e_x`` [N]."""
+        """Centrifugal and Coriolis terms ``x_dot M_x p_dot - 1/2 (p_dot^T M_x p_dot) e_x`` [N].
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [m].
+        xd, yd : array_like
+            Platform velocities [m/s].
+
+        Returns
+        -------
+        ndarray
+            [N], shape ``(..., 2)``.
+        """
         Mx = self.mass_matrix_dx(x, y)
         xd, yd = np.asarray(xd, float), np.asarray(yd, float)
         v = np.stack(np.broadcast_arrays(xd, yd), -1)
@@ -447,6 +674,22 @@ class GantryDynamics:
         """Slider forces ``tau = (F1, F2)`` [N] along ``+q`` (Wu eq. 41): ``J^-T (M a + h + G)``.
 
         ``gravity=False`` drops ``G`` (the paper includes it, eq. 30-38).
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [m].
+        xd, yd : array_like
+            Platform velocities [m/s].
+        xdd, ydd : array_like
+            Platform accelerations [m/s^2].
+        gravity : bool
+            Include gravity.
+
+        Returns
+        -------
+        ndarray
+            ``(F1, F2)`` [N], shape ``(..., 2)``.
         """
         x, y = as_points(x, y)
         M = self.mass_matrix(x, y)
@@ -467,6 +710,16 @@ class GantryDynamics:
         0 for translating bodies). Counterweights hang at ``-q_i`` (a rope over a pulley
         at height 0). Used by the tests to check ``T`` and the power balance
         independently of :meth:`mass_matrix`.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [m].
+
+        Returns
+        -------
+        dict
+            ``{name: (m, I_c, cx, cy, phi)}`` [kg, kg m^2, m, m, rad].
         """
         x, y = as_points(x, y)
         g = self.gantry
@@ -500,6 +753,21 @@ def wu2008_driving_forces(gantry, n: int = 651, inertia: GantryInertia | None = 
     for ``gantry`` in metres (Wu's: ``wu2008_gantry(10.0, unit="m")``) with Table 2
     inertias by default (links' mass centres at mid-link). Returns the trajectory dict
     plus ``F1``, ``F2`` [N].
+
+    Parameters
+    ----------
+    gantry : Gantry
+        The machine in metres.
+    n : int
+        Time samples.
+    inertia : GantryInertia, optional
+        Default: Table 2.
+
+    Returns
+    -------
+    dict
+        The trajectory (:func:`mechopt.core.motion.wu2008_trajectory`) with ``F1``, ``F2``
+        [N].
     """
     dyn = GantryDynamics(gantry, GantryInertia.wu2008() if inertia is None else inertia)
     tr = wu2008_trajectory(n)

@@ -209,7 +209,24 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def legs(self, x, y):
         """``(q1, q2, c1, c2, reachable)`` without masking: slider positions and
-        ``c_i = L cos(theta_i)`` [L] of both legs."""
+        ``c_i = L cos(theta_i)`` [L] of both legs.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        q1, q2 : ndarray
+            Slider positions [L].
+        c1, c2 : ndarray
+            ``L cos(theta_i)`` [L].
+        reachable : ndarray of bool
+            Where both links reach their guides within the strokes.
+        """
         c1, c2 = self._offsets(x)
         y_a = y - self._e
         q1 = y_a - c1
@@ -226,7 +243,20 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def slider_positions(self, x, y):
         """``(q1, q2)`` of the inverse kinematics in this mode, ignoring strokes; NaN
-        where a link cannot reach its guide."""
+        where a link cannot reach its guide.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        q1, q2 : ndarray
+            Slider positions [L].
+        """
         x, y = as_points(x, y)
         q1, q2, _, _, _ = self.legs(x, y)
         return q1, q2
@@ -234,7 +264,24 @@ class TwoSliderMechanism(PlanarMechanism):
     def link_tangents(self, x, y):
         """``(tan theta_1, tan theta_2, c1, c2, reachable)``: the rows of ``J`` are
         ``(tan theta_i, 1)``, ``c_i = L cos(theta_i)`` [L]; NaN where unreachable
-        (what the gantry's dynamics, :class:`mechopt.mechanisms.gantry_dynamics.GantryDynamics`, needs)."""
+        (what the gantry's dynamics, :class:`mechopt.mechanisms.gantry_dynamics.GantryDynamics`, needs).
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        tan1, tan2 : ndarray
+            ``tan theta_i`` (dimensionless).
+        c1, c2 : ndarray
+            ``L cos(theta_i)`` [L].
+        reachable : ndarray of bool
+            Where the pose is reachable.
+        """
         x, y = as_points(x, y)
         _, _, c1, c2, ok = self.legs(x, y)
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -248,7 +295,13 @@ class TwoSliderMechanism(PlanarMechanism):
     def bodies(self):
         """The declared bodies (:class:`mechopt.core.rigid_bodies.BodySpec`): per leg the slider
         carriage on ``S_i`` and the link ``S_i P`` (a tube of the mass law); the payload
-        at ``P``. The motors stay on the frame (they drive the carriages)."""
+        at ``P``. The motors stay on the frame (they drive the carriages).
+
+        Returns
+        -------
+        list of mechopt.core.rigid_bodies.BodySpec
+            The bodies.
+        """
         out = []
         for i in (1, 2):
             out += [_b.BodySpec(f"carriage{i}", "carriage", 0.0, (f"S{i}",), leg=i),
@@ -263,7 +316,26 @@ class TwoSliderMechanism(PlanarMechanism):
         The closure ``|A - S_i|^2 = L^2`` with ``d = A - S_i = (x - g_i, c_i)``
         differentiated once and twice gives ``q_dot_i = y_dot + (x - g_i) x_dot / c_i``
         (Wu eq. 4) and ``q_ddot_i = y_ddot + ((x - g_i) x_ddot + x_dot^2 +
-        (y_dot - q_dot_i)^2) / c_i``; NaN where unreachable."""
+        (y_dot - q_dot_i)^2) / c_i``; NaN where unreachable.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [L] along the motion.
+        xd, yd : array_like
+            Velocities [L/s].
+        xdd, ydd : array_like
+            Accelerations [L/s^2].
+
+        Returns
+        -------
+        q, qd, qdd : ndarray
+            Slider positions [L], rates [L/s], accelerations [L/s^2].
+        S : tuple of ndarray
+            The sliders' ``(position, velocity, acceleration)``.
+        A : tuple of ndarray
+            The link joint's ``(position, velocity, acceleration)``.
+        """
         x, y = as_points(x, y)
         q1, q2, ok = self.ik(x, y)
         xd, yd, xdd, ydd = np.broadcast_arrays(*(np.asarray(v, float) for v in (xd, yd, xdd, ydd)))
@@ -281,7 +353,24 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def body_frames(self, x, y, xd, yd, xdd, ydd):
         """``(q, qd, qdd, frames)`` of :meth:`bodies` along a motion of ``P``
-        (:meth:`slider_motion`; :mod:`mechopt.core.rigid_bodies` for the frames)."""
+        (:meth:`slider_motion`; :mod:`mechopt.core.rigid_bodies` for the frames).
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [L] along the motion.
+        xd, yd : array_like
+            Velocities [L/s].
+        xdd, ydd : array_like
+            Accelerations [L/s^2].
+
+        Returns
+        -------
+        q, qd, qdd : ndarray
+            Slider positions [L], rates [L/s] and accelerations [L/s^2].
+        frames : dict
+            Per body its frame along the motion (:mod:`mechopt.core.rigid_bodies`).
+        """
         q, qd, qdd, S, A = self.slider_motion(x, y, xd, yd, xdd, ydd)
         frames = {}
         for i, Si in enumerate(S, 1):
@@ -293,7 +382,20 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def link_angles(self, x, y):
         """``(theta_1, theta_2)`` [rad] of the links from the vertical (Wu eq. 1), in
-        (-pi, pi]; NaN where unreachable."""
+        (-pi, pi]; NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        theta_1, theta_2 : ndarray
+            The angles [rad].
+        """
         x, y = as_points(x, y)
         ok = self.reachable(x, y)
         c1, c2 = self._offsets(x)
@@ -303,7 +405,18 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def y_interval(self, x):
         """``(y_lo, y_hi)`` of the reachable set at abscissa ``x`` (NaN where empty):
-        leg i admits ``y in [lo_i + e + c_i(x), hi_i + e + c_i(x)]``."""
+        leg i admits ``y in [lo_i + e + c_i(x), hi_i + e + c_i(x)]``.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae [L].
+
+        Returns
+        -------
+        y_lo, y_hi : ndarray
+            The bounds [L].
+        """
         lo, hi = self._y_bounds(np.asarray(x, dtype=float))
         empty = ~(lo <= hi)
         return np.where(empty, np.nan, lo), np.where(empty, np.nan, hi)
@@ -318,12 +431,40 @@ class TwoSliderMechanism(PlanarMechanism):
     # --- protocol -----------------------------------------------------------------
     def reachable(self, x, y):
         """Both links reach their guides and both sliders lie within their strokes
-        (to the tolerance of the module docstring)."""
+        (to the tolerance of the module docstring).
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray of bool
+            True where every leg assembles (and, with stroke limits, within them).
+        """
         x, y = as_points(x, y)
         return self.legs(x, y)[4]
 
     def ik(self, x, y):
-        """Slider positions ``(q1, q2, reachable)`` [L]; NaN where unreachable."""
+        """Slider positions ``(q1, q2, reachable)`` [L]; NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        q1, q2 : ndarray
+            Actuator coordinates [rad or L]; NaN where unreachable.
+        reachable : ndarray of bool
+            Where the point is reached in the working mode.
+        """
         x, y = as_points(x, y)
         q1, q2, _, _, ok = self.legs(x, y)
         return np.where(ok, q1, np.nan), np.where(ok, q2, np.nan), ok
@@ -337,7 +478,24 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def closure(self, x, y):
         """``A p_dot = B q_dot`` with ``a_i = (x - g_i, c_i)`` and ``B_ii = c_i = L cos(theta_i)``;
-        rows of ``J = B^-1 A`` are ``(tan theta_i, 1)``. NaN where unreachable."""
+        rows of ``J = B^-1 A`` are ``(tan theta_i, 1)``. NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        A : ndarray
+            Shape ``(..., 2, 2)``.
+        b : ndarray
+            Shape ``(..., 2)``: the diagonal of ``B``.
+        reachable : ndarray of bool
+            Where every leg assembles.
+        """
         x, y = as_points(x, y)
         q1, q2, c1, c2, ok = self.legs(x, y)
         if self._closure_via_positions:
@@ -359,7 +517,18 @@ class TwoSliderMechanism(PlanarMechanism):
         ``(L, 0)`` of ``link<i>``: the link joint. Only with the reported point at the
         link joint (no platform offset ``e``): a gantry platform of height ``l2 > 0`` is
         held level by a third, parallelogram link, which this tree does not describe
-        (ValueError); ``mechopt design`` builds gantries with ``l2 = 0``."""
+        (ValueError); ``mechopt design`` builds gantries with ``l2 = 0``.
+
+        Returns
+        -------
+        mechopt.core.kinematic_tree.KinematicTree
+            The tree.
+
+        Raises
+        ------
+        ValueError
+            For a platform offset ``e`` other than 0 (a gantry with ``l2 > 0``).
+        """
         if self._e != 0:
             raise ValueError(f"{self.cli_name} with a platform offset ({self._e!r}: l2 > 0, a parallelogram "
                              f"leg) has no kinematic tree for export; only l2 = 0 is exported")
@@ -374,7 +543,20 @@ class TwoSliderMechanism(PlanarMechanism):
     def tree_configuration(self, x, y) -> dict:
         """Every joint of :meth:`kinematic_tree` at ``(x, y)``: ``q<i>`` from :meth:`ik`,
         ``pivot<i>`` the angle of link ``i`` from the x axis, ``atan2(y - q_i, x - g_i)``
-        [rad]; NaN out of reach."""
+        [rad]; NaN out of reach.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        dict
+            ``{joint: ndarray}``: slider positions [L], pivot angles [rad].
+        """
         x, y = as_points(x, y)
         q1, q2, _ = self.ik(x, y)
         out = {}
@@ -394,6 +576,24 @@ class TwoSliderMechanism(PlanarMechanism):
         ``A = M +/- sqrt(L^2 / |m|^2 - 1/4) (-m_y, m_x)``, ``M`` the sliders' midpoint;
         ``"up"`` takes ``+``. ``valid`` is False (NaN) where ``|m| > 2 L`` or, with
         ``limits=True``, a slider is outside its stroke.
+
+        Parameters
+        ----------
+        q1 : array_like
+            First actuator coordinate [rad or L].
+        q2 : array_like
+            Second actuator coordinate [rad or L]; broadcast with ``q1``.
+        assembly : str
+            One of :attr:`assembly_modes`.
+        limits : bool
+            Whether slider positions outside their strokes are invalid.
+
+        Returns
+        -------
+        x, y : ndarray
+            The platform point [L]; NaN where invalid.
+        valid : ndarray of bool
+            Where the legs assemble in that mode.
         """
         _v.choice("assembly", assembly, ASSEMBLY_MODES)
         q1, q2 = as_points(q1, q2)
@@ -414,7 +614,20 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def assembly_of(self, x, y):
         """``"up"`` where the link joint is on the left of the vector from the left
-        slider to the right one (or on it), else ``"down"``."""
+        slider to the right one (or on it), else ``"down"``.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L] (base frame).
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray of str
+            The assembly mode of each pose.
+        """
         x, y = as_points(x, y)
         q1, q2 = self.slider_positions(x, y)
         ql, qr = self._left_right(q1, q2)
@@ -429,6 +642,11 @@ class TwoSliderMechanism(PlanarMechanism):
         and the guides) both offsets ``c_i(x)`` are monotone and neither bound switches
         legs, so the bounds of the set reach their extremes at candidates. An empty
         workspace gives a box of zero height at the top of the strokes.
+
+        Returns
+        -------
+        tuple of float
+            ``(xmin, xmax, ymin, ymax)`` [L].
         """
         xmin, xmax = self.x_range
         pts = set(self._breakpoints().tolist()) | {g for g in self._g if xmin <= g <= xmax}
@@ -464,7 +682,18 @@ class TwoSliderMechanism(PlanarMechanism):
         return (a1 - a2) - self._s[0] * h1 + self._s[1] * h2
 
     def chord(self, x):
-        """Exact length [L] of the vertical section of the workspace at ``x``."""
+        """Exact length [L] of the vertical section of the workspace at ``x``.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae [L].
+
+        Returns
+        -------
+        ndarray
+            The length [L] (0 where the section is empty).
+        """
         x = np.asarray(x, dtype=float)
         S1, S2 = self._S
         d = self._d(x)
@@ -479,7 +708,13 @@ class TwoSliderMechanism(PlanarMechanism):
         return float(_g.chord_integral(self._L, u0, u1))
 
     def workspace_area(self) -> float:
-        """Exact area W [L^2] of the workspace of this mode (Stan eq. 8; module docstring)."""
+        """Exact area W [L^2] of the workspace of this mode (Stan eq. 8; module docstring).
+
+        Returns
+        -------
+        float
+            The area [L^2].
+        """
         (a1, _), (a2, _) = self._lims
         S1, S2 = self._S
         total = 0.0
@@ -508,7 +743,18 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def tqi_of_x(self, x):
         """TQI (Stan eq. 9) as a function of ``x`` alone: ``2 |t1 - t2| / (t1^2 + t2^2 + 2)``
-        with ``t_i = (x - g_i)/c_i`` the slopes of ``J``'s rows; 0 on type-I lines."""
+        with ``t_i = (x - g_i)/c_i`` the slopes of ``J``'s rows; 0 on type-I lines.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae [L].
+
+        Returns
+        -------
+        ndarray
+            The TQI (dimensionless).
+        """
         x = np.asarray(x, dtype=float)
         h1, h2, _, _ = self._half_chords(x)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -527,6 +773,18 @@ class TwoSliderMechanism(PlanarMechanism):
         vectorised (about 100x faster; the square-root behaviour of the chord at
         the interval ends limits it to about 3e-8 relative, see
         ``tests/test_biglide.py``), for optimisation loops.
+
+        Parameters
+        ----------
+        return_error : bool
+            With ``method="quad"``, also return the error estimate.
+        method : str
+            ``"quad"`` or ``"gauss"``.
+
+        Returns
+        -------
+        float or tuple
+            The integral [L^2], or ``(value, absolute error estimate)``.
         """
         pts = self._breakpoints()
         if method == "gauss":
@@ -581,6 +839,18 @@ class TwoSliderMechanism(PlanarMechanism):
         ``step`` [L] (default: the smaller side of the bounding box /
         :data:`~mechopt.core.quadrature.RASTER_CELLS`); first-order error in ``step``.
         NaN for an empty workspace.
+
+        Parameters
+        ----------
+        method : str
+            ``"quad"``, ``"gauss"`` or ``"raster"``.
+        step : float, optional
+            Raster cell side [L].
+
+        Returns
+        -------
+        float
+            The GTQI (dimensionless).
         """
         _v.choice("method", method, GTQI_METHODS)
         if method in ("quad", "gauss"):
@@ -595,6 +865,18 @@ class TwoSliderMechanism(PlanarMechanism):
 
         Depends on ``x`` only (and not on the mode); ``inf`` where the link is
         vertical, NaN where the link cannot reach its guide.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae [L].
+        leg : int
+            1 or 2.
+
+        Returns
+        -------
+        ndarray
+            ``k_v(leg)`` (dimensionless).
         """
         leg = _v.choice("leg", leg, (1, 2))
         x = np.asarray(x, dtype=float)
@@ -604,7 +886,20 @@ class TwoSliderMechanism(PlanarMechanism):
 
     def k_v(self, x, y):
         """Velocity output ratios ``(k_v(1), k_v(2))`` of Wu eq. (6) at the poses
-        ``(x, y)``: :meth:`velocity_output_ratio` of both legs, NaN where unreachable."""
+        ``(x, y)``: :meth:`velocity_output_ratio` of both legs, NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        k_v1, k_v2 : ndarray
+            The ratios (dimensionless).
+        """
         x, y = as_points(x, y)
         ok = self.reachable(x, y)
         return (np.where(ok, self.velocity_output_ratio(x, 1), np.nan),
@@ -640,6 +935,25 @@ class TwoSliderMechanism(PlanarMechanism):
 
         None of these (nor the others listed in ``tests/test_gantry.py``) reproduces
         Wu's Table 1 ``k_av = 1.05``; the literal reading is kept.
+
+        Parameters
+        ----------
+        x_min, x_max : float, optional
+            The range of x [L] (default: the mechanism's own).
+        leg : int
+            1 or 2.
+        reading : str
+            ``"literal"``, ``"displacement"`` or ``"max_speed"``.
+
+        Returns
+        -------
+        float
+            ``k_av`` (dimensionless).
+
+        Raises
+        ------
+        ValueError
+            For a range outside :attr:`x_range`, an unknown leg or reading.
         """
         reading = _v.choice("reading", reading, K_AV_READINGS)
         leg = _v.choice("leg", leg, (1, 2))
@@ -718,7 +1032,22 @@ class GuideDesignSpec(DesignSpec):
         return [(np.full_like(x, g[0]), q1), (np.full_like(x, g[1]), q2), (x, y)]
 
     def link_angles(self, mech, x, y):
-        """Each link's angle from its guide, ``arcsin(|x - g_i| / L)`` in [0, pi/2]."""
+        """Each link's angle from its guide, ``arcsin(|x - g_i| / L)`` in [0, pi/2].
+
+        Parameters
+        ----------
+        mech : TwoSliderMechanism
+            The mechanism.
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        angle1, angle2 : ndarray
+            The angles [rad], in [0, pi/2].
+        """
         g, L = mech.guides, getattr(mech, self.link)
         with np.errstate(invalid="ignore"):
             return (np.arcsin(np.clip(np.abs(x - g[0]) / L, 0, 1)),
@@ -731,7 +1060,24 @@ class GuideDesignSpec(DesignSpec):
         ``carriage_length`` along the guide) and the links ``S_i A`` (``"link1"``,
         ``"link2"``) to the link joint ``A = (x, y - e)``, named ``"P"`` (the tool) when
         the reported point is the link joint itself (``e = 0``: the Biglide, the designed
-        gantries), else ``"A"``."""
+        gantries), else ``"A"``.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        shapes : mechopt.core.bodies.Shapes, optional
+            Widths and sizes of the bodies [L].
+
+        Returns
+        -------
+        list of mechopt.core.bodies.Body
+            The bodies as capsules.
+        """
         shapes = shapes or Shapes.default()
         mx, my = as_points(*self.to_mech(mech, *as_points(x, y)))
         q1, q2, _, _, _ = mech.legs(mx, my)
@@ -755,7 +1101,24 @@ class GuideDesignSpec(DesignSpec):
         L / sqrt(L^2 - (x - g_i)^2)`` (the closure of the module docstring), largest over
         the disc of ``radius`` where ``|x - g_i|`` is, at ``|x - g_i| + radius`` (infinite
         from ``L``: a type-I singularity within reach); the link joint ``A`` or ``P``
-        translates with the platform: 1."""
+        translates with the platform: 1.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        radius : float
+            Radius [L] of the platform positions about each task point.
+
+        Returns
+        -------
+        dict
+            ``{name: ndarray}``, speed bounds [L/L].
+        """
         mx, my = as_points(*self.to_mech(mech, *as_points(x, y)))
         L = mech._L
         out = {"P": np.ones_like(mx), "A": np.ones_like(mx)}
@@ -781,6 +1144,19 @@ class GuideDesignSpec(DesignSpec):
         return chains, [(g[0], float(q1)), (g[1], float(q2))]
 
     def actuator_paths(self, mech, strokes):
-        """Each guide over its slider's stroke."""
+        """Each guide over its slider's stroke.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        strokes : tuple
+            As in :meth:`build`.
+
+        Returns
+        -------
+        list
+            Segments ``((x0, y0), (x1, y1))`` [L].
+        """
         return [((g, lo), (g, hi)) for g, (lo, hi) in zip(mech.guides, strokes)]
 

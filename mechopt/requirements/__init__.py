@@ -44,7 +44,13 @@ MODULES = tuple(f"mechopt.requirements.{m}" for m in (
 
 
 def registry() -> tuple:
-    """Every declared member (requirements and objectives), in :data:`MODULES` order."""
+    """Every declared member (requirements and objectives).
+
+    Returns
+    -------
+    tuple
+        The ``MEMBERS`` of each module of :data:`MODULES`, in that order.
+    """
     members = []
     for name in MODULES:
         members.extend(importlib.import_module(name).MEMBERS)
@@ -52,17 +58,45 @@ def registry() -> tuple:
 
 
 def requirements() -> tuple:
-    """The declared :class:`~mechopt.requirements.base.Requirement` s, in constraint order."""
+    """The declared requirements.
+
+    Returns
+    -------
+    tuple of mechopt.requirements.base.Requirement
+        In constraint order (the columns ``g_<name>``).
+    """
     return tuple(m for m in registry() if isinstance(m, Requirement))
 
 
 def objectives() -> dict:
-    """``{name: Objective}`` of every declared objective, in registry order."""
+    """The declared objectives.
+
+    Returns
+    -------
+    dict
+        ``{name: Objective}`` in registry order.
+    """
     return {m.name: m for m in registry() if isinstance(m, Objective)}
 
 
 def objective(name) -> Objective:
-    """The declared objective ``name`` (one line naming the known ones otherwise)."""
+    """The declared objective ``name``.
+
+    Parameters
+    ----------
+    name : str
+        An objective's name (``"size"``, ``"min-lci"``, ...).
+
+    Returns
+    -------
+    mechopt.requirements.base.Objective
+        The objective.
+
+    Raises
+    ------
+    ValueError
+        One line naming the known objectives, for an unknown name.
+    """
     from mechopt.core import validation as _v
 
     known = objectives()
@@ -70,7 +104,18 @@ def objective(name) -> Objective:
 
 
 def options() -> dict:
-    """``{name: (Option, member)}`` of every declared option, in registry order."""
+    """Every declared option and the member that declares it.
+
+    Returns
+    -------
+    dict
+        ``{name: (Option, member)}`` in registry order.
+
+    Raises
+    ------
+    ValueError
+        When two members declare an option of the same name.
+    """
     out = {}
     for m in registry():
         for o in m.options:
@@ -95,6 +140,17 @@ class Requirements:
     [rad/s or L/s], ``min_force`` [N] with ``actuator_torque`` [N m or N], ``payload``
     [N] (the ``torque`` objective) and ``singularity_margin`` (smallest ``|sine of the
     angle between the legs|``, default 1e-3).
+
+    Parameters
+    ----------
+    **values
+        One keyword per declared option (:func:`options`), in the units above; an
+        option not given takes its declared default.
+
+    Raises
+    ------
+    ValueError
+        One line naming an unknown keyword and the known ones.
     """
 
     __slots__ = ("_values",)
@@ -129,18 +185,52 @@ class Requirements:
         return "Requirements(" + ", ".join(f"{k}={v!r}" for k, v in self._values.items()) + ")"
 
     def asdict(self) -> dict:
-        """``{option: value}`` of every declared option."""
+        """The values of every declared option.
+
+        Returns
+        -------
+        dict
+            ``{option: value}`` (None: off).
+        """
         return dict(self._values)
 
     def replace(self, **changes) -> "Requirements":
-        """A copy with ``changes``."""
+        """A copy with some values changed.
+
+        Parameters
+        ----------
+        **changes
+            ``option=value`` pairs.
+
+        Returns
+        -------
+        Requirements
+            The new requirements (this one is immutable).
+        """
         return Requirements(**{**self._values, **changes})
 
     def checked(self, spec, unit="mm") -> "Requirements":
-        """The requirements validated for the mechanism of design spec ``spec`` and a task
-        in ``unit`` (each option's check, values with units converted; an option of a
-        requirement that does not apply to it, or a requirement missing the options it
-        needs, is refused with one line)."""
+        """The requirements validated for a mechanism and a task's unit.
+
+        Parameters
+        ----------
+        spec : mechopt.core.design_spec.DesignSpec
+            The mechanism's design spec.
+        unit : str
+            The task's length unit (default ``"mm"``).
+
+        Returns
+        -------
+        Requirements
+            Each value passed through its option's check, values with units
+            converted to the option's unit.
+
+        Raises
+        ------
+        ValueError
+            One line, for an invalid value, an option of a requirement that does not
+            apply to the mechanism, or a requirement missing an option it needs.
+        """
         kw = {}
         for name, (opt, member) in options().items():
             value = self._values[name]
@@ -158,11 +248,35 @@ class Requirements:
         return out
 
     def names(self, spec) -> tuple:
-        """The active requirements' names for the mechanism of ``spec``, in constraint order."""
+        """The names of the active requirements.
+
+        Parameters
+        ----------
+        spec : mechopt.core.design_spec.DesignSpec
+            The mechanism's design spec.
+
+        Returns
+        -------
+        tuple of str
+            In constraint order.
+        """
         return tuple(r.name for r in requirements() if r.active(self, spec))
 
     def describe(self, name, unit) -> str:
-        """The requirement ``name`` in words (for messages)."""
+        """A requirement in words (for messages).
+
+        Parameters
+        ----------
+        name : str
+            The requirement's name.
+        unit : str
+            The task's length unit.
+
+        Returns
+        -------
+        str
+            Its :meth:`~mechopt.requirements.base.Requirement.describe`.
+        """
         return next(r for r in requirements() if r.name == name).describe(self, unit)
 
 

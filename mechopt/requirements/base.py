@@ -73,7 +73,31 @@ class Option:
         return "--" + self.name.replace("_", "-")
 
     def check(self, value, spec, unit="mm"):
-        """The validated value (see the class docstring) for a task in ``unit``."""
+        """The validated value of the option for a task in ``unit``.
+
+        Parameters
+        ----------
+        value : object
+            The Python value (a number in the option's unit, or for an option with a
+            ``kind`` a :class:`mechopt.core.units.Quantity` or a string with its unit,
+            ``"0.5m/s"``).
+        spec : mechopt.core.design_spec.DesignSpec
+            The design spec of the mechanism the requirement is checked for.
+        unit : str
+            The task's length unit (``"mm"``, ``"cm"``, ``"m"`` or ``"in"``).
+
+        Returns
+        -------
+        object
+            The value normalised: converted to the option's unit [the task's length
+            unit, rad, N, ...] and validated by the option's ``check`` (default: a
+            positive finite number).
+
+        Raises
+        ------
+        ValueError
+            One line naming the option, when the value or its unit is invalid.
+        """
         from mechopt.core import units as _u
         from mechopt.core import validation as _v
 
@@ -86,8 +110,25 @@ class Option:
         return _v.positive_length(self.name, value)
 
     def parse(self, text):
-        """The Python value of the option's command-line ``text`` (a
-        :class:`mechopt.core.units.Quantity` for an option with a ``kind``)."""
+        """The Python value of the option's command-line ``text``.
+
+        Parameters
+        ----------
+        text : str
+            What follows the option on the command line.
+
+        Returns
+        -------
+        object
+            The option's ``parse(text)`` when declared; else a
+            :class:`mechopt.core.units.Quantity` for an option with a ``kind``, else a
+            float.
+
+        Raises
+        ------
+        ValueError
+            One line naming the option, when ``text`` does not parse.
+        """
         from mechopt.core import units as _u
         from mechopt.core import validation as _v
 
@@ -115,13 +156,34 @@ class Member:
     needs: tuple = ()
 
     def applies(self, spec) -> bool:
-        """True when the member applies to the mechanism of design spec ``spec``."""
+        """Whether the member applies to a mechanism.
+
+        Parameters
+        ----------
+        spec : mechopt.core.design_spec.DesignSpec
+            The mechanism's design spec.
+
+        Returns
+        -------
+        bool
+            True when the member applies to that mechanism (default: always).
+        """
         return True
 
     def report(self, ctx) -> dict:
-        """Values this member reports into the evaluation's ``values`` whether or not it
-        is active (default none); it may read ``ctx.memo`` to report only what another
-        member computed."""
+        """Values this member reports into the evaluation's ``values``, active or not.
+
+        Parameters
+        ----------
+        ctx : mechopt.analysis.design_context.DesignContext
+            The design's sample context; ``ctx.memo`` holds what other members
+            computed (report only what is there, to cost nothing).
+
+        Returns
+        -------
+        dict
+            ``{name: value}`` in the member's units (default: empty).
+        """
         return {}
 
     def __repr__(self):
@@ -144,36 +206,133 @@ class Requirement(Member):
     proven: bool = False
 
     def active(self, req, spec) -> bool:
-        """True when the requirement is asked for: always, or when its first option is set."""
+        """Whether the requirement is asked for.
+
+        Parameters
+        ----------
+        req : mechopt.requirements.Requirements
+            The requirements of the run.
+        spec : mechopt.core.design_spec.DesignSpec
+            The mechanism's design spec.
+
+        Returns
+        -------
+        bool
+            True when it applies to the mechanism and is always on (:attr:`always`)
+            or its first option is set (not None).
+        """
         if not self.applies(spec):
             return False
         return self.always or (bool(self.options) and getattr(req, self.options[0].name) is not None)
 
     def describe(self, req, unit) -> str:
-        """The requirement in words, with its values (for messages)."""
+        """The requirement in words, with its values (for messages).
+
+        Parameters
+        ----------
+        req : mechopt.requirements.Requirements
+            The requirements of the run.
+        unit : str
+            The task's length unit, for the values' units.
+
+        Returns
+        -------
+        str
+            One clause, e.g. ``"stroke <= 200.0 mm"`` (default: the name).
+        """
         return self.name
 
     def precheck(self, req, spec, unit) -> None:
-        """Refuse, before any run, requirements no geometry can meet (a necessary
-        condition; raise ValueError with one line giving the reason). Default none."""
+        """Refuse, before any run, requirements no geometry can meet.
+
+        A necessary condition only (default: none).
+
+        Parameters
+        ----------
+        req : mechopt.requirements.Requirements
+            The checked requirements.
+        spec : mechopt.core.design_spec.DesignSpec
+            The mechanism's design spec.
+        unit : str
+            The task's length unit.
+
+        Raises
+        ------
+        ValueError
+            One line giving the reason, when no design can meet the requirement.
+        """
 
     def screen(self, ctx) -> bool:
-        """Whether the design is feasible or nearly so by this requirement on the samples
-        alone: refining the minima (``ctx.refine``) is worth it only when every active
-        requirement's screen passes. Default True."""
+        """Whether the design is feasible or nearly so by this requirement on the
+        samples alone.
+
+        Refining the minima (``ctx.refine``) is worth it only when every active
+        requirement's screen passes.
+
+        Parameters
+        ----------
+        ctx : mechopt.analysis.design_context.DesignContext
+            The design's sample context.
+
+        Returns
+        -------
+        bool
+            False when the samples already show the requirement clearly violated
+            (default: True).
+        """
         return True
 
     def evaluate(self, ctx) -> tuple:
-        """``(margin, g)``: the margin in natural units (> 0 satisfied) and the normalised
-        constraint ``g`` (<= 0 satisfied, NaN fails)."""
+        """The requirement's margin and constraint for one design over the task.
+
+        Parameters
+        ----------
+        ctx : mechopt.analysis.design_context.DesignContext
+            The design's sample context (mechanism, spec, requirements, placed task,
+            samples, shared values, refinement searches).
+
+        Returns
+        -------
+        margin : float
+            The margin in natural units [:attr:`margin_unit`], > 0 satisfied.
+        g : float
+            The normalised constraint, <= 0 satisfied; NaN fails.
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: every requirement implements it.
+        """
         raise NotImplementedError
 
     def columns(self, derived) -> dict:
-        """Extra front.csv columns from the evaluation's ``derived`` values (default none)."""
+        """Extra front.csv columns of this requirement.
+
+        Parameters
+        ----------
+        derived : dict
+            The evaluation's derived values (strokes, refined minima, bounds).
+
+        Returns
+        -------
+        dict
+            ``{column: value}`` (default: empty).
+        """
         return {}
 
     def record(self, derived) -> dict:
-        """Extra design.json keys from the evaluation's ``derived`` values (default none)."""
+        """Extra design.json keys of this requirement.
+
+        Parameters
+        ----------
+        derived : dict
+            The evaluation's derived values.
+
+        Returns
+        -------
+        dict
+            ``{key: value}`` (default: empty).
+        """
         return {}
 
 
@@ -193,16 +352,59 @@ class Objective(Member):
     requires: tuple = ()
 
     def value(self, ctx) -> float:
-        """The objective's value over the task [its unit], NaN where undefined."""
+        """The objective's value for one design over the task.
+
+        Parameters
+        ----------
+        ctx : mechopt.analysis.design_context.DesignContext
+            The design's sample context.
+
+        Returns
+        -------
+        float
+            The value [:attr:`unit`] in its natural sign (:attr:`sense` turns it into
+            pymoo's minimisation form); NaN where the design does not define it.
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: every objective implements it.
+        """
         raise NotImplementedError
 
     def bounds(self, ev) -> tuple:
-        """``(lo, hi)``: the reference range of the value for the hypervolume of
-        history.csv (:class:`mechopt.run.problem.Objective`), from the evaluator ``ev``'s
-        bounds (``ev.max_length``, ``ev.req``, the task); values outside it are allowed."""
+        """The reference range of the value, for the hypervolume of history.csv.
+
+        Parameters
+        ----------
+        ev : mechopt.analysis.design_eval.DesignEvaluator
+            The evaluator, whose bounds (``ev.max_length``, ``ev.req``, the task) set
+            the range.
+
+        Returns
+        -------
+        tuple of float
+            ``(lo, hi)`` [:attr:`unit`] (:class:`mechopt.run.problem.Objective`);
+            values outside it are allowed (default ``(0, 1)``).
+        """
         return (0.0, 1.0)
 
     def invalid_value(self, ev, lengths) -> float:
-        """The value reported for a design whose variables describe no mechanism (every
-        constraint violated, so never read by the search's ranking): NaN by default."""
+        """The value reported for a design whose variables describe no mechanism.
+
+        Every constraint of such a design is violated, so the search's ranking never
+        reads it.
+
+        Parameters
+        ----------
+        ev : mechopt.analysis.design_eval.DesignEvaluator
+            The evaluator.
+        lengths : array_like
+            The design's lengths [L].
+
+        Returns
+        -------
+        float
+            NaN by default.
+        """
         return math.nan

@@ -75,7 +75,20 @@ def _angle(value, spec):
 def shapes_of(req, unit) -> Shapes:
     """The bodies' sizes [unit] of the requirements ``req``: the given ``link_width``,
     ``motor_diameter`` and ``carriage_length``, the others :meth:`Shapes.default
-    <mechopt.core.bodies.Shapes.default>`."""
+    <mechopt.core.bodies.Shapes.default>`.
+
+    Parameters
+    ----------
+    req : mechopt.requirements.Requirements
+        The requirements.
+    unit : str
+        The task's length unit.
+
+    Returns
+    -------
+    mechopt.core.bodies.Shapes
+        The sizes [unit].
+    """
     given = {k: getattr(req, o) for k, o in (("link_width", "link_width"), ("housing_diameter", "motor_diameter"),
                                               ("carriage_length", "carriage_length"))
              if getattr(req, o) is not None}
@@ -83,7 +96,18 @@ def shapes_of(req, unit) -> Shapes:
 
 
 def collisions(ctx) -> _c.Collisions:
-    """The design's :class:`~mechopt.analysis.collisions.Collisions` (once per evaluation)."""
+    """The design's :class:`~mechopt.analysis.collisions.Collisions` (once per evaluation).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    mechopt.analysis.collisions.Collisions
+        The collision geometry.
+    """
     return ctx.memo("collisions", lambda: _c.Collisions(ctx.spec, ctx.mech, shapes_of(ctx.req, ctx.unit)))
 
 
@@ -130,13 +154,35 @@ def _minimum(ctx, key, rows, rates):
 
 
 def clearance_min(ctx):
-    """``(minimum, certified bound)`` [L] of the capsule clearance over the task."""
+    """``(minimum, certified bound)`` [L] of the capsule clearance over the task.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    minimum, bound : float
+        [L].
+    """
     col = collisions(ctx)
     return _minimum(ctx, "clearance_min", col.pair_clearances, col.clearance_lipschitz)
 
 
 def joint_angle_min(ctx):
-    """``(minimum, certified bound)`` [rad] of the adjacent links' joint angles over the task."""
+    """``(minimum, certified bound)`` [rad] of the adjacent links' joint angles over the task.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    minimum, bound : float
+        [rad].
+    """
     col = collisions(ctx)
     return _minimum(ctx, "joint_angle_min", col.joint_angles, col.angle_lipschitz)
 
@@ -150,7 +196,18 @@ def zone_of(ctx):
 
 
 def keep_out_min(ctx):
-    """``(minimum, certified bound)`` [L] of the bodies' margins to the ``--keep-out`` zone."""
+    """``(minimum, certified bound)`` [L] of the bodies' margins to the ``--keep-out`` zone.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    minimum, bound : float
+        [L].
+    """
     col, zone = collisions(ctx), zone_of(ctx)
     return _minimum(ctx, "keep_out_min", lambda x, y: col.keep_out(x, y, zone),
                     lambda x, y, r: col.keep_out_lipschitz(x, y, zone, r))

@@ -20,12 +20,34 @@ __all__ = ["MinForce", "ForceObjective", "effort_factor", "force", "MEMBERS"]
 
 
 def effort_factor(ctx_or_ev) -> float:
-    """N m -> N per (rad/L) for cranks (``1 / u_m``), 1 for sliders."""
+    """N m -> N per (rad/L) for cranks (``1 / u_m``), 1 for sliders.
+
+    Parameters
+    ----------
+    ctx_or_ev : DesignContext or DesignEvaluator
+        Gives the mechanism's spec and the task's unit.
+
+    Returns
+    -------
+    float
+        The factor.
+    """
     return 1.0 / UNITS[ctx_or_ev.unit] if ctx_or_ev.spec.angular else 1.0
 
 
 def force(ctx) -> float:
-    """The guaranteed force ``t min_T s_min(J)`` [N]."""
+    """The guaranteed force ``t min_T s_min(J)`` [N].
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The force [N].
+    """
     return ctx.req.actuator_torque * effort_factor(ctx) * singular_value_extremes(ctx)[1]
 
 
@@ -47,7 +69,22 @@ class MinForce(Requirement):
         """Speed and force together: for every ``J``, ``v f = w t s_min(J) / s_max(J) <= w t``
         (Liu 2006 eq. 10 and 13; in SI for cranks: ``v`` in m/s, ``t`` in N m, ``w`` in
         rad/s), so ``min_speed x min_force`` above the actuators' ``w x t`` is met by no
-        geometry."""
+        geometry.
+
+        Parameters
+        ----------
+        req : mechopt.requirements.Requirements
+            The checked requirements.
+        spec : mechopt.core.design_spec.DesignSpec
+            The mechanism's design spec.
+        unit : str
+            The task's length unit.
+
+        Raises
+        ------
+        ValueError
+            One line, when ``min_speed x min_force`` exceeds the actuators' ``w x t``.
+        """
         if req.min_speed is None or req.min_force is None:
             return
         u_m = UNITS[unit] if spec.angular else 1.0  # [m/L]: the speed in m/s for cranks

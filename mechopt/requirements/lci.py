@@ -20,13 +20,36 @@ SCREEN = 0.9
 
 
 def lci_min(ctx) -> float:
-    """The minimum LCI over the task, refined (shared by the requirement and the objective)."""
+    """The minimum LCI over the task, refined (shared by the requirement and the objective).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The minimum LCI over the task (dimensionless), the samples' minimum refined by
+        zooming; memoised in ``ctx``.
+    """
     return ctx.memo("lci_min", lambda: ctx.region_min(
         lambda x, y: bad_to(_ix.lci(ctx.mech.jacobian(*ctx.to_mech(x, y))), 0.0), ctx.lci))
 
 
 def lci_mean(ctx) -> float:
-    """The mean LCI over the interior grid (over the points of a point task)."""
+    """The mean LCI over the interior grid (over the points of a point task).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The mean LCI (dimensionless).
+    """
     lci, nb = ctx.lci, ctx.n_boundary
     return float(lci[nb:].mean() if ctx.samples["ix"].size else lci[:nb].mean())
 

@@ -50,7 +50,19 @@ def _cycle(task):
 
 def cycle_efforts(ctx) -> dict:
     """``{"peak": (2,), "rms": (2,), "moving_mass": kg}`` of the design along the cycle
-    (memoised in the context); NaN efforts when a pose is out of reach."""
+    (memoised in the context); NaN efforts when a pose is out of reach.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    dict
+        ``peak`` and ``rms``: arrays of the two actuators' efforts [N m or N];
+        ``moving_mass`` [kg].
+    """
     def compute():
         from mechopt.analysis import dynamics as dyn
         from mechopt.core import motion as mo

@@ -41,7 +41,19 @@ class Reach(Requirement):
         return "reachability of the whole task in one working mode"
 
     def margin(self, ctx) -> float:
-        """The certified margin [L] (module docstring)."""
+        """The certified margin [L] (module docstring).
+
+        Parameters
+        ----------
+        ctx : mechopt.analysis.design_context.DesignContext
+            The design's sample context.
+
+        Returns
+        -------
+        float
+            The certified clearance to the boundary of the reachable set [L]: the sampled
+            minimum minus half the boundary gap (1-Lipschitz).
+        """
         return ctx.memo("reach_margin", lambda: self._margin(ctx))
 
     @staticmethod

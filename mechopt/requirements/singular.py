@@ -52,7 +52,18 @@ class Singular(Requirement):
         that is out of reach (NaN) or singular (0), at the reachable sample with the
         largest ``|type2_function|`` (the assembly mode of a reachable task point: a task
         whose samples all share one sign gets that sign whatever its reference point);
-        +1 when no sample is reachable."""
+        +1 when no sample is reachable.
+
+        Parameters
+        ----------
+        ctx : mechopt.analysis.design_context.DesignContext
+            The design's sample context.
+
+        Returns
+        -------
+        float
+            ``s0``, +1 or -1.
+        """
         def compute():
             s = ctx.samples
             rx, ry = ctx.task.reference if ctx.is_region else ctx.task.pts[0]
@@ -64,11 +75,34 @@ class Singular(Requirement):
         return ctx.memo("type2_sign", compute)
 
     def samples(self, ctx):
-        """``s0 * type2_function`` at the samples (-1 where unreachable)."""
+        """``s0 * type2_function`` at the samples (-1 where unreachable).
+
+        Parameters
+        ----------
+        ctx : mechopt.analysis.design_context.DesignContext
+            The design's sample context.
+
+        Returns
+        -------
+        ndarray
+            ``s0 * type2_function`` at each sample (dimensionless, -1 where unreachable).
+        """
         return ctx.memo("type2_samples", lambda: bad_to(self.sign(ctx) * ctx.type2_raw, -1.0))
 
     def minimum(self, ctx) -> float:
-        """The minimum of ``s0 * type2_function`` over the task."""
+        """The minimum of ``s0 * type2_function`` over the task.
+
+        Parameters
+        ----------
+        ctx : mechopt.analysis.design_context.DesignContext
+            The design's sample context.
+
+        Returns
+        -------
+        float
+            The minimum (dimensionless), the samples' minimum refined by zooming; memoised
+            in ``ctx``.
+        """
         def compute():
             s0 = self.sign(ctx)
             return ctx.region_min(lambda x, y: bad_to(s0 * ctx.mech.type2_function(*ctx.to_mech(x, y)), -1.0),

@@ -13,13 +13,35 @@ __all__ = ["SizeObjective", "FootprintObjective", "size", "footprint", "MEMBERS"
 
 
 def size(ctx) -> float:
-    """The design's size [L]."""
+    """The design's size [L].
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The size [L] as the mechanism's design spec defines it (its ``size``).
+    """
     return ctx.memo("size", lambda: float(ctx.spec.size(ctx.mech, ctx.derived)))
 
 
 def footprint(ctx) -> float:
     """The largest distance [L] of any joint (at the task's samples) or task sample from
-    the base midpoint."""
+    the base midpoint.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The footprint radius [L].
+    """
     def compute():
         s = ctx.samples
         allx, ally = s["allx"], s["ally"]

@@ -31,7 +31,18 @@ def _extremes(sv):
 
 
 def singular_value_extremes(ctx) -> tuple:
-    """``(max_T s_max(J), min_T s_min(J))`` over the task, searched together."""
+    """``(max_T s_max(J), min_T s_min(J))`` over the task, searched together.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    s_max, s_min : float
+        ``max_T s_max(J)`` and ``min_T s_min(J)`` (the unit of ``J``), memoised in ``ctx``.
+    """
     def compute():
         neg_smax, smin = ctx.region_mins(
             lambda x, y: _extremes(_ix.singular_values(ctx.mech.jacobian(*ctx.to_mech(x, y)))),
@@ -41,7 +52,18 @@ def singular_value_extremes(ctx) -> tuple:
 
 
 def speed(ctx) -> float:
-    """The guaranteed speed ``w / max_T s_max(J)`` [L/s] (0 where unbounded)."""
+    """The guaranteed speed ``w / max_T s_max(J)`` [L/s] (0 where unbounded).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The speed [L/s].
+    """
     smax = singular_value_extremes(ctx)[0]
     return ctx.req.actuator_speed / smax if smax > 0 and math.isfinite(smax) else 0.0
 

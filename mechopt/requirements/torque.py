@@ -20,7 +20,19 @@ __all__ = ["TorqueObjective", "torque", "MEMBERS"]
 
 
 def torque(ctx) -> float:
-    """``payload / min_T s_min(J)`` [N m or N], NaN without force capacity."""
+    """``payload / min_T s_min(J)`` [N m or N], NaN without force capacity.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The torque [N m for cranks, N for sliders]; NaN when the design has no force
+        capacity somewhere on the task (``min s_min(J) = 0``).
+    """
     smin = singular_value_extremes(ctx)[1]
     return ctx.req.payload / smin / effort_factor(ctx) if smin > 0 else math.nan
 

@@ -100,7 +100,23 @@ _TITLES = {
 
 # --- inputs -----------------------------------------------------------------
 def check_step(step) -> float:
-    """The lattice step of the atlas: a finite number in [0.001, 0.5]."""
+    """The lattice step of the atlas: a finite number in [0.001, 0.5].
+
+    Parameters
+    ----------
+    step : float
+        The step (non-dimensional, Liu 2006's lengths sum to 3).
+
+    Returns
+    -------
+    float
+        The step.
+
+    Raises
+    ------
+    ValueError
+        One line, outside [0.001, 0.5] or not finite.
+    """
     out = _v.step("step", step, STEP_MAX)
     if out < STEP_MIN:  # 3.4 million designs; finer lattices exhaust memory or never end
         raise ValueError(f"step must lie in [{STEP_MIN}, {STEP_MAX}], got {_v.show(step)}")
@@ -108,7 +124,23 @@ def check_step(step) -> float:
 
 
 def parse_indices(indices) -> tuple:
-    """``"gci,mci"`` or a sequence of names -> tuple of :data:`INDEX_GROUPS` keys."""
+    """``"gci,mci"`` or a sequence of names -> tuple of :data:`INDEX_GROUPS` keys.
+
+    Parameters
+    ----------
+    indices : str or sequence of str
+        Index group names.
+
+    Returns
+    -------
+    tuple of str
+        Keys of :data:`INDEX_GROUPS`.
+
+    Raises
+    ------
+    ValueError
+        One line naming an unknown group.
+    """
     if isinstance(indices, str):
         items = [s.strip() for s in indices.split(",")]
     else:
@@ -129,7 +161,18 @@ def parse_indices(indices) -> tuple:
 
 
 def index_columns(indices) -> tuple:
-    """Columns of atlas.csv for the index groups (always ``r_mic`` and ``mic_center_y``)."""
+    """Columns of atlas.csv for the index groups (always ``r_mic`` and ``mic_center_y``).
+
+    Parameters
+    ----------
+    indices : str or sequence of str
+        Index group names.
+
+    Returns
+    -------
+    tuple of str
+        The columns.
+    """
     cols = ["r_mic", "mic_center_y"]
     for g in parse_indices(indices):
         cols += [c for c in INDEX_GROUPS[g] if c not in cols]
@@ -139,7 +182,18 @@ def index_columns(indices) -> tuple:
 # --- the design space -------------------------------------------------------
 def plane_coordinates(r1, r2, r3):
     """``(s, t) = ((r1 - r2)/sqrt(2), sqrt(3/2) r3)``: the isometric map of the
-    plane ``r1 + r2 + r3 = 3`` used to draw the atlases (module docstring)."""
+    plane ``r1 + r2 + r3 = 3`` used to draw the atlases (module docstring).
+
+    Parameters
+    ----------
+    r1, r2, r3 : array_like
+        Non-dimensional link lengths (``r1 + r2 + r3 = 3``).
+
+    Returns
+    -------
+    s, t : ndarray
+        Plane coordinates (non-dimensional).
+    """
     r1, r2, r3 = (np.asarray(v, dtype=float) for v in (r1, r2, r3))
     return (r1 - r2) / math.sqrt(2.0), math.sqrt(1.5) * r3
 
@@ -150,6 +204,16 @@ def design_grid(step):
     ``r3 = k step`` (``0 <= r3 <= 1.5``) and ``r1 = j step`` with ``r1, r2 > 0``. When
     ``3/step`` is an integer the lattice is exact (``r2`` is a multiple of
     ``step`` too): 33 824 designs for ``step = 0.01``.
+
+    Parameters
+    ----------
+    step : float
+        The lattice step (non-dimensional).
+
+    Returns
+    -------
+    DataFrame
+        Columns ``r1, r2, r3, s, t``.
     """
     import pandas as pd
 
@@ -349,6 +413,17 @@ def compute_atlas(step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area", 
         each saved chunk is checked before reuse (:class:`_ChunkStore`).
     warn : callable, optional
         ``warn(message)`` for each saved chunk that failed its checks and is recomputed.
+
+    Returns
+    -------
+    DataFrame
+        One row per design: ``r1, r2, r3, s, t`` and the columns of :func:`index_columns`
+        (NaN where a design has no MIC).
+
+    Raises
+    ------
+    ValueError
+        One line, for invalid inputs.
     """
     import pandas as pd
 
@@ -520,7 +595,26 @@ def _delaunay(task):
 def draw_atlas(table, column: str, region=None, where: str | None = None, quadrature=None):
     """Filled-contour atlas of ``table[column]`` in the (s, t) plane: a
     :class:`matplotlib.figure.Figure` with the sub-region boundary lines, a
-    colour bar and, when ``region`` (boolean per row) is given, its outline."""
+    colour bar and, when ``region`` (boolean per row) is given, its outline.
+
+    Parameters
+    ----------
+    table : DataFrame
+        An atlas (atlas.csv).
+    column : str
+        The column to draw.
+    region : array_like of bool, optional
+        Rows inside a region to outline.
+    where : str, optional
+        The region's condition, for the title.
+    quadrature : str, optional
+        For the title.
+
+    Returns
+    -------
+    Figure
+        The figure (not saved).
+    """
     return _draw_plane(table["s"].to_numpy(float), table["t"].to_numpy(float),
                        table[column].to_numpy(float), column, region, where, quadrature)
 
@@ -609,6 +703,45 @@ def run_atlas(out, step=0.01, indices=DEFAULT_INDICES, quadrature: str = "area",
     holding an atlas of other settings (or another kernel path) is refused unless
     ``overwrite``; the same command again resumes from the finished chunks.
     Returns the contents of ``atlas.json``.
+
+    Parameters
+    ----------
+    out : str or Path
+        Output folder.
+    step : float
+        Lattice step (non-dimensional).
+    indices : str or sequence
+        Index groups.
+    quadrature : str
+        ``"area"`` or ``"polar"``.
+    mode : str
+        Working mode.
+    n_jobs : int
+        Worker processes.
+    dask : str, optional
+        A Dask scheduler address.
+    where : str, optional
+        A region's condition (``"r_mic > 0.8 and gci > 0.6"``).
+    figures : bool
+        Draw the figures.
+    chunk_size : int, optional
+        Designs per work unit.
+    dask_timeout : float
+        Dask connection and stall time-out [s].
+    verbose : bool
+        Log the progress.
+    overwrite : bool
+        Replace an atlas of other settings.
+
+    Returns
+    -------
+    dict
+        atlas.json's content.
+
+    Raises
+    ------
+    ValueError
+        One line, for invalid inputs or a folder holding an atlas of other settings.
     """
     from mechopt.run import io as _io
     from mechopt.core.conditions import parse_condition

@@ -40,12 +40,33 @@ _UNTIMED = 200
 
 @dataclass(frozen=True)
 class Estimate:
+    """What a run will take (:func:`estimate`).
+
+    Parameters
+    ----------
+    memory_bytes : float
+        Peak memory [bytes].
+    seconds : float
+        Wall time [s].
+    evaluations : int
+        Design evaluations.
+    seconds_per_evaluation : float or None
+        Measured time per evaluation [s] (None when no design was evaluated).
+    """
+
     memory_bytes: float
     seconds: float
     evaluations: int
     seconds_per_evaluation: float | None
 
     def describe(self) -> str:
+        """The estimate in words (for messages).
+
+        Returns
+        -------
+        str
+            ``"about 1.2 GB of memory and 3 min ..."``.
+        """
         per = ("" if self.seconds_per_evaluation is None
                else f", {self.seconds_per_evaluation * 1e3:.3g} ms per evaluation")
         return (f"about {_bytes(self.memory_bytes)} of memory and {_duration(self.seconds)} "
@@ -70,7 +91,13 @@ def _duration(s: float) -> str:
 
 def available_memory() -> float:
     """Bytes of memory this run may take: ``MemAvailable`` of /proc/meminfo where the
-    OS has it, else the physical memory."""
+    OS has it, else the physical memory.
+
+    Returns
+    -------
+    float
+        [bytes].
+    """
     try:
         with open("/proc/meminfo") as fh:
             for line in fh:
@@ -101,7 +128,28 @@ def estimate(problem, pop: int, n_offsprings: int, max_gen: int, max_evaluations
              sample: bool = True) -> Estimate:
     """Memory and time of ``max_gen`` generations of ``pop`` designs (``n_offsprings``
     new ones each) on ``problem``; ``max_evaluations`` caps the evaluations. Without
-    ``sample`` no design is evaluated and the time counts pymoo's own work only."""
+    ``sample`` no design is evaluated and the time counts pymoo's own work only.
+
+    Parameters
+    ----------
+    problem : mechopt.run.problem.MechoptProblem
+        The problem.
+    pop : int
+        Population size.
+    n_offsprings : int
+        New designs per generation.
+    max_gen : int
+        Generations.
+    max_evaluations : int, optional
+        A cap on the evaluations.
+    sample : bool
+        Time a few evaluations of the problem.
+
+    Returns
+    -------
+    Estimate
+        The estimate.
+    """
     evaluations = pop + max(max_gen - 1, 0) * n_offsprings
     if max_evaluations is not None:
         evaluations = min(evaluations, max_evaluations)
@@ -114,7 +162,25 @@ def estimate(problem, pop: int, n_offsprings: int, max_gen: int, max_evaluations
 
 
 def check(est: Estimate, memory: float | None = None) -> str | None:
-    """Refuse what cannot run (ValueError); a line to print for a run above an hour."""
+    """Refuse what cannot run (ValueError); a line to print for a run above an hour.
+
+    Parameters
+    ----------
+    est : Estimate
+        The estimate.
+    memory : float, optional
+        Memory available [bytes] (default: :func:`available_memory`).
+
+    Returns
+    -------
+    str or None
+        A line for a run above an hour, else None.
+
+    Raises
+    ------
+    ValueError
+        One line, for a run that cannot fit in memory or would take more than 30 days.
+    """
     memory = available_memory() if memory is None else memory
     if est.memory_bytes > memory:
         raise ValueError(f"this run needs {est.describe()}, more than the {_bytes(memory)} of memory "

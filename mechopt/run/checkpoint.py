@@ -56,7 +56,22 @@ def _mac(key: bytes, header: bytes) -> str:
 
 def write(path, obj, header: dict) -> Path:
     """Pickle ``obj`` (with cloudpickle: pymoo's algorithms hold local functions that
-    plain pickle refuses) and write it atomically with ``header`` and the HMAC."""
+    plain pickle refuses) and write it atomically with ``header`` and the HMAC.
+
+    Parameters
+    ----------
+    path : str or Path
+        The checkpoint file.
+    obj : object
+        What to save (the algorithm's state).
+    header : dict
+        The run's identification (plain JSON data).
+
+    Returns
+    -------
+    Path
+        The path written.
+    """
     import cloudpickle
 
     key = _keys.load_key(create=True)
@@ -71,7 +86,18 @@ def write(path, obj, header: dict) -> Path:
 
 
 def read_header(path) -> dict:
-    """The checkpoint's header, authenticated (its payload is not read)."""
+    """The checkpoint's header, authenticated (its payload is not read).
+
+    Parameters
+    ----------
+    path : str or Path
+        The checkpoint file.
+
+    Returns
+    -------
+    dict
+        The header.
+    """
     return _read(path, payload=False)[0]
 
 
@@ -124,7 +150,25 @@ def _read(path, payload: bool = True):
 
 def read(path):
     """``(header, object)`` of an authenticated checkpoint; anything else raises
-    :class:`UnreadableCheckpoint` before a byte is unpickled."""
+    :class:`UnreadableCheckpoint` before a byte is unpickled.
+
+    Parameters
+    ----------
+    path : str or Path
+        The checkpoint file.
+
+    Returns
+    -------
+    header : dict
+        The header.
+    obj : object
+        The saved object.
+
+    Raises
+    ------
+    UnreadableCheckpoint
+        A ValueError, for a missing, foreign, altered or malformed file.
+    """
     header, payload = _read(path)
     try:
         return header, pickle.loads(payload)

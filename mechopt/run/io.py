@@ -67,7 +67,13 @@ def _umask() -> int:
 
 def run_tag() -> str:
     """The tag of this run's temporary names: the one :func:`out_lock` set (inherited
-    by the worker processes through :data:`TAG_ENV`), else ``p<pid>``."""
+    by the worker processes through :data:`TAG_ENV`), else ``p<pid>``.
+
+    Returns
+    -------
+    str
+        The tag.
+    """
     tag = os.environ.get(TAG_ENV, "")
     return tag if tag.isalnum() and len(tag) <= 40 else f"p{os.getpid()}"
 
@@ -78,7 +84,18 @@ def _tmp_prefix(name: str) -> str:
 
 @contextlib.contextmanager
 def atomic_path(path):
-    """Yield a temporary path next to ``path``; rename it to ``path`` on success."""
+    """Yield a temporary path next to ``path``; rename it to ``path`` on success.
+
+    Parameters
+    ----------
+    path : str or Path
+        The final path.
+
+    Yields
+    ------
+    Path
+        The temporary path to write.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=_tmp_prefix(path.name), suffix=".tmp", dir=path.parent)
@@ -110,6 +127,20 @@ def _fsync(path):
 
 
 def write_text(path, text: str) -> Path:
+    """Write ``text`` to ``path`` atomically (:func:`atomic_path`).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    text : str
+        Its content.
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
     with atomic_path(path) as tmp:
         tmp.write_text(text)
     return Path(path)
@@ -126,7 +157,18 @@ def write_csv(df, path, **kw) -> Path:
 
 def plain_json(x):
     """``x`` as plain JSON data: mappings with string keys, lists for tuples, NumPy
-    scalars as Python numbers, NaN and infinities as None (JSON has none)."""
+    scalars as Python numbers, NaN and infinities as None (JSON has none).
+
+    Parameters
+    ----------
+    x : object
+        Nested data.
+
+    Returns
+    -------
+    object
+        Plain JSON data.
+    """
     import numpy as np
 
     if isinstance(x, dict):
@@ -143,11 +185,40 @@ def plain_json(x):
 
 
 def write_json(obj, path) -> Path:
+    """Write ``obj`` as indented JSON with sorted keys to ``path`` atomically.
+
+    Parameters
+    ----------
+    obj : object
+        Plain JSON data (NumPy numbers are written as floats).
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
     return write_text(path, json.dumps(obj, indent=2, sort_keys=True, default=float) + "\n")
 
 
 def save_figure(fig, path, dpi: int = 120) -> Path:
-    """Save a matplotlib figure atomically (and close it if pyplot manages it)."""
+    """Save a matplotlib figure atomically (and close it if pyplot manages it).
+
+    Parameters
+    ----------
+    fig : Figure
+        The figure.
+    path : str or Path
+        The image file.
+    dpi : int
+        Resolution.
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
     path = Path(path)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=dpi, format=path.suffix.lstrip(".") or "png", bbox_inches="tight")
@@ -162,7 +233,31 @@ def save_figure(fig, path, dpi: int = 120) -> Path:
 def read_json(path, what: str | None = None, limit: int = MAX_JSON_BYTES, root=None):
     """The JSON value of a regular file (:func:`read_bytes`); anything unreadable or not
     JSON (bad UTF-8, nesting too deep, a number too large) is a one-line ValueError;
-    FileNotFoundError passes."""
+    FileNotFoundError passes.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    what : str, optional
+        What it is, for the message.
+    limit : int
+        The largest size [bytes].
+    root : str or Path, optional
+        A folder the file must lie inside.
+
+    Returns
+    -------
+    object
+        The JSON value.
+
+    Raises
+    ------
+    FileNotFoundError
+        When it does not exist.
+    ValueError
+        One line, for anything unreadable or not JSON.
+    """
     what = what or repr(str(path))
     data = read_bytes(path, limit, what, root)
     try:
@@ -177,7 +272,13 @@ _CREATED: list = []
 
 
 def created_folders() -> list:
-    """The folders this process created for output so far (resolved paths, outermost first)."""
+    """The folders this process created for output so far (resolved paths, outermost first).
+
+    Returns
+    -------
+    list of Path
+        The folders.
+    """
     return list(_CREATED)
 
 
@@ -188,6 +289,21 @@ def prepare_out_dir(path) -> Path:
     count as its own (:func:`created_folders`, :func:`remove_created`): a folder
     another run made meanwhile is never taken for ours. Raises ValueError (one line)
     when it cannot be created or written; the empty folders it made are then removed.
+
+    Parameters
+    ----------
+    path : str or Path
+        The folder.
+
+    Returns
+    -------
+    Path
+        The folder.
+
+    Raises
+    ------
+    ValueError
+        One line, when it cannot be made or written to.
     """
     text = str(path)
     if not text.strip() or "\0" in text:
@@ -231,7 +347,18 @@ def remove_created(since: int = 0) -> list:
     (e.g. a paper's folder a worker made); a folder holding anything (another run's
     files, finished results) stays, and nothing below a folder holding a run's lock
     (:data:`LOCK_NAME`: a run started there meanwhile may be about to write into its
-    empty folders) is touched. Links are not followed. Returns the folders removed."""
+    empty folders) is touched. Links are not followed. Returns the folders removed.
+
+    Parameters
+    ----------
+    since : int
+        How many of :func:`created_folders` to keep.
+
+    Returns
+    -------
+    list of Path
+        The folders removed.
+    """
     removed = []
     for top in reversed(_CREATED[since:]):
         if not os.path.isdir(top) or os.path.islink(top):
@@ -260,7 +387,20 @@ def sweep_temporaries(folder, tag: str | None = None) -> int:
     files ``.<name>.<tag>.<random>.tmp`` (:func:`atomic_path`) and staging folders
     ``.staging-<tag>-<random>`` (:func:`output_set`). Nothing else is removed (another
     program's or another run's temporaries stay); links are not followed. Returns how
-    many were removed."""
+    many were removed.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The output folder.
+    tag : str, optional
+        The run's tag (default: this run's).
+
+    Returns
+    -------
+    int
+        The number of temporaries removed.
+    """
     tag = tag or run_tag()
     if not tag.isalnum():
         return 0
@@ -298,6 +438,18 @@ _MAC_CONTEXT = b"mechopt-manifest 1\n"
 
 
 def sha256_file(path) -> str:
+    """The SHA-256 of a file's bytes.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    str
+        The digest (hex).
+    """
     h = hashlib.sha256()
     with open(path, "rb") as fh:
         for block in iter(lambda: fh.read(1 << 20), b""):
@@ -321,7 +473,23 @@ def read_manifest(folder) -> dict | None:
     regular file, too large, not JSON, not of the manifest's shape: names that are
     not plain file names, ``files`` not a mapping of names to sha256 ...) is a
     one-line ValueError (it is never guessed at). Whether it is authentic is
-    :func:`authentic`."""
+    :func:`authentic`.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The output folder.
+
+    Returns
+    -------
+    dict or None
+        The manifest.
+
+    Raises
+    ------
+    ValueError
+        One line, for an unreadable manifest.
+    """
     path = Path(folder) / MANIFEST
     where = repr(str(path))
     try:
@@ -351,7 +519,18 @@ def _manifest_mac(manifest: dict, key: bytes) -> str:
 
 
 def authentic(manifest: dict | None) -> bool:
-    """Whether ``manifest`` was written by mechopt under this user's key (its ``mac``)."""
+    """Whether ``manifest`` was written by mechopt under this user's key (its ``mac``).
+
+    Parameters
+    ----------
+    manifest : dict or None
+        A manifest.
+
+    Returns
+    -------
+    bool
+        Whether its MAC verifies.
+    """
     import hmac as _hmac
 
     from mechopt.run import keys
@@ -370,7 +549,20 @@ def authentic(manifest: dict | None) -> bool:
 
 def write_manifest(manifest: dict, folder) -> Path:
     """Write ``manifest`` (updated in place with its ``mac``) as the folder's
-    :data:`MANIFEST`, authenticated with the user's key (made if missing)."""
+    :data:`MANIFEST`, authenticated with the user's key (made if missing).
+
+    Parameters
+    ----------
+    manifest : dict
+        The manifest (its ``mac`` is set).
+    folder : str or Path
+        The output folder.
+
+    Returns
+    -------
+    Path
+        The manifest file.
+    """
     from mechopt.run import keys
 
     key = keys.load_key(create=True)
@@ -392,7 +584,22 @@ def _flat(d, prefix=""):
 
 def differences(old: dict, new: dict, limit: int = 6) -> str:
     """``"seed 3 -> 4, algorithm.pop_size 20 -> 40"``: the keys where two settings
-    dictionaries differ (nested keys dotted), for one-line messages."""
+    dictionaries differ (nested keys dotted), for one-line messages.
+
+    Parameters
+    ----------
+    old : dict
+        Settings.
+    new : dict
+        Other settings.
+    limit : int
+        The most keys named.
+
+    Returns
+    -------
+    str
+        The differences.
+    """
     a, b = _flat(old), _flat(new)
     diff = [f"{k} {a.get(k, '(none)')} -> {b.get(k, '(none)')}"
             for k in sorted(set(a) | set(b)) if a.get(k) != b.get(k)]
@@ -441,6 +648,30 @@ def claim_out(folder, kind: str, key: dict, outputs, overwrite: bool = False) ->
 
     The user's key is loaded (made if missing) first: an unsafe key, or a key folder
     where none can be made, is refused before the run does any work.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The output folder.
+    kind : str
+        The run's kind (``"optimize"``, ``"design"``, ...).
+    key : dict
+        What fixes the run's result.
+    outputs : sequence of str
+        Glob patterns of the files this kind writes.
+    overwrite : bool
+        Replace another run's files.
+
+    Returns
+    -------
+    dict
+        The run's manifest.
+
+    Raises
+    ------
+    ValueError
+        One line, for a folder holding another run (without ``overwrite``), foreign files,
+        or an unsafe key.
     """
     from mechopt.run import keys
 
@@ -488,7 +719,31 @@ def run_in(folder, kind: str, key: dict, outputs, overwrite: bool = False):
     fails (an error, an interrupt) before the run has written anything it owns (a
     checkpoint) or completed its set, the folder's manifest is put back as it was
     (removed if there was none): a run that failed leaves nothing. A run killed
-    outright leaves its ``running`` manifest, which ``--resume`` recognises."""
+    outright leaves its ``running`` manifest, which ``--resume`` recognises.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The output folder.
+    kind : str
+        The run's kind.
+    key : dict
+        What fixes the run's result.
+    outputs : sequence of str
+        Glob patterns of the files this kind writes.
+    overwrite : bool
+        Replace another run's files.
+
+    Yields
+    ------
+    dict
+        The run's manifest.
+
+    Raises
+    ------
+    ValueError
+        As :func:`claim_out`.
+    """
     path = Path(folder) / MANIFEST
     try:
         before = read_bytes(path, MAX_JSON_BYTES, repr(str(path)))
@@ -514,7 +769,22 @@ def run_in(folder, kind: str, key: dict, outputs, overwrite: bool = False):
 def own(folder, manifest: dict, name: str) -> None:
     """Record in the manifest that the run wrote ``name`` outside :func:`output_set`
     (its checkpoint): a later run may then remove it, a foreign file of that name it
-    may not."""
+    may not.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The output folder.
+    manifest : dict
+        The run's manifest.
+    name : str
+        The file's name.
+
+    Raises
+    ------
+    ValueError
+        For a name that is not a plain file name.
+    """
     if not _plain_name(name):
         raise ValueError(f"not a plain file name: {name!r}")
     if name not in manifest.setdefault("owned", []):
@@ -529,7 +799,20 @@ def output_set(folder, manifest: dict):
     ``folder`` and the manifest is rewritten last with ``"status": "complete"`` and
     each file's sha256. On an error (no space, a kill) the staging folder is removed
     and nothing of the set reaches ``folder``; the manifest still says ``running``,
-    so a set cut short by a kill between the renames never reads as complete."""
+    so a set cut short by a kill between the renames never reads as complete.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The output folder.
+    manifest : dict
+        The run's manifest (:func:`claim_out`).
+
+    Yields
+    ------
+    Path
+        The staging folder to write the outputs into.
+    """
     folder = Path(folder)
     stage = Path(tempfile.mkdtemp(prefix=f"{_STAGING}{run_tag()}-", dir=folder))
     try:
@@ -608,7 +891,23 @@ def out_lock(folder):
     host, start time, run tag) for the message. The run's tag (:func:`run_tag`) is set
     for the block; the temporaries of the dead run whose lock is taken over, and this
     run's own, are swept (:func:`sweep_temporaries`) when the lock is taken and on
-    every exit."""
+    every exit.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The output folder.
+
+    Yields
+    ------
+    Path
+        The folder, while it is held.
+
+    Raises
+    ------
+    ValueError
+        One line, when another run holds the folder.
+    """
     folder = prepare_out_dir(folder)  # one-line ValueError if it cannot be made or written
     lock = folder / LOCK_NAME
     fd, before = _take_lock(lock, folder)

@@ -34,7 +34,13 @@ _MAX_KEY_FILE = 4096
 
 
 def key_path() -> Path:
-    """Where the key lives (see the module docstring)."""
+    """Where the key lives (see the module docstring).
+
+    Returns
+    -------
+    Path
+        The key file.
+    """
     base = os.environ.get("MECHOPT_CONFIG_DIR")
     if not base:
         xdg = os.environ.get("XDG_CONFIG_HOME")
@@ -50,6 +56,16 @@ def _refuse(path, why: str) -> ValueError:
 
 def load_key(create: bool) -> bytes | None:
     """The user's key; with ``create`` made if missing (None if missing otherwise).
+
+    Parameters
+    ----------
+    create : bool
+        Make the key when it is missing.
+
+    Returns
+    -------
+    bytes or None
+        The key (None when missing and not created).
 
     Raises
     ------
@@ -124,7 +140,20 @@ def _create(path: Path) -> bytes:
 
 
 def mac(key: bytes, *parts: bytes) -> str:
-    """HMAC-SHA256 (hex) of the concatenated ``parts`` under ``key``."""
+    """HMAC-SHA256 (hex) of the concatenated ``parts`` under ``key``.
+
+    Parameters
+    ----------
+    key : bytes
+        The key.
+    *parts : bytes
+        The data.
+
+    Returns
+    -------
+    str
+        The MAC (hex).
+    """
     h = hmac.new(key, b"", hashlib.sha256)
     for p in parts:
         h.update(p)

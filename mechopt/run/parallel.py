@@ -52,7 +52,13 @@ _POOL_LOCK = threading.Lock()
 def kernel_path() -> str:
     """``"numba"`` or ``"numpy"``: which implementation of the compiled kernels this
     process runs (the two agree to ~1e-14, not bit for bit, so a cached or
-    distributed result records it and is never mixed with the other)."""
+    distributed result records it and is never mixed with the other).
+
+    Returns
+    -------
+    str
+        ``"numba"`` or ``"numpy"``.
+    """
     from mechopt.mechanisms.five_bar import kernels
 
     return "numba" if kernels.HAVE_NUMBA else "numpy"
@@ -94,7 +100,15 @@ def _within(seconds: float, what: str, func, *args, **kw):
 
 def close_client(client, timeout: float | None = None) -> None:
     """Close a Dask client, waiting at most ``timeout`` seconds (default: its
-    :func:`connect` timeout); a scheduler that does not answer is left behind."""
+    :func:`connect` timeout); a scheduler that does not answer is left behind.
+
+    Parameters
+    ----------
+    client : dask.distributed.Client
+        The Dask client.
+    timeout : float, optional
+        Seconds to wait (default: the client's time-out).
+    """
     seconds = timeout if timeout is not None else _STALL.get(id(client), DEFAULT_STALL_S)
     try:
         _within(seconds, "closing the Dask client", client.close, timeout=seconds)
@@ -105,7 +119,23 @@ def close_client(client, timeout: float | None = None) -> None:
 
 def cluster_threads(client) -> int:
     """The number of worker threads of the cluster (at least 1), asked within the
-    client's stall timeout (ValueError, one line, otherwise)."""
+    client's stall timeout (ValueError, one line, otherwise).
+
+    Parameters
+    ----------
+    client : dask.distributed.Client
+        The Dask client.
+
+    Returns
+    -------
+    int
+        The number of threads, at least 1.
+
+    Raises
+    ------
+    ValueError
+        One line, when the cluster does not answer in time.
+    """
     seconds = _STALL.get(id(client), DEFAULT_STALL_S)
     return max(1, sum(_within(seconds, "the Dask scheduler", client.nthreads).values()))
 
@@ -120,7 +150,25 @@ def check_cluster(client, timeout: float = 10.0) -> dict:
     """Before the first chunk: the cluster has workers, and each imports the same
     mechopt version and kernel path as this process. ValueError (one line) otherwise:
     no worker within ``timeout`` seconds, or no facts from the workers within
-    ``max(FACTS_MIN_S, 6 timeout)`` seconds. Returns the common facts."""
+    ``max(FACTS_MIN_S, 6 timeout)`` seconds. Returns the common facts.
+
+    Parameters
+    ----------
+    client : dask.distributed.Client
+        The Dask client.
+    timeout : float
+        Seconds to wait.
+
+    Returns
+    -------
+    dict
+        The facts the workers share (version, kernel path).
+
+    Raises
+    ------
+    ValueError
+        One line, for no worker within ``timeout`` or workers that differ from this process.
+    """
     seconds = max(FACTS_MIN_S, 6.0 * timeout)
     return _within(timeout + seconds + 1.0, "the Dask cluster", _check_cluster, client, timeout, seconds)
 
@@ -156,6 +204,11 @@ def warm_up(_=None) -> dict:
     -------
     dict
         ``{"kernel": "numba" or "numpy", "seconds": wall time [s]}``.
+
+    Parameters
+    ----------
+    _ : object, optional
+        Ignored (the signature of a mapped function).
     """
     import time
 
@@ -183,8 +236,12 @@ def warm_workers(client, timeout: float = WARMUP_S) -> dict:
     Returns
     -------
     dict
-        ``{worker address: seconds of its warm-up}``. ValueError (one line) when a
-        worker fails or the allowance runs out.
+        ``{worker address: seconds of its warm-up}``.
+
+    Raises
+    ------
+    ValueError
+        One line, when a worker fails or the allowance runs out.
     """
     if client in _WARMED:
         return _WARMED[client]
@@ -222,7 +279,20 @@ def _still_working(client, pending) -> bool:
 
 
 def chunks(seq: Sequence, n_chunks: int) -> list:
-    """Split ``seq`` into at most ``n_chunks`` contiguous, nearly equal slices."""
+    """Split ``seq`` into at most ``n_chunks`` contiguous, nearly equal slices.
+
+    Parameters
+    ----------
+    seq : sequence
+        The items.
+    n_chunks : int
+        The most slices.
+
+    Returns
+    -------
+    list
+        The slices.
+    """
     n = len(seq)
     n_chunks = max(1, min(_v.integer("n_chunks", n_chunks), n)) if n else 1
     size = math.ceil(n / n_chunks) if n else 0
@@ -232,8 +302,23 @@ def chunks(seq: Sequence, n_chunks: int) -> list:
 def connect(address: str, timeout: float = 10.0):
     """A ``dask.distributed.Client`` for a scheduler address (``tcp://host:port``).
 
-    Raises ValueError with one line when dask is not installed or the scheduler
-    cannot be reached within ``timeout`` seconds.
+    Parameters
+    ----------
+    address : str
+        The scheduler's address.
+    timeout : float
+        Seconds to wait for the scheduler.
+
+    Returns
+    -------
+    dask.distributed.Client
+        The client.
+
+    Raises
+    ------
+    ValueError
+        One line, when dask is not installed or the scheduler cannot be reached
+        within ``timeout`` seconds.
     """
     if not isinstance(address, str) or not address.strip():
         raise ValueError(f"the Dask scheduler address must be a string such as tcp://host:8786, "
@@ -286,6 +371,11 @@ def parallel_map(func: Callable, items: Iterable, n_jobs: int = 2, client=None,
     on_item : callable, optional
         Called as ``on_item(index, result)`` in this process as each result
         arrives (e.g. to save it, so that a killed run can resume).
+
+    Returns
+    -------
+    list
+        The results, in input order.
     """
     items = list(items)
     total = len(items)
@@ -354,7 +444,22 @@ def map_async(func: Callable, items: Iterable, n_jobs: int = 2) -> _Pending:
     return at once (this process may work meanwhile); ``.results()`` waits for them, in
     input order. With one job nothing starts: each item is evaluated in this process
     when its result is asked for. An error ends every worker (:func:`stop_workers`)
-    before it is raised."""
+    before it is raised.
+
+    Parameters
+    ----------
+    func : callable
+        A picklable, module-level function.
+    items : iterable
+        Work units.
+    n_jobs : int
+        Worker processes.
+
+    Returns
+    -------
+    object
+        A pending result; ``.results()`` returns the list in input order.
+    """
     items = list(items)
     n_jobs = _v.integer("n_jobs", n_jobs, 1, MAX_JOBS)
     if n_jobs == 1:
@@ -379,7 +484,15 @@ def start_workers(n_jobs: int = 2, prepare: Callable | None = None) -> None:
 
     ``prepare`` (a picklable, module-level function of one ignored argument) is sent
     ``n_jobs`` times, so that each worker most likely runs it once: unpickling it
-    imports its module there, before the first real work unit arrives."""
+    imports its module there, before the first real work unit arrives.
+
+    Parameters
+    ----------
+    n_jobs : int
+        Worker processes.
+    prepare : callable, optional
+        Run once in each worker as it starts.
+    """
     n_jobs = _v.integer("n_jobs", n_jobs, 1, MAX_JOBS)
     if n_jobs > 1:
         executor = _executor(n_jobs)

@@ -30,14 +30,41 @@ INDEX_LABELS = {
 
 def workspace_axes(ax, unit: str = "L"):
     """Label an axes of the base frame: x, y in ``unit``, equal aspect (the one style
-    of every workspace map)."""
+    of every workspace map).
+
+    Parameters
+    ----------
+    ax : Axes
+        The axes.
+    unit : str
+        The length unit.
+    """
     ax.set_xlabel(f"x [{unit}]")
     ax.set_ylabel(f"y [{unit}]")
     ax.set_aspect("equal")
 
 
 def labelled_colorbar(fig, mappable, ax, label: str, **kw):
-    """A colour bar with its quantity and unit (``INDEX_LABELS`` for local indices)."""
+    """A colour bar with its quantity and unit (``INDEX_LABELS`` for local indices).
+
+    Parameters
+    ----------
+    fig : Figure
+        The figure.
+    mappable : matplotlib.cm.ScalarMappable
+        What is coloured.
+    ax : Axes
+        The axes.
+    label : str
+        The quantity's name (or a local index's).
+    **kw : 
+        Passed to ``fig.colorbar``.
+
+    Returns
+    -------
+    matplotlib.colorbar.Colorbar
+        The colour bar.
+    """
     cb = fig.colorbar(mappable, ax=ax, **kw)
     cb.set_label(label)
     return cb
@@ -81,7 +108,28 @@ def plot_front(problem, front, history, population=None, info=None, chosen=None)
     """The front of a 2-3 objective run (pairs of objectives for more), or the
     best-so-far curve of a single-objective run; with an empty front (no feasible
     design) and the final ``population``, :func:`plot_population` instead. ``chosen``
-    (a row index of ``front``) is marked and labelled."""
+    (a row index of ``front``) is marked and labelled.
+
+    Parameters
+    ----------
+    problem : mechopt.run.problem.MechoptProblem
+        The problem.
+    front : DataFrame
+        front.csv.
+    history : DataFrame
+        history.csv.
+    population : DataFrame, optional
+        The final population.
+    info : dict, optional
+        run.json (for the title).
+    chosen : int, optional
+        A row of ``front`` to mark.
+
+    Returns
+    -------
+    Figure
+        The figure.
+    """
     obs = problem.objectives
     if len(front) == 0 and population is not None:
         n_eval = (info or {}).get("evaluations")
@@ -124,7 +172,26 @@ def plot_sweep(problem, front, sweep, population=None, info=None) -> Figure:
     """Weighted-sum optima (labelled by weight) over the NSGA-II front. Weights
     without a feasible optimum (``feasible`` False in ``sweep``) are listed, not
     drawn; when nothing at all is feasible, the runs' final ``population``
-    coloured by constraint violation (:func:`plot_population`)."""
+    coloured by constraint violation (:func:`plot_population`).
+
+    Parameters
+    ----------
+    problem : mechopt.run.problem.MechoptProblem
+        The problem.
+    front : DataFrame
+        The NSGA-II front.
+    sweep : DataFrame
+        sweep.csv.
+    population : DataFrame, optional
+        The final populations.
+    info : dict, optional
+        run.json.
+
+    Returns
+    -------
+    Figure
+        The figure.
+    """
     a, b = problem.objectives[:2]
     ok = sweep["feasible"].astype(bool) if "feasible" in sweep else np.ones(len(sweep), bool)
     if len(front) == 0 and not ok.any() and population is not None:
@@ -159,7 +226,22 @@ def plot_population(problem, population, title=None) -> Figure:
     """The final population of a run without a feasible design, in design space
     (first two variables; a single variable against the violation), coloured by
     its constraint violation (``violation`` = sum of max(0, g)); the
-    least-violating design is starred."""
+    least-violating design is starred.
+
+    Parameters
+    ----------
+    problem : mechopt.run.problem.MechoptProblem
+        The problem.
+    population : DataFrame
+        The final population.
+    title : str, optional
+        The title.
+
+    Returns
+    -------
+    Figure
+        The figure.
+    """
     from matplotlib.colors import LogNorm, Normalize
 
     names = list(problem.var_names)

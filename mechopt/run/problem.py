@@ -52,6 +52,22 @@ class Objective:
     it rises with real progress and compares between runs. A value outside the
     bounds is allowed (it normalises outside [0, 1]); beyond the reference point
     it adds no hypervolume.
+
+    Parameters
+    ----------
+    name : str
+        The objective's name (a front.csv column).
+    sense : int
+        +1 minimised, -1 maximised.
+    unit : str
+        Its unit (``"-"``: dimensionless).
+    bounds : tuple of float, optional
+        ``(lo, hi)`` of its natural value.
+
+    Raises
+    ------
+    ValueError
+        For a sense other than +1 or -1, or invalid bounds.
     """
 
     def __init__(self, name: str, sense: int, unit: str = "-", bounds=None):
@@ -69,12 +85,41 @@ class Objective:
         self.bounds = bounds
 
     def with_bounds(self, lo, hi) -> "Objective":
-        """The same objective with the range ``(lo, hi)`` (for bounds an instance computes)."""
+        """The same objective with the range ``(lo, hi)`` (for bounds an instance computes).
+
+        Parameters
+        ----------
+        lo : float
+            Lower end of the natural value.
+        hi : float
+            Upper end, > ``lo``.
+
+        Returns
+        -------
+        Objective
+            A new objective.
+        """
         return Objective(self.name, self.sense, self.unit, (lo, hi))
 
     def normalise(self, f):
         """``f`` in pymoo's minimisation form (``sense * value``) mapped to [0, 1] by
-        :attr:`bounds`: 0 at the best natural value, 1 at the worst."""
+        :attr:`bounds`: 0 at the best natural value, 1 at the worst.
+
+        Parameters
+        ----------
+        f : array_like
+            Values in minimisation form.
+
+        Returns
+        -------
+        ndarray
+            The normalised values (outside [0, 1] for values outside the bounds).
+
+        Raises
+        ------
+        ValueError
+            When the objective has no bounds.
+        """
         if self.bounds is None:
             raise ValueError(f"objective {self.name!r} declares no bounds")
         lo, hi = self.bounds
@@ -141,6 +186,14 @@ class MechoptProblem(Problem):
     subclass assigns to ``settings`` itself): it is written to ``run.json`` and the
     run folder's manifest key (a folder of a run with other options is refused) and
     shown by ``repr``.
+
+    Parameters
+    ----------
+    xl, xu : array_like
+        Lower and upper bounds of the variables (their units).
+    **kwargs
+        Passed to :class:`pymoo.core.problem.Problem` (e.g. ``callback``,
+        ``elementwise_runner``).
     """
 
     name = "base"
@@ -262,7 +315,18 @@ class MechoptProblem(Problem):
 
     def normalise(self, F) -> np.ndarray:
         """Objectives ``F`` (minimisation form, ``(n, n_obj)``) scaled to [0, 1] by each
-        objective's declared bounds (:meth:`Objective.normalise`)."""
+        objective's declared bounds (:meth:`Objective.normalise`).
+
+        Parameters
+        ----------
+        F : array_like
+            Objectives in minimisation form, ``(n, n_obj)``.
+
+        Returns
+        -------
+        ndarray
+            The normalised objectives.
+        """
         F = np.asarray(F, float).reshape(-1, self.n_obj)
         return np.column_stack([ob.normalise(F[:, j]) for j, ob in enumerate(self.objectives)]) \
             if len(F) else np.empty((0, self.n_obj))
@@ -271,7 +335,18 @@ class MechoptProblem(Problem):
         """Hypervolume of ``F`` (minimisation form) in normalised objectives against the
         reference point :data:`HV_REFERENCE` in every direction: between 0 and
         ``HV_REFERENCE ** n_obj``, comparable between runs of the problem. NaN when
-        an objective declares no bounds."""
+        an objective declares no bounds.
+
+        Parameters
+        ----------
+        F : array_like
+            Objectives in minimisation form, ``(n, n_obj)``.
+
+        Returns
+        -------
+        float
+            The hypervolume (normalised units).
+        """
         if any(ob.bounds is None for ob in self.objectives):
             return float("nan")
         F = self.normalise(F)
@@ -283,12 +358,44 @@ class MechoptProblem(Problem):
         return float(HV(ref_point=np.full(self.n_obj, HV_REFERENCE))(F))
 
     def evaluate_designs(self, X) -> dict:
-        """Return ``{"F": (n, n_obj), "G": (n, n_constr), "extra": {name: (n,)}}``."""
+        """Return ``{"F": (n, n_obj), "G": (n, n_constr), "extra": {name: (n,)}}``.
+
+        Parameters
+        ----------
+        X : array_like
+            Designs, shape ``(n, n_var)``, in the variables' units.
+
+        Returns
+        -------
+        dict
+            ``F`` (minimisation form), ``G`` (<= 0 feasible) and ``extra``.
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: each problem implements it.
+        """
         raise NotImplementedError
 
     def check_designs(self, X) -> np.ndarray:
         """``X`` as an ``(n, n_var)`` float array; ValueError on NaN or a value
-        outside ``[xl, xu]`` (beyond rounding): such a design is not of this problem."""
+        outside ``[xl, xu]`` (beyond rounding): such a design is not of this problem.
+
+        Parameters
+        ----------
+        X : array_like
+            Designs, shape ``(n, n_var)``, in the variables' units.
+
+        Returns
+        -------
+        ndarray
+            ``(n, n_var)`` floats.
+
+        Raises
+        ------
+        ValueError
+            On NaN or a value outside ``[xl, xu]``.
+        """
         X = np.asarray(X, float)
         if X.ndim == 1 and X.size == self.n_var:
             X = X[None, :]
@@ -340,7 +447,18 @@ class MechoptProblem(Problem):
 
     def describe(self, X) -> dict:
         """Columns for ``front.csv``: variables, objective values (natural sign),
-        constraint values and every derived index, for designs ``X``."""
+        constraint values and every derived index, for designs ``X``.
+
+        Parameters
+        ----------
+        X : array_like
+            Designs, shape ``(n, n_var)``, in the variables' units.
+
+        Returns
+        -------
+        dict
+            ``{column: ndarray}``.
+        """
         X = np.atleast_2d(np.asarray(X, float))
         res = self.evaluate_designs(X)
         cols = {name: X[:, i] for i, name in enumerate(self.var_names)}

@@ -18,6 +18,17 @@ class Progress:
     On a TTY it redraws one line with a bar; otherwise it prints a plain line at
     most every ``min_interval`` seconds (and always the last one). Nothing when the
     ``"mechopt"`` logger's level is above INFO (module docstring).
+
+    Parameters
+    ----------
+    total : int
+        Units of work in all.
+    label : str
+        What is counted.
+    stream : file, optional
+        Where to write (default stderr).
+    min_interval : float
+        Seconds between plain lines.
     """
 
     def __init__(self, total: int, label: str, stream=None, min_interval: float = 2.0):
@@ -32,6 +43,15 @@ class Progress:
         self.silent = logging.getLogger("mechopt").level > logging.INFO
 
     def update(self, done: int, info: str = ""):
+        """Report progress.
+
+        Parameters
+        ----------
+        done : int
+            Units of work done so far (of ``total``).
+        info : str
+            A short text shown after the count.
+        """
         if self.silent:
             return
         now = time.perf_counter()
@@ -53,7 +73,15 @@ class Progress:
 
     def message(self, log, text: str):
         """``log(text)`` without breaking the bar: on a TTY the bar's line is cleared
-        first and redrawn after (``log`` may write to the same terminal)."""
+        first and redrawn after (``log`` may write to the same terminal).
+
+        Parameters
+        ----------
+        log : callable
+            ``log(text)``, e.g. a logger's method.
+        text : str
+            The message.
+        """
         if not self.tty or self.silent:
             log(text)
             return
@@ -64,6 +92,7 @@ class Progress:
             self._draw(time.perf_counter())
 
     def close(self):
+        """End the progress line (on a TTY, move to the next line)."""
         if self.tty and not self.silent:
             self.stream.write("\n")
             self.stream.flush()

@@ -136,6 +136,11 @@ def reference_front(problem, grid=None, refine=None, levels=None, n_jobs: int = 
     dict
         ``X`` (designs), ``F`` (their objectives, minimisation form), ``evaluations``
         and ``seconds``.
+
+    Raises
+    ------
+    ValueError
+        For a problem with more than two variables.
     """
     p = problem
     d = p.n_var

@@ -120,6 +120,30 @@ def make_algorithm(name: str, pop: int, n_obj: int, crossover_prob=None, mutatio
     mutated, distribution index). For ``de`` the crossover probability is DE's
     rate CR and the mutation that of its polynomial mutation. Unset values keep
     each algorithm's defaults (pymoo's; for DE :data:`DE_CR`).
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`ALGORITHMS`.
+    pop : int
+        Population size.
+    n_obj : int
+        Number of objectives (NSGA-III's reference directions).
+    crossover_prob, mutation_prob : float, optional
+        Probabilities, in [0, 1].
+    crossover_eta, mutation_eta : float, optional
+        Distribution indices, > 0.
+
+    Returns
+    -------
+    Algorithm
+        A fresh pymoo algorithm.
+
+    Raises
+    ------
+    ValueError
+        One line, for an unknown name, an algorithm that does not fit the number of
+        objectives, or an invalid setting.
     """
     _v.choice("algorithm", name, ALGORITHMS)
     pop = _v.integer("pop", pop, 2, MAX_POP)
@@ -213,7 +237,19 @@ def _operator(op, depth=1) -> dict | None:
 
 
 def describe_algorithm(algo) -> dict:
-    """Class, population and operator settings of a pymoo algorithm (``run.json``)."""
+    """Class, population and operator settings of a pymoo algorithm (``run.json``).
+
+    Parameters
+    ----------
+    algo : Algorithm
+        A pymoo algorithm.
+
+    Returns
+    -------
+    dict
+        ``class``, ``module``, ``pop_size``, ``n_offsprings`` and each operator's
+        class and settings.
+    """
     init, mating = getattr(algo, "initialization", None), getattr(algo, "mating", None)
     out = {"class": type(algo).__name__, "module": type(algo).__module__}
     for key in ("pop_size", "n_offsprings"):
@@ -247,7 +283,18 @@ def describe_algorithm(algo) -> dict:
 
 def describe_termination(term) -> dict:
     """Class and parameters of a pymoo termination (``run.json``); for pymoo's default
-    terminations also their tolerances and maxima."""
+    terminations also their tolerances and maxima.
+
+    Parameters
+    ----------
+    term : Termination
+        A pymoo termination.
+
+    Returns
+    -------
+    dict
+        ``class`` and its parameters (``n_max_gen``, tolerances, ...).
+    """
     out = {"class": type(term).__name__}
     for key in ("n_max_gen", "n_max_evals", "max_time", "fmin"):
         if hasattr(term, key):
@@ -331,6 +378,28 @@ def _user_algorithm(algorithm, pop, operators):
 
 @dataclass
 class RunResult:
+    """The outcome of :func:`optimize` and :func:`resume`.
+
+    Parameters
+    ----------
+    front : DataFrame
+        The feasible non-dominated designs: variables and objectives in their
+        natural sign and units (front.csv, :doc:`outputs`).
+    history : DataFrame
+        One row per generation (history.csv).
+    info : dict
+        run.json's content.
+    population : DataFrame, optional
+        The final population: variables, objectives (natural sign), ``g_*`` and
+        ``violation`` (sum of max(0, g), pymoo's CV).
+    least : DataFrame, optional
+        One row: the least-violating design when no design is feasible, else None.
+    result : Result, optional
+        pymoo's own ``Result`` of the run (``X``, ``F``, ``G``, ``pop``, ``opt``,
+        ``algorithm``, ``exec_time``, as ``pymoo.optimize.minimize`` returns it; ``F``
+        in minimisation form).
+    """
+
     front: pd.DataFrame
     history: pd.DataFrame
     info: dict
@@ -481,6 +550,51 @@ def optimize(problem, algorithm=None, pop: int | None = None, gen: int | None = 
     ``callback(algorithm)``), called after every generation as with
     ``pymoo.optimize.minimize(..., callback=)``; it is not saved in a checkpoint. The
     result's ``result`` is pymoo's own ``Result`` of the run.
+
+    Parameters
+    ----------
+    problem : str or Problem
+        A registered problem's name (:func:`mechopt.problems.get`) or a problem
+        instance.
+    algorithm : str or Algorithm, optional
+        A name of :data:`ALGORITHMS` or a pymoo algorithm object.
+    pop, gen : int, optional
+        Population size and generations.
+    seed : int
+        Random seed.
+    n_jobs : int, optional
+        Worker processes (None: chosen by timing).
+    client : dask.distributed.Client, optional
+        Evaluate on a Dask cluster.
+    out : str or Path, optional
+        Output folder.
+    progress : bool
+        Log one line per generation.
+    plot : bool
+        Draw front.png (with ``out``).
+    checkpoint_every : int, optional
+        Checkpoint every K generations (needs ``out``).
+    termination : tuple or Termination, optional
+        A pymoo termination (not with ``gen`` or ``tol``).
+    tol : float, optional
+        pymoo's default termination with ``ftol=tol``.
+    crossover_prob, mutation_prob, crossover_eta, mutation_eta : float, optional
+        Operator settings (:func:`make_algorithm`).
+    overwrite : bool
+        Replace another run that ``out`` holds.
+    callback : Callback or callable, optional
+        Called after every generation with the algorithm.
+
+    Returns
+    -------
+    RunResult
+        The front, history, run information, final population and pymoo's ``Result``.
+
+    Raises
+    ------
+    ValueError
+        One line, for invalid options, a run that cannot fit in memory or time, or a
+        folder holding another run.
     """
     operators = {"crossover_prob": crossover_prob, "mutation_prob": mutation_prob,
                  "crossover_eta": crossover_eta, "mutation_eta": mutation_eta}
@@ -577,6 +691,32 @@ def resume(out, n_jobs: int | None = None, client=None, progress: bool = True, p
     ``settings``, the problem's): any that differ from the checkpointed run's are
     refused with the list. A finished run, and one stopped before its first
     checkpoint, say so. Every refusal is a one-line ValueError.
+
+    Parameters
+    ----------
+    out : str or Path
+        The run folder.
+    n_jobs : int, optional
+        Worker processes (None: chosen by timing).
+    client : dask.distributed.Client, optional
+        Evaluate on a Dask cluster.
+    progress : bool
+        Log one line per generation.
+    plot : bool
+        Draw front.png.
+    expect : dict, optional
+        Options the caller asks for, refused when they differ from the run's.
+
+    Returns
+    -------
+    RunResult
+        As :func:`optimize` returns for the uninterrupted run.
+
+    Raises
+    ------
+    ValueError
+        One line, for a missing, foreign or unauthenticated checkpoint, a finished
+        run, or options that differ from ``expect``.
     """
     from mechopt.run import checkpoint as _ck
 
@@ -816,7 +956,18 @@ def _violation_info(problem, least: pd.DataFrame) -> dict:
 
 def infeasible_line(info: dict) -> str | None:
     """``no feasible design in N evaluations; least violation V at r1=..., r3=...``
-    for a run (or a sweep) that found no feasible design, else None."""
+    for a run (or a sweep) that found no feasible design, else None.
+
+    Parameters
+    ----------
+    info : dict
+        run.json's content.
+
+    Returns
+    -------
+    str or None
+        The line.
+    """
     if info.get("feasible", 1) or "least_violation" not in info:
         return None
     design = ", ".join(f"{k}={v:.6g}" for k, v in info["least_violating_design"].items())
@@ -865,6 +1016,44 @@ def sweep(problem, weights, pop=None, gen=None, seed: int = 1, n_jobs: int | Non
     objectives and its least-violating design with its ``violation``; the totals
     (``table.attrs["sweep"]``, also under ``"sweep"`` in ``run.json``) say how many
     weights are feasible and, if none and the front is empty, the least violation.
+
+    Parameters
+    ----------
+    problem : str or Problem
+        A 2-objective problem, by name or instance.
+    weights : sequence of float
+        Weights of objective 1, each in [0, 1].
+    pop, gen : int, optional
+        Population size and generations of every run.
+    seed : int
+        Random seed.
+    n_jobs : int, optional
+        Worker processes.
+    client : dask.distributed.Client, optional
+        Evaluate on a Dask cluster.
+    out : str or Path, optional
+        Output folder.
+    progress : bool
+        Log the progress.
+    tol : float, optional
+        pymoo's default termination with ``ftol=tol``.
+    crossover_prob, mutation_prob, crossover_eta, mutation_eta : float, optional
+        Operator settings (:func:`make_algorithm`).
+    overwrite : bool
+        Replace another run that ``out`` holds.
+
+    Returns
+    -------
+    DataFrame
+        sweep.csv: one row per weight (``weight``, ``z``, the variables, objectives in
+        their natural sign, ``feasible``, ``violation``, ``g_*``); ``attrs["sweep"]``
+        holds the totals.
+
+    Raises
+    ------
+    ValueError
+        One line, for a problem without two objectives, invalid weights or options,
+        or a folder holding another run.
     """
     if problem.n_obj != 2:
         raise ValueError(f"sweep needs a 2-objective problem, {problem.name} has {problem.n_obj}")

@@ -13,6 +13,17 @@ class WeightedSum(MechoptProblem):
 
     If the wrapped problem defines ``weighted_sum(F, w) -> Z`` (its paper's own
     scalarisation), that is used instead and ``scales`` are ignored.
+
+    Parameters
+    ----------
+    base : MechoptProblem
+        The two-objective problem.
+    weight : float
+        ``w``, in [0, 1].
+    scales : tuple of float
+        ``(s1, s2)``: the objectives' spans.
+    **kwargs : 
+        pymoo's :class:`~pymoo.core.problem.Problem` keywords.
     """
 
     objectives = (Objective("z", 1),)

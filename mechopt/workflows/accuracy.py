@@ -45,7 +45,30 @@ def load_design(folder):
     mechanism (rebuilt by its design spec from ``design.json``'s variables and strokes,
     checked against its recorded ``repr``), the task placed where the design put it,
     in the task frame (``spec.to_mech`` maps it to the mechanism's), the design spec and
-    the ``design.json`` record."""
+    the ``design.json`` record.
+
+    Parameters
+    ----------
+    folder : str or Path
+        A design run folder.
+
+    Returns
+    -------
+    mech : PlanarMechanism
+        The mechanism.
+    task : mechopt.analysis.task.Task
+        The placed task.
+    spec : mechopt.core.design_spec.DesignSpec
+        Its design spec.
+    record : dict
+        design.json.
+
+    Raises
+    ------
+    ValueError
+        One line, for a folder without a readable design, or a rebuilt mechanism that is not
+        the recorded one.
+    """
     from mechopt.mechanisms import design_spec
 
     folder = Path(folder)
@@ -135,7 +158,28 @@ def plot_error_map(mech, task, spec, model, rec=None, n: int = 81):
     """The proven worst-case position error over the task [um]: the bound of
     :func:`~mechopt.analysis.accuracy.pose_error` on an ``n x n`` grid over the task's box
     (cells outside the task left blank; a point task: its points), the task's outline
-    and the pose of the largest bound; returns the matplotlib figure."""
+    and the pose of the largest bound; returns the matplotlib figure.
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism.
+    task : mechopt.analysis.task.Task
+        The placed task.
+    spec : mechopt.core.design_spec.DesignSpec
+        Its design spec.
+    model : object
+        The error model (:mod:`mechopt.analysis.accuracy`).
+    rec : dict, optional
+        design.json (for the title).
+    n : int
+        Grid nodes per side.
+
+    Returns
+    -------
+    Figure
+        The figure.
+    """
     import matplotlib
 
     matplotlib.use("Agg")

@@ -33,9 +33,23 @@ __all__ = ["design", "DesignResult", "plot_design", "json_record", "DESIGN_OUTPU
 
 @dataclass
 class DesignResult:
-    """The outcome of :func:`design`: ``front`` (one row per certified Pareto design),
-    ``info`` (run.json), ``evaluator`` (re-evaluates any design), ``run`` (the
-    runner's :class:`~mechopt.run.runner.RunResult`)."""
+    """The outcome of :func:`design`.
+
+    Parameters
+    ----------
+    front : DataFrame
+        One row per certified Pareto design (front.csv's columns, :doc:`outputs`).
+    info : dict
+        run.json's content.
+    evaluator : mechopt.analysis.design_eval.DesignEvaluator
+        Re-evaluates any design.
+    run : mechopt.run.runner.RunResult, optional
+        The runner's result.
+    chosen_index : int
+        The row of ``front`` written as design.json.
+    error : mechopt.analysis.design_eval.NoFeasibleDesign, optional
+        The error of a run without a feasible design (``front`` empty).
+    """
 
     front: pd.DataFrame
     info: dict
@@ -50,6 +64,13 @@ class DesignResult:
         return np.column_stack([sense * self.front[o].to_numpy(float) for o, sense in ev.senses().items()])
 
     def knee(self) -> int:
+        """The front's knee (:func:`~mechopt.analysis.design_eval.knee_index`).
+
+        Returns
+        -------
+        int
+            A row of :attr:`front`.
+        """
         return knee_index(self._F())
 
     def pick(self, weights=None) -> dict:
@@ -61,10 +82,36 @@ class DesignResult:
         achievement scalarizing function ``max_i Z_i / w_i`` (pymoo's ASF: it reaches
         designs on non-convex parts of a front, which no weighted sum does), or
         ``"pseudo:..."`` the design whose pseudo-weights are nearest (pymoo's
-        PseudoWeights, Deb 2001)."""
+        PseudoWeights, Deb 2001).
+
+        Parameters
+        ----------
+        weights : dict or str, optional
+            ``{objective: weight}`` or ``"name=w,..."``, optionally prefixed ``asf:`` or
+            ``pseudo:``; None: the knee.
+
+        Returns
+        -------
+        dict
+            The design record: ``variables``, ``task_placement``, ``objectives``,
+            ``margins``, ``constraints_g``, ``feasible``, ``values``, ``tolerance`` and
+            ``mechanism`` (the mechanism object), re-certified.
+        """
         return self.design_at(pick_index(self._F(), self.evaluator.objectives, weights))
 
     def design_at(self, i) -> dict:
+        """The record of one front design, re-certified.
+
+        Parameters
+        ----------
+        i : int
+            A row of :attr:`front`.
+
+        Returns
+        -------
+        dict
+            As :meth:`pick` returns.
+        """
         row = self.front.iloc[int(i)].to_dict()
         v = {k: row[k] for k in (*self.evaluator.spec.lengths, "mode", "task_x", "task_y")}
         if "D" in row:
@@ -73,6 +120,18 @@ class DesignResult:
         return _design_record(self.evaluator, v, res, int(i))
 
     def mechanism(self, weights=None):
+        """The chosen mechanism.
+
+        Parameters
+        ----------
+        weights : dict or str, optional
+            As for :meth:`pick`.
+
+        Returns
+        -------
+        PlanarMechanism
+            The mechanism object of the picked design, lengths [L].
+        """
         return self.pick(weights)["mechanism"]
 
 
@@ -94,7 +153,18 @@ def _design_record(ev, v, res, index) -> dict:
 
 def json_record(rec) -> dict:
     """design.json's content from a design record (:meth:`DesignResult.pick`): plain JSON
-    data (:func:`mechopt.run.io.plain_json`), without the mechanism object."""
+    data (:func:`mechopt.run.io.plain_json`), without the mechanism object.
+
+    Parameters
+    ----------
+    rec : dict
+        A design record.
+
+    Returns
+    -------
+    dict
+        JSON-ready data (NaN and infinities as None).
+    """
     from mechopt.run.io import plain_json
 
     return plain_json({k: val for k, val in rec.items() if k != "mechanism"})
@@ -606,6 +676,65 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     fails most when no design is feasible; with ``out`` the run's files are written
     first (run.json with ``no_design``, history.csv, population.csv, front.png: an
     empty result is a result).
+
+    Parameters
+    ----------
+    mechanism : str
+        A designed mechanism (``"five-bar"``, ``"bipod"``, ...; :func:`mechopt.mechanisms.designed`).
+    task : mechopt.analysis.task.Task
+        The task, lengths in its unit [L] (base frame).
+    requirements : mechopt.requirements.Requirements, optional
+        What must hold over the whole task (default: reach and no type-II
+        singularity only).
+    objectives : sequence of str
+        Objective names (:func:`mechopt.requirements.objectives`).
+    mode : str, optional
+        Working mode, or ``"any"`` (default: the spec's default mode).
+    place : {"fixed", "free-y", "free"}
+        Whether the search also moves the task (along y, or in x and y).
+    min_length, max_length : float, optional
+        Bounds of every link length [L] (defaults from the task's size).
+    shape : sequence of float, optional
+        Fixed link ratios (non-dimensional); the variable is then the scale D [L]
+        (Liu 2006 sec. 3.2.3).
+    algorithm : str, optional
+        ``"ga"``, ``"de"``, ``"nsga2"``, ``"nsga2-mnn"`` or ``"nsga3"`` (default: ga
+        for one objective, else nsga2).
+    pop, gen : int, optional
+        Population size and generations (default 40 and 50).
+    seed : int
+        Random seed.
+    n_jobs : int
+        Worker processes (joblib).
+    client : dask.distributed.Client, optional
+        Evaluate on a Dask cluster instead.
+    out : str or Path, optional
+        Output folder (nothing is written without it).
+    progress : bool
+        Log the progress of each generation.
+    polish : bool
+        Polish each objective's best design locally.
+    pick : dict or str, optional
+        Weights choosing design.json (:meth:`DesignResult.pick`; default: the knee).
+    checkpoint_every : int, optional
+        Write a checkpoint every this many generations.
+    plot : bool
+        Draw front.png and design.png (with ``out``).
+    overwrite : bool
+        Replace another run that ``out`` holds (only the files that run wrote).
+
+    Returns
+    -------
+    DesignResult
+        The certified front and the run.
+
+    Raises
+    ------
+    mechopt.analysis.design_eval.NoFeasibleDesign
+        A ValueError naming the requirement that fails most, when no design is
+        feasible.
+    ValueError
+        One line, for invalid inputs or a folder holding another run.
     """
     from mechopt.run import io as _io
     from mechopt.problems import get as _problem
@@ -835,7 +964,22 @@ def plot_design(ev: DesignEvaluator, rec: dict, n: int = 241):
     singularity-free piece (only with a ``min_lci`` requirement), the type-II locus, the
     reachable boundary and the joint ranges, with units; with a collision option
     (:func:`mechopt.requirements.collisions.drawn`) its bodies as capsules, the keep-out
-    zone and the worst-clearance pose (:func:`mechopt.run.plotting.draw_collisions`)."""
+    zone and the worst-clearance pose (:func:`mechopt.run.plotting.draw_collisions`).
+
+    Parameters
+    ----------
+    ev : mechopt.analysis.design_eval.DesignEvaluator
+        The run's evaluator.
+    rec : dict
+        The design record (:meth:`DesignResult.pick`).
+    n : int
+        Raster points per side of the drawn fields.
+
+    Returns
+    -------
+    Figure
+        The drawing (not saved).
+    """
     from matplotlib.figure import Figure
 
     mech = rec["mechanism"]

@@ -35,7 +35,23 @@ class AnyResult:
     """The outcome of :func:`design_any`: ``front`` (the merged front, a ``mechanism``
     column), ``fronts`` (every mechanism's front), ``results`` (``{mechanism:
     DesignResult}``), ``skipped`` (``{mechanism: reason}``), ``chosen`` (the chosen
-    design's record) and ``info`` (run.json)."""
+    design's record) and ``info`` (run.json).
+
+    Parameters
+    ----------
+    front : DataFrame
+        The merged front (a ``mechanism`` column).
+    fronts : dict
+        ``{mechanism: DataFrame}``.
+    results : dict
+        ``{mechanism: DesignResult}``.
+    skipped : dict
+        ``{mechanism: reason}``.
+    chosen : dict
+        The chosen design's record.
+    info : dict
+        run.json.
+    """
 
     def __init__(self, front, fronts, results, skipped, chosen, info):
         self.front, self.fronts, self.results = front, fronts, results
@@ -56,7 +72,39 @@ def design_any(task, requirements=None, objectives=("size", "min-lci"), *, mecha
     ``task`` and merge their certified fronts (module docstring). ``options`` are those
     of :func:`mechopt.workflows.design.design` (mode, place, length bounds, algorithm,
     pop, gen, seed, n_jobs, client, polish). Raises :class:`NoFeasibleDesign` naming
-    each mechanism's reason when none has a feasible design."""
+    each mechanism's reason when none has a feasible design.
+
+    Parameters
+    ----------
+    task : mechopt.analysis.task.Task
+        The task.
+    requirements : mechopt.requirements.Requirements, optional
+        What must hold over the task.
+    objectives : sequence of str
+        Objective names.
+    mechanisms : sequence of str, optional
+        The mechanisms to compare.
+    pick : dict or str, optional
+        Weights choosing design.json (default: the knee).
+    out : str or Path, optional
+        Output folder.
+    overwrite : bool
+        Replace another run that ``out`` holds.
+    progress : bool
+        Log the progress.
+    **options : 
+        As for :func:`mechopt.workflows.design.design`.
+
+    Returns
+    -------
+    AnyResult
+        The merged front and every mechanism's result.
+
+    Raises
+    ------
+    mechopt.analysis.design_eval.NoFeasibleDesign
+        Naming each mechanism's reason, when none has a feasible design.
+    """
     from mechopt.run import io as _io
     from mechopt.workflows.design import json_record, design, plot_design
 

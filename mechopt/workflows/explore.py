@@ -75,7 +75,20 @@ DIGITS = 6
 def page_kind(folder) -> str:
     """``"atlas"``, ``"design"`` or ``"optimize"``: what the run folder ``folder`` holds.
 
-    Raises ValueError (one line) when it is no folder or holds none of them.
+    Parameters
+    ----------
+    folder : str or Path
+        A run folder.
+
+    Returns
+    -------
+    str
+        The kind.
+
+    Raises
+    ------
+    ValueError
+        One line, when it is no folder or holds none of them.
     """
     d = Path(folder)
     if not d.is_dir():
@@ -443,6 +456,12 @@ def page_data(folder, where=()) -> dict:
     -------
     dict
         ``kind`` (:func:`page_kind`), ``title`` and the kind's tables and drawings.
+
+    Raises
+    ------
+    ValueError
+        One line, for a folder that holds no run, unreadable run files or ``where`` on a
+        run that is not an atlas.
     """
     d = Path(folder)
     kind = page_kind(d)
@@ -523,6 +542,12 @@ def write_page(folder, out=None, where=()) -> Path:
     -------
     pathlib.Path
         The page written.
+
+    Raises
+    ------
+    ValueError
+        One line, for a folder that holds no run, unreadable run files, ``where`` on a
+        run that is not an atlas, or ``out`` naming a folder.
     """
     out = Path(folder) / "explore.html" if out is None else Path(out)
     if not str(out).strip() or out.is_dir():

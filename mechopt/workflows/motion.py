@@ -56,7 +56,31 @@ def _task(task: dict, placement: dict, unit: str):
 def load_design(folder):
     """``(spec, mech, unit, length_unit, task)`` of the design in ``folder``: its design
     specification, the mechanism, the length unit's name and metres per unit, and the
-    placed task (:class:`mechopt.analysis.task.Task`, None without run.json)."""
+    placed task (:class:`mechopt.analysis.task.Task`, None without run.json).
+
+    Parameters
+    ----------
+    folder : str or Path
+        A design run folder.
+
+    Returns
+    -------
+    spec : mechopt.core.design_spec.DesignSpec
+        Its design spec.
+    mech : PlanarMechanism
+        The mechanism [unit].
+    unit : str
+        The length unit's name.
+    length_unit : float
+        Metres per unit [m/L].
+    task : mechopt.analysis.task.Task or None
+        The placed task.
+
+    Raises
+    ------
+    ValueError
+        One line, for a folder without a readable design.
+    """
     from mechopt.analysis.task import UNITS
     from mechopt.mechanisms import registry
 
@@ -83,7 +107,33 @@ def load_design(folder):
 
 def design_motion(path, task, cycle_time, profile="cycloidal", samples=401, **shape):
     """The timed motion [unit] of a ``--path`` (:data:`PATH_KINDS`) for the placed ``task``
-    (the pick-and-place cycle within it, as the ``--max-torque`` requirement runs it)."""
+    (the pick-and-place cycle within it, as the ``--max-torque`` requirement runs it).
+
+    Parameters
+    ----------
+    path : str
+        One of :data:`PATH_KINDS`.
+    task : mechopt.analysis.task.Task
+        The placed task.
+    cycle_time : float
+        Duration [s].
+    profile : str
+        The profile (:func:`mechopt.core.motion.profile`).
+    samples : int
+        Time samples.
+    **shape : 
+        ``accel_fraction``, ``jerk_fraction``.
+
+    Returns
+    -------
+    dict
+        The timed motion (:func:`mechopt.core.motion.timed_motion`).
+
+    Raises
+    ------
+    ValueError
+        One line, for an unknown path or invalid settings.
+    """
     if path == "pick-place":
         if task is None or not task.is_region:
             raise ValueError("the pick-and-place cycle needs a task region (run.json of the design)")
@@ -115,7 +165,26 @@ def _limits(name, v):
 
 def plot_motion(table, summary, joint_names, angular, max_speed=None, max_torque=None, rms_limit=None):
     """Effort and rate of each actuator over the motion (one column per actuator), the
-    limits drawn as dashed lines; units on every axis."""
+    limits drawn as dashed lines; units on every axis.
+
+    Parameters
+    ----------
+    table : DataFrame
+        motion.csv.
+    summary : dict
+        motion.json.
+    joint_names : tuple of str
+        The actuators' names.
+    angular : bool
+        Cranks (N m, rad/s) or sliders (N, L/s).
+    max_speed, max_torque, rms_limit : float, optional
+        Limits to draw.
+
+    Returns
+    -------
+    Figure
+        The figure.
+    """
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(10, 6), layout="constrained")
@@ -151,7 +220,42 @@ def run_motion(folder, out=None, path="pick-place", profile="cycloidal", cycle_t
                samples=401, masses=None, gravity="down", max_speed=None, max_torque=None,
                rms_limit=None, accel_fraction=1.0 / 3.0, jerk_fraction=0.25) -> dict:
     """Compute and write the motion of the design in ``folder`` (module docstring) into
-    ``out`` (default ``folder``). Returns the summary (``motion.json``)."""
+    ``out`` (default ``folder``). Returns the summary (``motion.json``).
+
+    Parameters
+    ----------
+    folder : str or Path
+        A design run folder.
+    out : str or Path, optional
+        Output folder (default ``folder``).
+    path : str
+        One of :data:`PATH_KINDS`.
+    profile : str
+        The profile.
+    cycle_time : float
+        Duration [s].
+    samples : int
+        Time samples.
+    masses : str or Path, optional
+        A mass-law JSON file.
+    gravity : str
+        ``"down"``, ``"off"`` or ``"GX,GY"`` [m/s^2].
+    max_speed : float, optional
+        Actuator speed limit [rad/s or L/s], drawn.
+    max_torque : float, optional
+        Actuator effort limit [N m or N], drawn.
+    rms_limit : float, optional
+        RMS effort limit [N m or N], drawn.
+    accel_fraction : float
+        Of the trapezoidal and s-curve profiles.
+    jerk_fraction : float
+        Of the s-curve profile.
+
+    Returns
+    -------
+    dict
+        motion.json's content.
+    """
     from mechopt.run import io
 
     _v.choice("profile", profile, _mo.PROFILES)

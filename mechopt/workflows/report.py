@@ -88,7 +88,18 @@ _FIG_RE = re.compile(r"^(?:ref(?P<ref>\d+)_)?figs?(?P<a>\d+)(?P<sa>[a-z])?"
 
 
 def paper_name(paper: str) -> str:
-    """``"le2013"`` -> ``"Le 2013"``."""
+    """``"le2013"`` -> ``"Le 2013"``.
+
+    Parameters
+    ----------
+    paper : str
+        The paper's key.
+
+    Returns
+    -------
+    str
+        Author and year.
+    """
     if len(paper) > 4 and paper[-4:].isdigit():
         return f"{paper[:-4].capitalize()} {paper[-4:]}"
     return paper
@@ -105,6 +116,20 @@ def figure_caption(paper: str, filename: str) -> tuple[str | None, str]:
     gives "Figs. 8-16", ``fig17_23`` "Figs. 17 and 23", ``fig04a`` "Fig. 4(a)",
     ``ref19_fig19`` "Fig. 19 of Liu 2006's Ref. [19]". A file without a figure number
     (a mechopt figure) gives ``None``.
+
+    Parameters
+    ----------
+    paper : str
+        The paper's key.
+    filename : str
+        The figure's file name.
+
+    Returns
+    -------
+    figure : str or None
+        The paper's figure (None for our own).
+    shows : str
+        What the file shows.
     """
     stem = Path(filename).stem
     name = paper_name(paper)
@@ -612,6 +637,21 @@ def build_report(results_dir) -> str:
 
     ValueError (one line) when ``results_dir`` is missing, not a folder, or holds no
     reproduced paper.
+
+    Parameters
+    ----------
+    results_dir : str or Path
+        The folder of ``mechopt reproduce``.
+
+    Returns
+    -------
+    str
+        The HTML page.
+
+    Raises
+    ------
+    ValueError
+        One line, for a missing folder or one without a reproduced paper.
     """
     d = _check_dir(results_dir)
     papers = [p for p in PAPERS if (d / p / "table.csv").is_file()]
@@ -669,7 +709,25 @@ def build_report(results_dir) -> str:
 
 def write_report(results_dir="results", out=None) -> Path:
     """Write the report of ``results_dir`` to ``out`` (default ``<results_dir>/report.html``)
-    atomically; returns its path."""
+    atomically; returns its path.
+
+    Parameters
+    ----------
+    results_dir : str or Path
+        The folder of ``mechopt reproduce``.
+    out : str or Path, optional
+        The page (default ``<results_dir>/report.html``).
+
+    Returns
+    -------
+    Path
+        The page written.
+
+    Raises
+    ------
+    ValueError
+        One line, for a missing folder or one without a reproduced paper.
+    """
     html = build_report(results_dir)
     out = Path(results_dir) / "report.html" if out is None else Path(out)
     if not str(out).strip() or out.is_dir():

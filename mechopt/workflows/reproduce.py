@@ -44,7 +44,18 @@ def _fmt(v):
 
 
 def markdown_table(df: pd.DataFrame) -> str:
-    """A GitHub-flavoured markdown table (no extra dependency)."""
+    """A GitHub-flavoured markdown table (no extra dependency).
+
+    Parameters
+    ----------
+    df : DataFrame
+        The table.
+
+    Returns
+    -------
+    str
+        The markdown.
+    """
     cols = list(df.columns)
     lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     for row in df.itertuples(index=False):
@@ -80,7 +91,18 @@ COST = {
 
 def default_jobs(n_units: int) -> int:
     """Worker processes for ``n_units`` work units: one per unit up to the CPU count (2
-    on the 2-core machine the targets are measured on); 1 for a single unit."""
+    on the 2-core machine the targets are measured on); 1 for a single unit.
+
+    Parameters
+    ----------
+    n_units : int
+        Work units.
+
+    Returns
+    -------
+    int
+        Processes.
+    """
     return max(1, min(int(n_units), os.cpu_count() or 1))
 
 
@@ -99,7 +121,30 @@ def reproduce(paper: str, out="results", quick: bool = False, force: bool = Fals
     paper's line is logged when it is done; with ``progress`` a
     :class:`mechopt.run.progress.Progress` over the stages (a bar on a terminal, one plain
     line per finished stage otherwise) goes to stderr. The returned table is in the
-    order of :data:`PAPERS`."""
+    order of :data:`PAPERS`.
+
+    Parameters
+    ----------
+    paper : str
+        A paper's key or ``"all"``.
+    out : str or Path
+        The results folder.
+    quick : bool
+        Smaller runs (minutes instead of an hour).
+    force : bool
+        Recompute what is already there.
+    log : callable
+        ``log(text)`` for progress lines.
+    n_jobs : int, optional
+        Worker processes (default :func:`default_jobs`).
+    progress : bool
+        Show a progress bar.
+
+    Returns
+    -------
+    DataFrame
+        The table (table.csv), all papers' concatenated for ``"all"``.
+    """
     _v.choice("paper", paper, PAPERS + ("all",))
     if n_jobs is not None:
         n_jobs = _v.integer("n_jobs", n_jobs, 1)
@@ -259,7 +304,18 @@ def _describe_stamp(stamp) -> str:
 
 
 def counts_line(c: dict) -> str:
-    """``"12 of 20 computed match, 8 differ; 5 readings (2 match), ..."``."""
+    """``"12 of 20 computed match, 8 differ; 5 readings (2 match), ..."``.
+
+    Parameters
+    ----------
+    c : dict
+        Counts (:func:`mechopt.core.published.counts`).
+
+    Returns
+    -------
+    str
+        The line.
+    """
     return (f"{c['match']} of {c['computed']} computed match, {c['differs']} differ; "
             f"{c['readings']} readings ({c['readings matching']} match), {c['settings']} settings, "
             f"{c['not-reported']} not reported, claims {c['claims hold']} hold / "
@@ -267,7 +323,18 @@ def counts_line(c: dict) -> str:
 
 
 def summary_table(out) -> pd.DataFrame:
-    """One row of :func:`mechopt.core.published.counts` per finished paper, and a total row."""
+    """One row of :func:`mechopt.core.published.counts` per finished paper, and a total row.
+
+    Parameters
+    ----------
+    out : str or Path
+        The results folder.
+
+    Returns
+    -------
+    DataFrame
+        The counts.
+    """
     rows = []
     for name in PAPERS:
         f = out / name / "table.csv"
@@ -281,7 +348,18 @@ def summary_table(out) -> pd.DataFrame:
 
 def write_summary(out) -> Path:
     """``out/README.md``: the honest counts over the papers finished so far, and why
-    each computed quantity differs."""
+    each computed quantity differs.
+
+    Parameters
+    ----------
+    out : str or Path
+        The results folder.
+
+    Returns
+    -------
+    Path
+        README.md.
+    """
     out = Path(out)
     reasons = []
     for name in PAPERS:

@@ -30,6 +30,28 @@ def evaluate_designs(r1, r2, r3, quadrature: str = "area", mode: str = "+-", com
     get ``r_mic = 0`` and NaN elsewhere. Lengths in any unit (results scale as in
     :func:`mechopt.analysis.performance.global_indices`); r1, r2 in [LENGTH_MIN, LENGTH_MAX] and
     r3 in [0, LENGTH_MAX] of :mod:`mechopt.core.validation`.
+
+    Parameters
+    ----------
+    r1, r2, r3 : array_like
+        Crank, distal link and half base [L] of each design.
+    quadrature : str
+        ``"area"`` or ``"polar"``.
+    mode : str
+        Working mode.
+    compiled : bool, optional
+        Use the numba kernels (None: when installed).
+
+    Returns
+    -------
+    ndarray
+        Shape ``(n, 10)``, columns :data:`RESULT_COLUMNS` (lengths [L], indices as in
+        :func:`mechopt.analysis.performance.global_indices`).
+
+    Raises
+    ------
+    ValueError
+        One line, for non-numeric or inadmissible lengths, or arrays that do not broadcast.
     """
     arrays = []
     for name, v, lo in (("r1", r1, _v.LENGTH_MIN), ("r2", r2, _v.LENGTH_MIN), ("r3", r3, 0.0)):

@@ -256,6 +256,22 @@ def lci_points(r1, r2, r3, x, y, mode="+-", compiled=None):
 
     Lengths are divided by ``(r1 + r2 + r3)/3`` first (the LCI is scale-free), so
     nothing over- or underflows in any unit.
+
+    Parameters
+    ----------
+    r1, r2, r3 : float
+        Crank, distal link and half base [L].
+    x, y : array_like
+        Points [L].
+    mode : str
+        Working mode.
+    compiled : bool, optional
+        Use the numba kernels (None: when installed).
+
+    Returns
+    -------
+    ndarray
+        The LCI at each point (flattened).
     """
     s1, s2 = _signs(mode)
     r1, r2, r3, L = _design(r1, r2, r3)
@@ -271,7 +287,24 @@ def lci_points(r1, r2, r3, x, y, mode="+-", compiled=None):
 def local_points(r1, r2, r3, x, y, mode="+-", compiled=None):
     """``(7, n)`` array of ``lci, v_max, v_min, tau_max, tau_min, d_max, d_min``
     (:data:`mechopt.core.indices.LOCAL_INDEX_NAMES`, Liu 2006 eq. 3, 10, 13, 18) at the
-    points; the extremes are NaN where a point is unreachable."""
+    points; the extremes are NaN where a point is unreachable.
+
+    Parameters
+    ----------
+    r1, r2, r3 : float
+        Crank, distal link and half base [L].
+    x, y : array_like
+        Points [L].
+    mode : str
+        Working mode.
+    compiled : bool, optional
+        Use the numba kernels (None: when installed).
+
+    Returns
+    -------
+    ndarray
+        Shape ``(7, n)``.
+    """
     s1, s2 = _signs(mode)
     r1, r2, r3, L = _design(r1, r2, r3)
     x, y = _points(x, y, L)
@@ -432,7 +465,24 @@ def _mic_block_np(r1, r2, r3, s1, s2, ugrid, cfg):
 
 
 def mic_batch(r1, r2, r3, mode="+-", compiled=None, **sizes):
-    """Fast MIC of many designs: ``(radius, center_y)`` arrays (see the module docstring)."""
+    """Fast MIC of many designs: ``(radius, center_y)`` arrays (see the module docstring).
+
+    Parameters
+    ----------
+    r1, r2, r3 : array_like
+        Crank, distal link and half base [L] of each design.
+    mode : str
+        Working mode.
+    compiled : bool, optional
+        Use the numba kernels (None: when installed).
+    **sizes : 
+        Sizes of the search (:data:`mechopt.mechanisms.five_bar.mic.MIC_SIZES`).
+
+    Returns
+    -------
+    radius, center_y : ndarray
+        [L], per design.
+    """
     s1, s2 = _signs(mode)
     cfg = dict(MIC_SIZES, **sizes)
     r1, r2, r3 = (np.ascontiguousarray(v, dtype=float).ravel() for v in np.broadcast_arrays(r1, r2, r3))
@@ -1361,6 +1411,26 @@ def disk_stats_batch(r1, r2, r3, center_y, radius, mode="+-", quadrature="area",
     radius (Liu 2006 eq. 4, 11, 14, 19). The rule is
     :func:`mechopt.core.quadrature.disk_rule` (``area`` or ``polar``). NaN rows for a
     radius <= 0 (no singularity-free disk).
+
+    Parameters
+    ----------
+    r1, r2, r3 : array_like
+        Crank, distal link and half base [L] of each design.
+    center_y, radius : array_like
+        The MIC of each design [L].
+    mode : str
+        Working mode.
+    quadrature : str
+        ``"area"`` or ``"polar"``.
+    n_r, n_theta : int, optional
+        Quadrature nodes.
+    compiled : bool, optional
+        Use the numba kernels (None: when installed).
+
+    Returns
+    -------
+    ndarray
+        Shape ``(n, 8)``, columns :data:`DISK_STAT_NAMES`.
     """
     from mechopt.core.quadrature import DEFAULT_N_R, DEFAULT_N_THETA, disk_rule
 
@@ -1408,6 +1478,21 @@ def compile_all(groups=KERNEL_GROUPS) -> bool:
     test suite calls this before its worker processes start, the groups in two
     processes; a user may call it after installing. Returns False (and does nothing)
     without numba.
+
+    Parameters
+    ----------
+    groups : tuple of str
+        Kernel groups of :data:`KERNEL_GROUPS`.
+
+    Returns
+    -------
+    bool
+        False without numba (nothing compiled), else True.
+
+    Raises
+    ------
+    ValueError
+        For an unknown group.
     """
     groups = tuple(groups)
     for g in groups:

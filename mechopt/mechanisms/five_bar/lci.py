@@ -77,6 +77,22 @@ def five_bar_lci_numpy(x, y, r1, r2, r3, s1, s2, chunk: int = CHUNK):
 
     ``x`` and ``y`` must already have a common shape (see ``base.as_points``).
     Pure NumPy, in blocks of ``chunk`` points with preallocated buffers.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Points [L].
+    r1, r2, r3 : float
+        Crank, distal link and half base [L].
+    s1, s2 : int
+        Elbow signs, +1 or -1.
+    chunk : int
+        Points per block.
+
+    Returns
+    -------
+    ndarray
+        The LCI (dimensionless).
     """
     shape = np.shape(x)
     xf = np.ascontiguousarray(x, dtype=float).reshape(-1)
@@ -168,7 +184,27 @@ def _get_loop_jit():
 
 
 def five_bar_lci_numba(x, y, r1, r2, r3, s1, s2):
-    """The same LCI as :func:`five_bar_lci_numpy`, by the numba-compiled loop."""
+    """The same LCI as :func:`five_bar_lci_numpy`, by the numba-compiled loop.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Points [L].
+    r1, r2, r3 : float
+        Crank, distal link and half base [L].
+    s1, s2 : int
+        Elbow signs, +1 or -1.
+
+    Returns
+    -------
+    ndarray
+        The LCI (dimensionless).
+
+    Raises
+    ------
+    RuntimeError
+        When numba is not available.
+    """
     if not HAVE_NUMBA:
         raise RuntimeError("numba is not available (install the 'fast' extra)")
     shape = np.shape(x)
@@ -189,7 +225,22 @@ _numpy_seconds = 0.0
 def five_bar_lci(x, y, r1, r2, r3, s1, s2):
     """Five-bar LCI by the kernel that is cheaper for this process (the same values
     either way): numba once loaded or once :data:`NUMBA_AFTER_SECONDS` of NumPy work
-    have been spent, NumPy before (see the module docstring)."""
+    have been spent, NumPy before (see the module docstring).
+
+    Parameters
+    ----------
+    x, y : array_like
+        Points [L].
+    r1, r2, r3 : float
+        Crank, distal link and half base [L].
+    s1, s2 : int
+        Elbow signs, +1 or -1.
+
+    Returns
+    -------
+    ndarray
+        The LCI (dimensionless), 0 where unreachable or singular.
+    """
     global _numpy_seconds
     if HAVE_NUMBA and (_loop_jit is not None or _numpy_seconds >= NUMBA_AFTER_SECONDS):
         return five_bar_lci_numba(x, y, r1, r2, r3, s1, s2)

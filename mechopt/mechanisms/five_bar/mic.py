@@ -609,7 +609,20 @@ def five_bar_mic(r1, r2, r3, mode="+-"):
     """``(radius, center_y)`` of the five-bar's explicit MIC: the values of
     ``kernels.mic_batch(r1, r2, r3, mode, compiled=True)``, by the NumPy port for the
     first :data:`MIC_NUMBA_AFTER_SECONDS` of a process, by the compiled kernel after
-    (if numba is available)."""
+    (if numba is available).
+
+    Parameters
+    ----------
+    r1, r2, r3 : float
+        Crank, distal link and half base [L].
+    mode : str
+        Working mode.
+
+    Returns
+    -------
+    radius, center_y : float
+        [L].
+    """
     global _port_seconds
     if HAVE_NUMBA and _port_seconds >= MIC_NUMBA_AFTER_SECONDS:
         return _in_unit(r1, r2, r3, mode, _compiled_one)
@@ -624,7 +637,13 @@ def five_bar_mic(r1, r2, r3, mode="+-"):
 # =============================================================================
 class FiveBarWorkspace:
     """The explicit workspace geometry of a :class:`~mechopt.mechanisms.five_bar.model.FiveBar`
-    (the contract of :meth:`mechopt.core.protocol.PlanarMechanism.explicit_workspace`)."""
+    (the contract of :meth:`mechopt.core.protocol.PlanarMechanism.explicit_workspace`).
+
+    Parameters
+    ----------
+    fb : FiveBar
+        The design.
+    """
 
     #: the default raster step of :func:`mechopt.analysis.workspace.usable_region`
     #: (``length_scale/400``) in the design's lengths
@@ -634,7 +653,13 @@ class FiveBarWorkspace:
         self.fb = fb
 
     def mic(self):
-        """``(radius, center_y)`` of the MIC (:func:`five_bar_mic`)."""
+        """``(radius, center_y)`` of the MIC (:func:`five_bar_mic`).
+
+        Returns
+        -------
+        radius, center_y : float
+            [L].
+        """
         fb = self.fb
         return five_bar_mic(fb.r1, fb.r2, fb.r3, fb.mode)
 
@@ -645,7 +670,13 @@ class FiveBarWorkspace:
         ``h^2 = -(q - lo^2)(q - hi^2) / (4 q^2) >= -1e-12`` (``q = |P - A_i|^2``); beyond the
         margin ``m = 1e-3 L + 1e-9 (r1 + r2)^3 / (r1 r2)`` it is below ``-1e-9`` in exact
         arithmetic (``|h^2|`` grows monotonically away from the annulus and is at least
-        ``2 m r1 r2 / (r1 + r2)^3`` there), far beyond rounding."""
+        ``2 m r1 r2 / (r1 + r2)^3`` there), far beyond rounding.
+
+        Returns
+        -------
+        callable
+            ``near(x, y)`` -> boolean array.
+        """
         fb = self.fb
         r1, r2, r3 = fb.r1, fb.r2, fb.r3
         hi = r1 + r2
@@ -676,6 +707,11 @@ class FiveBarWorkspace:
         * ``min(r1, r2) >= 1e-9 (r1 + r2 + r3)/3``: the MIC radius never exceeds
           ``min(r1, r2)`` and a radius below 1e-9 of the length scale is not resolved
           in double precision (the test of :func:`mechopt.analysis.workspace.mic`).
+
+        Returns
+        -------
+        str
+            One clause.
         """
         fb = self.fb
         r1, r2, r3 = fb.r1, fb.r2, fb.r3
@@ -693,7 +729,20 @@ class FiveBarWorkspace:
 
     def radius_bound(self, step, given_step: bool) -> str:
         """The bound on the MIC radius that a raster step ``step`` needs, as a clause of
-        :func:`mechopt.analysis.workspace.unusable_message`."""
+        :func:`mechopt.analysis.workspace.unusable_message`.
+
+        Parameters
+        ----------
+        step : float
+            The raster step [L].
+        given_step : bool
+            Whether the caller chose the step.
+
+        Returns
+        -------
+        str
+            The clause, starting ``"; "``.
+        """
         fb = self.fb
         need = "" if given_step else " (r1 + r2 + r3)/800 ="
         return (f"; the MIC radius is at most min(r1, r2) = {min(fb.r1, fb.r2):.6g}, so min(r1, r2) "

@@ -50,7 +50,18 @@ _H2_TOL = _v.ROUNDING
 # ``legs_fk`` the foot ``u`` is then exactly 1/2), so the generality costs FiveBar no bit.
 
 def elbow_signs(mode: str):
-    """``(s1, s2)`` of a working mode: ``+1`` for ``"+"``, ``-1`` for ``"-"``, leg 1 first."""
+    """``(s1, s2)`` of a working mode: ``+1`` for ``"+"``, ``-1`` for ``"-"``, leg 1 first.
+
+    Parameters
+    ----------
+    mode : str
+        A working mode (``"+-"``, ...).
+
+    Returns
+    -------
+    tuple of int
+        ``(s1, s2)``.
+    """
     return _SIGN[mode[0]], _SIGN[mode[1]]
 
 
@@ -59,6 +70,24 @@ def legs_elbows(x, y, r3, legs):
 
     ``B_i = A_i + a_i R(s_i alpha_i) (P - A_i)/|P - A_i|`` with ``alpha_i`` from the law
     of cosines at ``A_i`` (Le eq. 13-14), without trigonometry.
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae of platform points [L].
+    y : array_like
+        Ordinates [L]; broadcast with ``x``.
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    b1x, b1y, b2x, b2y : ndarray
+        The elbows [L].
+    reachable : ndarray of bool
+        Where both legs assemble.
     """
     x, y = as_points(x, y)
     out = []
@@ -83,7 +112,28 @@ def legs_elbows(x, y, r3, legs):
 
 def legs_closure(x, y, r3, legs):
     """``(A, b, reachable)`` of ``A p_dot = B theta_dot``: ``a_i = P - B_i``,
-    ``B_ii = (B_i - A_i) x a_i``."""
+    ``B_ii = (B_i - A_i) x a_i``.
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae of platform points [L].
+    y : array_like
+        Ordinates [L]; broadcast with ``x``.
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    A : ndarray
+        Shape ``(..., 2, 2)`` [L].
+    b : ndarray
+        The diagonal of ``B``, shape ``(..., 2)`` [L^2].
+    reachable : ndarray of bool
+        Where both legs assemble.
+    """
     x, y = as_points(x, y)
     b1x, b1y, b2x, b2y, ok = legs_elbows(x, y, r3, legs)
     a1x, a1y = x - b1x, y - b1y
@@ -106,7 +156,24 @@ def _reach(x, y, r3, legs):
 
 
 def legs_reachable(x, y, r3, legs):
-    """Both legs assemble: ``|a_i - c_i| <= |P - A_i| <= a_i + c_i``, ``P`` not on a base joint."""
+    """Both legs assemble: ``|a_i - c_i| <= |P - A_i| <= a_i + c_i``, ``P`` not on a base joint.
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae of platform points [L].
+    y : array_like
+        Ordinates [L]; broadcast with ``x``.
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    ndarray of bool
+        Where both legs assemble.
+    """
     return _assembles(_reach(x, y, r3, legs))
 
 
@@ -117,13 +184,43 @@ def _assembles(reach):
 
 
 def legs_serial_clearance(x, y, r3, legs):
-    """Distance to the nearest of the four circles bounding the legs' annuli, signed."""
+    """Distance to the nearest of the four circles bounding the legs' annuli, signed.
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae of platform points [L].
+    y : array_like
+        Ordinates [L]; broadcast with ``x``.
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    ndarray
+        Signed distance [L], positive inside the reachable set (Le 2013 eq. 19).
+    """
     (d1, lo1, hi1), (d2, lo2, hi2) = _reach(x, y, r3, legs)
     return np.minimum.reduce([hi1 - d1, d1 - lo1, hi2 - d2, d2 - lo2])
 
 
 def legs_bounding_box(r3, legs):
-    """The box of the intersection of the two outer disks ``|P - A_i| <= a_i + c_i``."""
+    """The box of the intersection of the two outer disks ``|P - A_i| <= a_i + c_i``.
+
+    Parameters
+    ----------
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    tuple of float
+        ``(xmin, xmax, ymin, ymax)`` [L].
+    """
     (a1, c1, _), (a2, c2, _) = legs
     reach1, reach2 = a1 + c1, a2 + c2
     reach = min(reach1, reach2)
@@ -132,7 +229,26 @@ def legs_bounding_box(r3, legs):
 
 def legs_ik(x, y, r3, legs):
     """Crank angles ``theta1 = beta1 + s1 alpha1``, ``theta2 = pi - beta2 + s2 alpha2``
-    (Le eq. 13-18), unwrapped (see :meth:`FiveBar.ik`); NaN where unreachable."""
+    (Le eq. 13-18), unwrapped (see :meth:`FiveBar.ik`); NaN where unreachable.
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae of platform points [L].
+    y : array_like
+        Ordinates [L]; broadcast with ``x``.
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    theta1, theta2 : ndarray
+        Crank angles [rad].
+    reachable : ndarray of bool
+        Where both legs assemble.
+    """
     x, y = as_points(x, y)
     (a1, c1, s1), (a2, c2, s2) = legs
     reach = _reach(x, y, r3, legs)
@@ -152,7 +268,33 @@ def legs_ik(x, y, r3, legs):
 
 def legs_fk(theta1, theta2, r3, legs, assembly: str = "up"):
     """``(x, y, valid)``: the intersection of the distal circles about ``B_1`` and ``B_2``
-    (Le eq. 5-12); ``"up"``: ``P`` on the left of ``B1 -> B2``. NaN where they do not meet."""
+    (Le eq. 5-12); ``"up"``: ``P`` on the left of ``B1 -> B2``. NaN where they do not meet.
+
+    Parameters
+    ----------
+    theta1 : array_like
+        Crank angle of leg 1 [rad].
+    theta2 : array_like
+        Crank angle of leg 2 [rad].
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+    assembly : str
+        ``"up"`` or ``"down"``.
+
+    Returns
+    -------
+    x, y : ndarray
+        The platform point [L].
+    valid : ndarray of bool
+        Where the circles meet.
+
+    Raises
+    ------
+    ValueError
+        For an unknown assembly mode or angles that do not broadcast.
+    """
     _v.choice("assembly", assembly, ASSEMBLY_MODES)
     t1, t2 = as_points(theta1, theta2)
     (a1, c1, _), (a2, c2, _) = legs
@@ -173,7 +315,24 @@ def legs_fk(theta1, theta2, r3, legs, assembly: str = "up"):
 
 
 def legs_assembly_of(x, y, r3, legs):
-    """The FK assembly (``"up"``/``"down"``) of each pose of the working mode."""
+    """The FK assembly (``"up"``/``"down"``) of each pose of the working mode.
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae of platform points [L].
+    y : array_like
+        Ordinates [L]; broadcast with ``x``.
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    ndarray of str
+        ``"up"`` or ``"down"`` per pose.
+    """
     b1x, b1y, b2x, b2y, _ = legs_elbows(x, y, r3, legs)
     x, y = as_points(x, y)
     cross = (b2x - b1x) * (y - b1y) - (b2y - b1y) * (x - b1x)
@@ -183,7 +342,20 @@ def legs_assembly_of(x, y, r3, legs):
 def legs_bodies(r3, legs):
     """The bodies of a 5R (:class:`mechopt.core.rigid_bodies.BodySpec`): per leg ``i`` a motor
     on the base joint ``A_i`` (fixed), the crank ``A_i B_i`` and the distal link
-    ``B_i P`` (tubes of the mass law); the payload at ``P``."""
+    ``B_i P`` (tubes of the mass law); the payload at ``P``.
+
+    Parameters
+    ----------
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    list of mechopt.core.rigid_bodies.BodySpec
+        Motors, cranks, distal links and the payload.
+    """
     out = []
     for i, (a, c, _) in enumerate(legs, 1):
         out += [_b.BodySpec(f"motor{i}", "motor", 0.0, (f"A{i}",), leg=i),
@@ -203,7 +375,28 @@ def legs_body_frames(x, y, xd, yd, xdd, ydd, r3, legs):
         theta_dot  = d . P_dot / (a d . t),
         theta_ddot = (d . P_ddot + a theta_dot^2 d . n + |P_dot - B_dot|^2) / (a d . t)
 
-    (``a d . t = B_ii`` of :func:`legs_closure`). Exact; NaN where unreachable."""
+    (``a d . t = B_ii`` of :func:`legs_closure`). Exact; NaN where unreachable.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Platform positions [L] along the motion.
+    xd, yd : array_like
+        Velocities [L/s].
+    xdd, ydd : array_like
+        Accelerations [L/s^2].
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    q, qd, qdd : ndarray
+        Crank angles [rad], rates [rad/s] and accelerations [rad/s^2].
+    frames : dict
+        Per body its frame along the motion (:mod:`mechopt.core.rigid_bodies`).
+    """
     x, y = as_points(x, y)
     P = _b.stack2(x, y)
     Pd, Pdd = _b.stack2(xd, yd), _b.stack2(xdd, ydd)
@@ -238,7 +431,22 @@ def legs_tree(name, r3, legs) -> KinematicTree:
     axis along the crank), the passive ``elbow<i>`` at ``(a_i, 0)`` of the crank (body
     ``distal<i>``, x along the distal link) and the closure frame at ``(c_i, 0)`` of
     ``distal<i>``: the platform point. Crank angles unlimited here (the design's
-    ranges are set by the exporter)."""
+    ranges are set by the exporter).
+
+    Parameters
+    ----------
+    name : str
+        The tree's name.
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    mechopt.core.kinematic_tree.KinematicTree
+        The tree.
+    """
     joints, closure = [], []
     for i, (ax, (a, c, _)) in enumerate(zip((-r3, r3), legs), 1):
         joints += [TreeJoint(f"theta{i}", "revolute", BASE, f"crank{i}", (ax, 0.0), actuated=True),
@@ -250,7 +458,24 @@ def legs_tree(name, r3, legs) -> KinematicTree:
 def legs_tree_configuration(x, y, r3, legs) -> dict:
     """Joint values of :func:`legs_tree` with the platform at ``(x, y)``: ``theta<i>``
     from :func:`legs_ik` (unwrapped), ``elbow<i>`` the angle from the crank to the distal
-    link ``B_i -> P`` [rad] in ``(-pi, pi]``, from :func:`legs_elbows`; NaN out of reach."""
+    link ``B_i -> P`` [rad] in ``(-pi, pi]``, from :func:`legs_elbows`; NaN out of reach.
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae of platform points [L].
+    y : array_like
+        Ordinates [L]; broadcast with ``x``.
+    r3 : float
+        Half the base distance [L] (base joints at ``(-r3, 0)`` and ``(r3, 0)``).
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L], elbow sign (+1 or -1).
+
+    Returns
+    -------
+    dict
+        ``{joint: ndarray}`` [rad].
+    """
     x, y = as_points(x, y)
     t1, t2, _ = legs_ik(x, y, r3, legs)
     b1x, b1y, b2x, b2y, _ = legs_elbows(x, y, r3, legs)
@@ -280,7 +505,20 @@ class FiveBarDesignSpec(DesignSpec):
         return FiveBar(v["r1"], v["r2"], v["r3"], mode)
 
     def size(self, mech, derived):
-        """``2 (r1 + r2 + r3)``: two cranks, two distal links, the base distance."""
+        """``2 (r1 + r2 + r3)``: two cranks, two distal links, the base distance.
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        derived : dict
+            The evaluation's derived values (strokes, ...).
+
+        Returns
+        -------
+        float
+            The size [L].
+        """
         return 2.0 * (mech.r1 + mech.r2 + mech.r3)
 
     def joints(self, mech, x, y):
@@ -294,7 +532,24 @@ class FiveBarDesignSpec(DesignSpec):
         """The motor housings (discs about ``A1 = (-r3, 0)``, ``A2 = (r3, 0)``), the cranks
         ``A_i B_i`` (``"crank1"``, ``"crank2"``) and the distal links ``B_i P``
         (``"distal1"``, ``"distal2"``) at task points ``(x, y)``: joints ``A1, A2, B1, B2,
-        P`` (the asymmetric five-bar's too, each leg with its own lengths)."""
+        P`` (the asymmetric five-bar's too, each leg with its own lengths).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        shapes : mechopt.core.bodies.Shapes, optional
+            Widths and sizes of the bodies [L].
+
+        Returns
+        -------
+        list of mechopt.core.bodies.Body
+            The bodies as capsules.
+        """
         shapes = shapes or Shapes.default()
         x, y = as_points(x, y)
         b1x, b1y, b2x, b2y, _ = legs_elbows(x, y, mech.r3, mech._legs())
@@ -316,7 +571,24 @@ class FiveBarDesignSpec(DesignSpec):
         is 1-Lipschitz in ``P``: over the disc of ``radius`` about a task point ``d`` lies in
         ``[d0 - radius, d0 + radius]``, where ``|cos gamma_i|`` is largest at an end; the
         bound is infinite when that interval leaves the leg's annulus
-        ``[|a - c|, a + c]`` (a type-I singularity within reach)."""
+        ``[|a - c|, a + c]`` (a type-I singularity within reach).
+
+        Parameters
+        ----------
+        mech : PlanarMechanism
+            The built mechanism (:meth:`build`).
+        x : array_like
+            Task points' abscissae [L, task frame].
+        y : array_like
+            Ordinates [L, task frame]; shape of ``x``.
+        radius : float
+            Radius [L] of the platform positions about each task point.
+
+        Returns
+        -------
+        dict
+            ``{name: ndarray}``, speed bounds [L/L].
+        """
         x, y = as_points(x, y)
         out = {"A1": np.zeros_like(x), "A2": np.zeros_like(x), "P": np.ones_like(x)}
         for i, (ax, (a, c, _)) in enumerate(zip((-mech.r3, mech.r3), mech._legs()), start=1):
@@ -401,6 +673,8 @@ class FiveBarErrorSpec(ErrorSpec):
 class FiveBar(PlanarMechanism):
     """Symmetric 5R mechanism ``FiveBar(r1, r2, r3, mode="+-")``.
 
+    Lengths may be in any consistent unit [L]; angles are in rad.
+
     Parameters
     ----------
     r1 : float
@@ -411,8 +685,6 @@ class FiveBar(PlanarMechanism):
         Half of the base distance [L], >= 0.
     mode : {"+-", "-+", "++", "--"}
         Working mode of Le 2013 eq. (17)-(18).
-
-    Lengths may be in any consistent unit [L]; angles are in rad.
 
     References
     ----------
@@ -452,11 +724,38 @@ class FiveBar(PlanarMechanism):
         return f"FiveBar(r1={self.r1!r}, r2={self.r2!r}, r3={self.r3!r}, mode={self.mode!r})"
 
     def with_mode(self, mode: str) -> "FiveBar":
-        """The same link lengths in another working mode."""
+        """The same link lengths in another working mode.
+
+        Parameters
+        ----------
+        mode : str
+            One of :data:`MODES`.
+
+        Returns
+        -------
+        FiveBar
+            A new instance.
+        """
         return FiveBar(self.r1, self.r2, self.r3, mode)
 
     def scaled(self, factor: float) -> "FiveBar":
-        """All lengths multiplied by ``factor`` (Liu 2006 eq. 20: ``R_i = D r_i``)."""
+        """All lengths multiplied by ``factor`` (Liu 2006 eq. 20: ``R_i = D r_i``).
+
+        Parameters
+        ----------
+        factor : float
+            Scale factor D, > 0.
+
+        Returns
+        -------
+        FiveBar
+            A new instance.
+
+        Raises
+        ------
+        ValueError
+            For a non-positive or non-finite factor.
+        """
         factor = _v.positive_length("factor", factor)
         return FiveBar(self.r1 * factor, self.r2 * factor, self.r3 * factor, self.mode)
 
@@ -478,32 +777,105 @@ class FiveBar(PlanarMechanism):
         """Elbow points of the working mode by circle intersection (:func:`legs_elbows`).
 
         Returns ``(b1x, b1y, b2x, b2y, reachable)``; NaN where unreachable.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        b1x, b1y, b2x, b2y : ndarray
+            The elbows [L].
+        reachable : ndarray of bool
+            Where both legs assemble.
         """
         return legs_elbows(x, y, self.r3, self._legs())
 
     # --- bodies (the mass model and the dynamics) ---------------------------
     def bodies(self):
-        """The declared bodies (:func:`legs_bodies`): motors, cranks, distal links, payload."""
+        """The declared bodies (:func:`legs_bodies`): motors, cranks, distal links, payload.
+
+        Returns
+        -------
+        list of mechopt.core.rigid_bodies.BodySpec
+            The bodies.
+        """
         return legs_bodies(self.r3, self._legs())
 
     def body_frames(self, x, y, xd, yd, xdd, ydd):
-        """``(q, qd, qdd, frames)`` along a motion of ``P`` (:func:`legs_body_frames`)."""
+        """``(q, qd, qdd, frames)`` along a motion of ``P`` (:func:`legs_body_frames`).
+
+        Parameters
+        ----------
+        x, y : array_like
+            Platform positions [L] along the motion.
+        xd, yd : array_like
+            Velocities [L/s].
+        xdd, ydd : array_like
+            Accelerations [L/s^2].
+
+        Returns
+        -------
+        q, qd, qdd : ndarray
+            Crank angles [rad], rates [rad/s], accelerations [rad/s^2].
+        frames : dict
+            Per body its frame along the motion.
+        """
         return legs_body_frames(x, y, xd, yd, xdd, ydd, self.r3, self._legs())
 
     # --- protocol ------------------------------------------------------------
     def closure(self, x, y):
-        """``A p_dot = B theta_dot`` with ``a_i = P - B_i``, ``B_ii = (B_i - A_i) x a_i``."""
+        """``A p_dot = B theta_dot`` with ``a_i = P - B_i``, ``B_ii = (B_i - A_i) x a_i``.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        A : ndarray
+            Shape ``(..., 2, 2)`` [L].
+        b : ndarray
+            The diagonal of ``B`` [L^2].
+        reachable : ndarray of bool
+            Where both legs assemble.
+        """
         return legs_closure(x, y, self.r3, self._legs())
 
     def reachable(self, x, y):
         return legs_reachable(x, y, self.r3, self._legs())
 
     def serial_clearance(self, x, y):
-        """Distance to the nearest of the four circles of Le eq. (19), signed."""
+        """Distance to the nearest of the four circles of Le eq. (19), signed.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            Signed distance [L], positive inside.
+        """
         return legs_serial_clearance(x, y, self.r3, self._legs())
 
     def bounding_box(self):
-        """``(r3 - (r1 + r2), r1 + r2 - r3, -(r1 + r2), r1 + r2)``."""
+        """``(r3 - (r1 + r2), r1 + r2 - r3, -(r1 + r2), r1 + r2)``.
+
+        Returns
+        -------
+        tuple of float
+            ``(xmin, xmax, ymin, ymax)`` [L].
+        """
         return legs_bounding_box(self.r3, self._legs())
 
     def ik(self, x, y):
@@ -514,6 +886,20 @@ class FiveBar(PlanarMechanism):
         theta1 in [36.40, 274.97] deg): ``beta1 + s1 alpha1`` lies in (-2 pi, 2 pi)
         and ``pi - beta2 + s2 alpha2`` in (-pi, 3 pi); for mode "+-" theta1 is in
         (-pi, 2 pi) and theta2 in (-pi, 2 pi).
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        theta1, theta2 : ndarray
+            Crank angles [rad], NaN where unreachable.
+        reachable : ndarray of bool
+            Where both legs assemble.
         """
         return legs_ik(x, y, self.r3, self._legs())
 
@@ -523,19 +909,67 @@ class FiveBar(PlanarMechanism):
         ``assembly="up"`` is Le's solution 1: ``P`` on the left of the vector
         ``B1 -> B2`` (above the line B1B2 when B1 is left of B2); ``"down"`` is
         solution 2. Returns ``(x, y, valid)``; NaN where the circles do not meet.
+
+        Parameters
+        ----------
+        theta1 : array_like
+            Crank angle of leg 1 [rad].
+        theta2 : array_like
+            Crank angle of leg 2 [rad].
+        assembly : str
+            ``"up"`` (default) or ``"down"``.
+
+        Returns
+        -------
+        x, y : ndarray
+            The platform point [L].
+        valid : ndarray of bool
+            Where the circles meet.
         """
         return legs_fk(theta1, theta2, self.r3, self._legs(), assembly)
 
     def assembly_of(self, x, y):
-        """Which FK assembly mode (``"up"``/``"down"``) a pose of this working mode is in."""
+        """Which FK assembly mode (``"up"``/``"down"``) a pose of this working mode is in.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray of str
+            ``"up"`` or ``"down"`` per pose.
+        """
         return legs_assembly_of(x, y, self.r3, self._legs())
 
     def kinematic_tree(self):
-        """Bodies and joints, the loop cut at the platform (:func:`legs_tree`)."""
+        """Bodies and joints, the loop cut at the platform (:func:`legs_tree`).
+
+        Returns
+        -------
+        mechopt.core.kinematic_tree.KinematicTree
+            The tree.
+        """
         return legs_tree(self.cli_name, self.r3, self._legs())
 
     def tree_configuration(self, x, y) -> dict:
-        """Every joint of :meth:`kinematic_tree` at ``(x, y)`` (:func:`legs_tree_configuration`)."""
+        """Every joint of :meth:`kinematic_tree` at ``(x, y)`` (:func:`legs_tree_configuration`).
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        dict
+            ``{joint: ndarray}`` [rad].
+        """
         return legs_tree_configuration(x, y, self.r3, self._legs())
 
     def type2_function(self, x, y):
@@ -544,6 +978,18 @@ class FiveBar(PlanarMechanism):
 
         Same value as the protocol's generic version (``|a_i| = r2``), without
         building the matrices: the MIC root finding calls it most.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The sine, in [-1, 1]; NaN where unreachable.
         """
         x, y = as_points(x, y)
         b1x, b1y, b2x, b2y, _ = self.elbows(x, y)
@@ -553,7 +999,13 @@ class FiveBar(PlanarMechanism):
         """The explicit MIC (closed-form serial clearance, explicit type-II locus; Le 2013
         eq. 19, Liu 2006 sec. 3), the legs' reach and the conditions on ``r1, r2, r3``
         for :mod:`mechopt.analysis.workspace`: a
-        :class:`~mechopt.mechanisms.five_bar.mic.FiveBarWorkspace`."""
+        :class:`~mechopt.mechanisms.five_bar.mic.FiveBarWorkspace`.
+
+        Returns
+        -------
+        mechopt.mechanisms.five_bar.mic.FiveBarWorkspace
+            The workspace geometry.
+        """
         from mechopt.mechanisms.five_bar.mic import FiveBarWorkspace
 
         return FiveBarWorkspace(self)
@@ -568,6 +1020,18 @@ class FiveBar(PlanarMechanism):
 
         A NaN coordinate is not a point: its LCI is NaN (not 0, which would read as
         "unreachable"). A finite or infinite coordinate beyond reach gives 0.
+
+        Parameters
+        ----------
+        x : array_like
+            Abscissae of platform points [L].
+        y : array_like
+            Ordinates [L]; broadcast with ``x``.
+
+        Returns
+        -------
+        ndarray
+            The LCI (dimensionless).
         """
         px, py = as_points(x, y)
         out = _fast_lci.five_bar_lci(px, py, self.r1, self.r2, self.r3, self._s1, self._s2)
