@@ -61,3 +61,63 @@ def test_front_row_of_a_knife_edge_design_reads_back_feasible(tmp_path):
     assert again["feasible"] and again["margin"] == res["margin"]
     rounded = {k: float(f"{val:.10g}") if isinstance(val, float) else val for k, val in KNIFE.items()}
     assert not certify(ev, rounded)["feasible"]
+
+
+# ----------------------------------------------------------------- 2. placement
+SHAPE_TASK = dict(shape=(1.2, 0.8, 0.6), max_length=100, seed=1, pop=12, gen=6, n_jobs=1, polish=False)
+
+
+def _grid_check(mech, task, gamma, n=61):
+    """Own check on an n x n grid of the placed square task: every point reachable, one
+    sign of the type-II function, the smallest LCI (mechopt.FiveBar's kinematics)."""
+    x0, x1, y0, y1 = task.bbox
+    gx, gy = np.meshgrid(np.linspace(x0, x1, n), np.linspace(y0, y1, n))
+    x, y = gx.ravel(), gy.ravel()
+    if not mech.reachable(x, y).all():
+        return False, 0.0
+    f = mech.type2_function(x, y)
+    lci = mech.lci(x, y)
+    return bool((np.all(f > 0) or np.all(f < 0)) and lci.min() >= gamma - 1e-9), float(lci.min())
+
+
+@pytest.fixture(scope="module")
+def shape_runs():
+    from mechopt.analysis.task import Task
+    from mechopt.workflows.design import design
+
+    task, req = Task.rect(10, 10), Requirements(min_lci=0.5)
+    return task, {place: design("five-bar", task, req, ("size",), place=place, mode="+-", **SHAPE_TASK)
+                  for place in ("free-y", "free")}
+
+
+def test_free_y_searches_below_the_base_line(shape_runs):
+    """Mode +-, shape (1.2, 0.8, 0.6), a 10 mm square, LCI >= 0.5: the design found lies
+    below the base line, holds on a 61 x 61 grid (own check), and at its size no height
+    above the line works in mode +- (a scan of 300 heights, each on the grid): the
+    search above only could not have found it. Its mirror image is the same design in
+    mode -+ above the line."""
+    import mechopt
+
+    task, runs = shape_runs
+    best = runs["free-y"].front.iloc[0]
+    assert best["task_y"] < 0
+    mech = mechopt.FiveBar(best["r1"], best["r2"], best["r3"], mode="+-")
+    ok, lmin = _grid_check(mech, task.moved_to(best["task_x"], best["task_y"]), 0.5)
+    assert ok, lmin
+    mirror = mechopt.FiveBar(best["r1"], best["r2"], best["r3"], mode="-+")
+    ok_m, lmin_m = _grid_check(mirror, task.moved_to(best["task_x"], -best["task_y"]), 0.5)
+    assert ok_m and lmin_m == pytest.approx(lmin, rel=1e-12, abs=1e-12)
+    D = best["D"]
+    above = [_grid_check(mech, task.moved_to(0.0, y), 0.5, n=21) for y in np.linspace(0.01 * D, 3 * D, 300)]
+    assert not any(ok for ok, _ in above)
+
+
+def test_free_contains_free_y(shape_runs):
+    """``--place free`` on the same seed and budget ends no worse than ``free-y``: every
+    free-y front design is on free's front or dominated by one of its designs."""
+    _, runs = shape_runs
+    fy, fr = runs["free-y"], runs["free"]
+    assert fr.info["free_y_designs"] == len(fy.front) >= 1
+    assert fr.front["size"].min() <= fy.front["size"].min()
+    for s in fy.front["size"]:
+        assert (fr.front["size"] <= s).any()

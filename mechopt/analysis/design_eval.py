@@ -9,7 +9,9 @@ evaluators; :func:`mechopt.workflows.design.design` solves it with the seeded ru
 and certifies every front design with a finer sampling (:func:`certify`).
 
 * the task (:class:`mechopt.analysis.task.Task`), placed ``"fixed"``, ``"free-y"``
-  (moved along y) or ``"free"`` (moved in x and y);
+  (moved along y; for a five-bar of one working mode on both sides of the base line,
+  :meth:`DesignEvaluator._y_range`) or ``"free"`` (moved in x and y, over the same
+  heights);
 * the requirements (:class:`mechopt.requirements.Requirements`), which must hold
   over the WHOLE task, each certified as its module states;
 * the objectives (:func:`mechopt.requirements.objectives`), any non-empty subset.
@@ -166,7 +168,10 @@ class DesignEvaluator:
         # the placement relative to the design's own reach (spec.placement_scale):
         # task_y = y_lo + task_y_rel * scale, task_x = task_x_rel * scale
         x0, x1, y0, y1 = self.task.bbox
-        self._y_lo = 0.5 * (y1 - y0) if self.spec.placement_above_base(self.mode) else None
+        self._half_height = 0.5 * (y1 - y0)
+        self._y_lo = self._half_height if self.spec.placement_above_base(self.mode) else None
+        #: a free placement searched on both sides of the base line (:meth:`_y_range`)
+        self.both_sides = self._y_lo is None and self.spec.placement_both_sides(self.mode)
         if self.place == "free":
             names.append("task_x_rel")
             xl.append(-1.0)
@@ -231,12 +236,26 @@ class DesignEvaluator:
         scale = self.spec.placement_scale(out, self.max_length)
         out["task_x"] = float(d["task_x_rel"] * scale) if "task_x_rel" in d else float(rx)
         if "task_y_rel" in d:
-            lo = self._y_lo if self._y_lo is not None else ry - scale
-            span = scale if self._y_lo is not None else 2.0 * scale
+            lo, span = self._y_range(scale)
             out["task_y"] = float(lo + d["task_y_rel"] * span)
         else:
             out["task_y"] = float(ry)
         return out
+
+    def _y_range(self, scale) -> tuple:
+        """``(lo, span)`` [L] of a free task height: ``task_y = lo + task_y_rel * span``,
+        ``task_y_rel`` in [0, 1], ``scale`` the design's
+        :meth:`~mechopt.core.design_spec.DesignSpec.placement_scale`. Above the base line
+        only (``placement_above_base``): from half the task's height ``h`` up by
+        ``scale``; on both sides (``placement_both_sides``: the mirror image of a design
+        below the line is a design of another working mode, so the two sides hold
+        different designs): ``[-(h + scale), h + scale]``; otherwise the task's own height
+        ``+- scale``."""
+        if self._y_lo is not None:
+            return self._y_lo, scale
+        if self.both_sides:
+            return -(self._half_height + scale), 2.0 * (self._half_height + scale)
+        return self.task.reference[1] - scale, 2.0 * scale
 
     def encode(self, v: dict) -> np.ndarray:
         row = []
@@ -250,9 +269,7 @@ class DesignEvaluator:
                 if n == "task_x_rel":
                     row.append(v["task_x"] / scale)
                 else:
-                    ry = self.task.reference[1]
-                    lo = self._y_lo if self._y_lo is not None else ry - scale
-                    span = scale if self._y_lo is not None else 2.0 * scale
+                    lo, span = self._y_range(scale)
                     row.append((v["task_y"] - lo) / span)
             else:
                 row.append(float(v[n]))

@@ -152,6 +152,15 @@ class DesignSpec:
         ``"up"`` branch)."""
         return False
 
+    def placement_both_sides(self, mode) -> bool:
+        """True when a free placement of the task is searched on both sides of the base
+        line (``task_y`` in ``[-(h + scale), h + scale]``, ``h`` half the task's height),
+        for ``mode``: the mirror image about the line of a design in one working mode is
+        a design in another (the five-bar's ``"+-"`` mirrored is ``"-+"``), so with one
+        mode fixed the designs below the line are not those above. Only read when
+        :meth:`placement_above_base` is False."""
+        return False
+
     def reach_radius(self, lmax) -> float:
         """No design within the length bounds reaches a point farther than this [L] from
         the base midpoint (a necessary condition, checked before any run)."""

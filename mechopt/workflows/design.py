@@ -214,14 +214,17 @@ def _place(problem, x, j, sampling, n=33, levels=3):
         return x
     lo, hi = problem.xl[idx], problem.xu[idx]
     m = n if len(idx) == 1 else n // 3 + 1
-    axes = [np.linspace(a, b, m) for a, b in zip(lo, hi)]
+    # heights on both sides of the base line: twice the points (the same step a side)
+    counts = [2 * m - 1 if (problem.evaluator.both_sides and problem.var_names[i] == "task_y_rel") else m
+              for i in idx]
+    axes = [np.linspace(a, b, c) for a, b, c in zip(lo, hi, counts)]
     P = np.array(np.meshgrid(*axes, indexing="ij")).reshape(len(idx), -1).T
     X = np.repeat(x[None, :], len(P) + 1, axis=0)
     X[1:, idx] = P
     f, G = _rows_eval(problem, X, j, sampling)
     k = _best_row(f, G)
     best, fbest, Gbest = X[k].copy(), f[k], G[k]
-    h = (hi - lo) / (m - 1)
+    h = (hi - lo) / (np.array(counts) - 1)
     off = np.linspace(-1.0, 1.0, 5)
     for _ in range(levels):
         O = np.array(np.meshgrid(*[off] * len(idx), indexing="ij")).reshape(len(idx), -1).T
@@ -621,6 +624,21 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     if checkpoint_every is not None:
         raise ValueError("design runs are not checkpointed; run mechopt.run.runner.optimize on the "
                          "registered 'design' problem to checkpoint one")
+    def free_y_designs():
+        """With ``place="free"``: the certified front of the same run with ``place="free-y"``
+        (the same budget and seed), as decoded designs (the free search starts its polish
+        from them and its front keeps those no free design dominates)."""
+        if ev.place != "free":
+            return []
+        sub = _problem("design", mechanism=mechanism, task=task, requirements=requirements,
+                       objectives=objectives, mode=mode, place="free-y", min_length=min_length,
+                       max_length=max_length, shape=shape)
+        res = _design(sub, sub.evaluator, None, algorithm, pop, gen, seed, n_jobs, client, None, progress,
+                      polish, None)
+        names = (*ev.spec.lengths, *(("D",) if ev.shape is not None else ()), "mode", "task_x", "task_y")
+        return [{k: (str(r[k]) if k == "mode" else float(r[k])) for k in names}
+                for r in res.front.to_dict("records")]
+
     manifest = None
     if out is not None:
         out = _io.prepare_out_dir(out)
@@ -630,19 +648,22 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
                "seed": seed, "polish": polish, "pick": pick}
         with _io.run_in(out, "design", key, DESIGN_OUTPUTS, overwrite) as manifest:
             result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress,
-                             polish, manifest)
+                             polish, manifest, free_y_designs())
     else:
         result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, None, progress, polish,
-                         None)
+                         None, free_y_designs())
     if result.error is not None:  # the files are written: the empty result is reported
         raise result.error
     return result
 
 
-def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest):
+def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest,
+            extra=()):
     """The run, polish and certification of :func:`design`, and its files with ``out``.
-    ``info["stage_times_s"]`` gives the wall time [s] of each stage (optimisation,
-    polish, certification, files) and ``info["wall_time_s"]`` their sum, the whole call."""
+    ``extra`` are decoded designs (the ``free-y`` front of a ``free`` run) added to the
+    polish's starts and certified with the front. ``info["stage_times_s"]`` gives the
+    wall time [s] of each stage (optimisation, polish, certification, files) and
+    ``info["wall_time_s"]`` their sum, the whole call."""
     import time
 
     from mechopt.run import io as _io
@@ -653,9 +674,14 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
                    plot=False)
     info = dict(run.info)
     stages = {"optimisation": time.perf_counter() - t0}
-    if not len(run.front):
+    extra = list(extra)
+    if ev.place == "free":
+        info["free_y_designs"] = len(extra)
+    if not len(run.front) and not extra:
         return _empty_result(problem, ev, run, info, stages, out, manifest, _no_design(problem, run))
-    X = run.front[list(problem.var_names)].to_numpy(float)
+    X = run.front[list(problem.var_names)].to_numpy(float).reshape(-1, len(problem.var_names))
+    if extra:
+        X = np.vstack([X, [ev.encode(v) for v in extra]])
     polished = []
     t0 = time.perf_counter()
     if polish:
@@ -667,8 +693,7 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
     stages["polish"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     rows, kept, dropped = [], [], 0
-    for x in X:
-        v = ev.decode(x)
+    for v in [ev.decode(x) for x in X] + extra:  # the extra designs as given (exactly their placement)
         res = certify(ev, v)
         if not res["feasible"]:
             dropped += 1

@@ -335,7 +335,14 @@ class FiveBarDesignSpec(DesignSpec):
         return v["r1"] + v["r2"]
 
     def placement_above_base(self, mode):
-        return True
+        # the reachable set is symmetric about the base line, and the mirror image of a
+        # design in mode (s1, s2) is the design in mode (-s1, -s2): with every mode
+        # searched (mode None) the upper half holds them all
+        return mode is None
+
+    def placement_both_sides(self, mode):
+        # one mode fixed: below the line is its mirrored mode, another design
+        return mode is not None
 
     def sketch(self, mech, px, py, mx, my):
         b1x, b1y, b2x, b2y, _ = mech.elbows(px, py)
