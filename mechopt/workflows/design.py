@@ -595,12 +595,15 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     each objective locally from the front (``polish``; :func:`_polish_front`, on the
     same workers, with the certification's sampling; with a free placement the size
     is searched over the lengths, each candidate placed where its margins are largest,
-    from 3 front designs; the result does not depend on ``n_jobs``), certifies every
+    from 3 front designs; the result does not depend on ``n_jobs``; ``place="free"``
+    first runs ``"free-y"`` with the same budget and seed and starts from its certified
+    front, so it never ends worse), certifies every
     front design with :func:`certify` (designs that fail the fine check are dropped and
     counted in ``info["dropped_by_certification"]``) and returns a
     :class:`DesignResult`. With ``out``, writes ``front.csv``, ``design.json`` (the
-    knee, or ``pick`` weights), ``run.json``, ``history.csv``, ``front.png`` and
-    ``design.png`` as one set (:func:`mechopt.run.io.output_set`, with ``manifest.json``
+    knee, or ``pick`` weights), ``certificate.json`` (each front design's requirements,
+    margins, how each is known, its digest: :mod:`mechopt.workflows.certificate`),
+    ``run.json``, ``history.csv``, ``front.png`` and ``design.png`` as one set (:func:`mechopt.run.io.output_set`, with ``manifest.json``
     written last), so a failed run leaves nothing half-written; a folder holding
     another run is refused unless ``overwrite``.
 
@@ -729,6 +732,7 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
             _io.write_csv(front, stage / "front.csv")
             _io.write_csv(run.history, stage / "history.csv")
             _io.write_json(json_record(chosen), stage / "design.json")
+            _io.write_json(_certificate(result), stage / "certificate.json")
             _io.write_json(info, stage / "run.json")
             _io.save_figure(fig_front, stage / "front.png")
             _io.save_figure(fig_design, stage / "design.png")
@@ -781,7 +785,15 @@ def _task_digest(task) -> str:
 
 
 #: the names a design run writes (such files no run manifest accounts for are refused)
-DESIGN_OUTPUTS = ("front.csv", "history.csv", "design.json", "run.json", "front.png", "design.png", "population.csv")
+DESIGN_OUTPUTS = ("front.csv", "history.csv", "design.json", "certificate.json", "run.json", "front.png",
+                  "design.png", "population.csv")
+
+
+def _certificate(result) -> dict:
+    """certificate.json (:func:`mechopt.workflows.certificate.certificate`)."""
+    from mechopt.workflows.certificate import certificate
+
+    return certificate(result)
 
 
 def _non_dominated(F):
