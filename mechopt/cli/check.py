@@ -30,8 +30,8 @@ def add_parser(subparsers):
     p.add_argument("--lengths", default=None, metavar="NAME=VALUE,...",
                    help="lengths [the design's unit] replacing the file's, e.g. rounded ones: r1=85,r3=12.5")
     p.add_argument("--task", default=None,
-                   help="check against this task instead (same syntax as mechopt design --task, in the "
-                        "design's unit, placed as given; default: run.json's task at the design's placement)")
+                   help="check against this task instead (same syntax as mechopt design --task, lengths [unit] "
+                        "of the design, placed as given; default: run.json's task at the design's placement)")
     p.add_argument("--tolerance", default=None, metavar="T",
                    help="also check every length within +-T [the design's unit] of the nominal one: the box's "
                         "2^n corners and 32 seeded points inside it (sampled, not proven)")

@@ -61,14 +61,16 @@ def certificate(result) -> dict:
     (:func:`requirement_entries`) and what the margins rest on (``tolerance``)."""
     from mechopt import __version__
     from mechopt.export.source import design_digest
-    from mechopt.workflows.design import json_record
+    from mechopt.run.io import plain_json
 
     ev = result.evaluator
     designs = []
     for i in range(len(result.front)):
         rec = result.design_at(i)
         res = {"margin": rec["margins"], "g": rec["constraints_g"]}
-        designs.append({"index": i, "digest": design_digest(json_record(rec)), "variables": rec["variables"],
+        # the digest of the record as design.json holds it (without the mechanism object)
+        digest = design_digest(plain_json({k: val for k, val in rec.items() if k != "mechanism"}))
+        designs.append({"index": i, "digest": digest, "variables": rec["variables"],
                         "task_placement": rec["task_placement"], "feasible": bool(rec["feasible"]),
                         "requirements": requirement_entries(ev, res), "tolerance": rec["tolerance"]})
     return {"certificate_version": CERTIFICATE_VERSION, "mechopt_version": __version__,
