@@ -321,6 +321,9 @@ CHECK_JSON = {
     "box": ("with `--tolerance`: `tolerance` [unit], `evaluated` (mechanisms: the 2^n corners and 32 seeded "
             "points inside the box), `min_margin` and `worst` (the lengths where it is) per requirement, "
             "`holds` per requirement, `method` (`sampled`: nothing is proven between the points)", ""),
+    "certificate": ("with a certificate.json beside the design: `index` (the certified design with this "
+                    "design.json's digest, null if none: edited or another run's) and `chosen`; informational, "
+                    "the exit status does not read it", ""),
     "holds": ("every requirement holds (and within the box)", ""),
     "fails": ("the requirements that fail", ""),
 }

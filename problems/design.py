@@ -36,7 +36,10 @@ EXAMPLE = dict(mechanism="five-bar", task="rect:100,60@0,180", min_lci=0.4, max_
 
 class DesignProblem(MechoptProblem):
     """``DesignProblem(mechanism, task, requirements, objectives, mode=None,
-    place="fixed", min_length=None, max_length=None, shape=None, sampling=None)``."""
+    place="fixed", min_length=None, max_length=None, shape=None, sampling=None,
+    side="above")``; ``side="below"`` searches a free placement below the base line
+    (the mirror image of the search above it; only where the evaluator's
+    ``both_sides`` holds)."""
 
     name = "design"
     summary = "task-driven sizing (mechopt design): any mechanism, a task region, requirements over the whole task"
@@ -46,7 +49,7 @@ class DesignProblem(MechoptProblem):
 
     def __init__(self, mechanism="five-bar", task=None, requirements=None, objectives=("size", "min-lci"),
                  mode=None, place="fixed", min_length=None, max_length=None, shape=None, sampling=None,
-                 **kwargs):
+                 side="above", **kwargs):
         from mechopt.analysis.task import parse_task
 
         if task is None:
@@ -56,7 +59,7 @@ class DesignProblem(MechoptProblem):
         if isinstance(task, str):
             task = parse_task(task)
         self.evaluator = ev = DesignEvaluator(mechanism, task, requirements, objectives, mode, place,
-                                              min_length, max_length, shape)
+                                              min_length, max_length, shape, side)
         self.sampling = sampling or Sampling()
         self.var_names = ev.var_names
         self.objectives = tuple(Objective(name, sense, unit, bounds) for name, sense, unit, bounds in ev.objective_specs())

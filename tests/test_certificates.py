@@ -117,7 +117,7 @@ def test_free_contains_free_y(shape_runs):
     free-y front design is on free's front or dominated by one of its designs."""
     _, runs = shape_runs
     fy, fr = runs["free-y"], runs["free"]
-    assert fr.info["free_y_designs"] == len(fy.front) >= 1
+    assert fr.info["other_designs"] == len(fy.front) >= 1 and fy.info["other_designs"] >= 1
     assert fr.front["size"].min() <= fy.front["size"].min()
     for s in fy.front["size"]:
         assert (fr.front["size"] <= s).any()
@@ -191,6 +191,7 @@ def test_check_cli_exit_statuses(run_dir, capsys, tmp_path):
     design_json = str(run_dir / "design.json")
     code, out, _ = _main(["check", design_json], capsys)
     assert code == 0 and "all requirements hold" in out and "lci: margin" in out
+    assert "certificate.json records this design.json" in out
     chosen = json.loads((run_dir / "design.json").read_text())
     # the margin printed is design.json's (6 digits)
     assert f"{chosen['margins']['lci']:.6g}" in out
@@ -204,8 +205,10 @@ def test_check_cli_exit_statuses(run_dir, capsys, tmp_path):
     rec = dict(chosen, variables={k: (round(v, 2) if k != "mode" else v) for k, v in chosen["variables"].items()})
     (edited / "design.json").write_text(json.dumps(rec))
     (edited / "run.json").write_text((run_dir / "run.json").read_text())
+    (edited / "certificate.json").write_text((run_dir / "certificate.json").read_text())
     code, out, _ = _main(["check", str(edited / "design.json"), "--json"], capsys)
     rep = json.loads(out)
+    assert rep["certificate"] == {"index": None, "chosen": False}  # edited: the certificate does not vouch
     assert code == (0 if rep["holds"] else 1)
     assert rep["variables"]["r1"] == round(r1, 2)
     ev = DesignEvaluator("five-bar", parse_task(RUN_TASK), Requirements(min_lci=RUN_GAMMA), ("size",), max_length=200)

@@ -9,9 +9,9 @@ evaluators; :func:`mechopt.workflows.design.design` solves it with the seeded ru
 and certifies every front design with a finer sampling (:func:`certify`).
 
 * the task (:class:`mechopt.analysis.task.Task`), placed ``"fixed"``, ``"free-y"``
-  (moved along y; for a five-bar of one working mode on both sides of the base line,
-  :meth:`DesignEvaluator._y_range`) or ``"free"`` (moved in x and y, over the same
-  heights);
+  (moved along y; for a five-bar of one working mode the design workflow searches
+  above the base line and, ``side="below"``, below it: :meth:`DesignEvaluator._y_range`)
+  or ``"free"`` (moved in x and y);
 * the requirements (:class:`mechopt.requirements.Requirements`), which must hold
   over the WHOLE task, each certified as its module states;
 * the objectives (:func:`mechopt.requirements.objectives`), any non-empty subset.
@@ -93,7 +93,7 @@ class DesignEvaluator:
     margin, every objective, the derived strokes. Picklable (travels to workers)."""
 
     def __init__(self, mechanism, task: Task, requirements: Requirements, objectives, mode=None,
-                 place="fixed", min_length=None, max_length=None, shape=None):
+                 place="fixed", min_length=None, max_length=None, shape=None, side="above"):
         self.spec = get_spec(mechanism)
         if not isinstance(task, Task):
             raise ValueError(f"task must be a mechopt.analysis.task.Task, got {type(task).__name__}")
@@ -140,6 +140,7 @@ class DesignEvaluator:
                 raise ValueError(f"shape ratios must be >= 0 and not all 0, got {_v.show(shape)}")
             self.shape = s
         self._precheck()
+        self._side = side
         self._build_vars()
         self._contexts = {}  # placement -> samples (_samples_at)
 
@@ -170,8 +171,15 @@ class DesignEvaluator:
         x0, x1, y0, y1 = self.task.bbox
         self._half_height = 0.5 * (y1 - y0)
         self._y_lo = self._half_height if self.spec.placement_above_base(self.mode) else None
-        #: a free placement searched on both sides of the base line (:meth:`_y_range`)
-        self.both_sides = self._y_lo is None and self.spec.placement_both_sides(self.mode)
+        #: a free placement to be searched on both sides of the base line: this search
+        #: covers the ``side`` (``"above"`` or ``"below"``, :meth:`_y_range`), another the
+        #: other side (:func:`mechopt.workflows.design.design`)
+        self.both_sides = (self.place != "fixed" and self._y_lo is not None
+                           and self.spec.placement_both_sides(self.mode))
+        self.side = _v.choice("side", self._side, ("above", "below"))
+        if self.side == "below" and not self.both_sides:
+            raise ValueError(f"side='below' needs a free placement of a {self.spec.name} searched on both sides "
+                             f"of the base line")
         if self.place == "free":
             names.append("task_x_rel")
             xl.append(-1.0)
@@ -246,15 +254,11 @@ class DesignEvaluator:
         """``(lo, span)`` [L] of a free task height: ``task_y = lo + task_y_rel * span``,
         ``task_y_rel`` in [0, 1], ``scale`` the design's
         :meth:`~mechopt.core.design_spec.DesignSpec.placement_scale`. Above the base line
-        only (``placement_above_base``): from half the task's height ``h`` up by
-        ``scale``; on both sides (``placement_both_sides``: the mirror image of a design
-        below the line is a design of another working mode, so the two sides hold
-        different designs): ``[-(h + scale), h + scale]``; otherwise the task's own height
-        ``+- scale``."""
+        (``placement_above_base``): from half the task's height ``h`` up by ``scale``;
+        with ``side="below"`` its mirror image (from ``-h`` down by ``scale``);
+        otherwise the task's own height ``+- scale``."""
         if self._y_lo is not None:
-            return self._y_lo, scale
-        if self.both_sides:
-            return -(self._half_height + scale), 2.0 * (self._half_height + scale)
+            return (-self._y_lo, -scale) if self.side == "below" else (self._y_lo, scale)
         return self.task.reference[1] - scale, 2.0 * scale
 
     def encode(self, v: dict) -> np.ndarray:
@@ -417,10 +421,13 @@ class DesignEvaluator:
 
     def settings(self) -> dict:
         req = {k: v for k, v in self.req.asdict().items() if v is not None}
-        return {"mechanism": self.spec.name, "task": self.task.to_dict(), "requirements": req,
-                "objectives": list(self.objectives), "mode": "any" if self.mode_any else self.mode,
-                "place": self.place, "min_length": self.min_length, "max_length": self.max_length,
-                "shape": list(self.shape) if self.shape else None, "unit": self.unit}
+        out = {"mechanism": self.spec.name, "task": self.task.to_dict(), "requirements": req,
+               "objectives": list(self.objectives), "mode": "any" if self.mode_any else self.mode,
+               "place": self.place, "min_length": self.min_length, "max_length": self.max_length,
+               "shape": list(self.shape) if self.shape else None, "unit": self.unit}
+        if self.side == "below":
+            out["side"] = "below"
+        return out
 
 
     def record(self, derived) -> dict:

@@ -153,12 +153,13 @@ class DesignSpec:
         return False
 
     def placement_both_sides(self, mode) -> bool:
-        """True when a free placement of the task is searched on both sides of the base
-        line (``task_y`` in ``[-(h + scale), h + scale]``, ``h`` half the task's height),
-        for ``mode``: the mirror image about the line of a design in one working mode is
-        a design in another (the five-bar's ``"+-"`` mirrored is ``"-+"``), so with one
-        mode fixed the designs below the line are not those above. Only read when
-        :meth:`placement_above_base` is False."""
+        """True when a free placement searched above the base line
+        (:meth:`placement_above_base`) is searched below it too, for ``mode``: the
+        mirror image about the line of a design in one working mode is a design in
+        another (the five-bar's ``"+-"`` mirrored is ``"-+"``), so with one mode fixed
+        the designs below the line are not those above. ``mechopt design`` then runs a
+        second search below the line, the mirror image of the first
+        (:mod:`mechopt.workflows.design`)."""
         return False
 
     def reach_radius(self, lmax) -> float:

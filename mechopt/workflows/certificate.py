@@ -171,6 +171,24 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
             "holds": holds, "method": "sampled"}
 
 
+def _certificate_match(path: Path, rec: dict):
+    """Whether the certificate.json beside ``path`` records this very design.json (its
+    digest among the certified designs'): ``{"index": k or None, "chosen": bool}``, or
+    None without a readable certificate.json. Informational: a design edited by hand
+    (rounded lengths) is checked on its own numbers, whatever the certificate says."""
+    from mechopt.export.source import design_digest
+    from mechopt.run import io as _io
+
+    try:
+        cert = _io.read_json(path.parent / "certificate.json")
+        digest = design_digest(rec)
+        designs = cert["designs"]
+        index = next((d["index"] for d in designs if d.get("digest") == digest), None)
+        return {"index": index, "chosen": index is not None and index == cert.get("chosen")}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None
+
+
 def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int = BOX_SAMPLES) -> dict:
     """Re-check the design of ``design_path`` (a design.json of ``mechopt design``).
 
@@ -192,8 +210,10 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
     -------
     dict
         ``variables``, ``requirements`` (:func:`requirement_entries` at the nominal
-        lengths), ``box`` (:func:`tolerance_box`, with ``tolerance``), ``holds`` (all of
-        them) and ``fails`` (the names of those that do not).
+        lengths), ``box`` (:func:`tolerance_box`, with ``tolerance``), ``certificate``
+        (whether the certificate.json beside the design records it, by digest:
+        informational), ``holds`` (all of them) and ``fails`` (the names of those that
+        do not).
     """
     from mechopt.analysis.task import Task, parse_task
     from mechopt.core import validation as _v
@@ -224,6 +244,7 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
     entries = requirement_entries(ev, res)
     out = {"design": str(design_path), "mechanism": spec.name, "unit": unit, "variables": v,
            "requirements": entries, "sampling": asdict(Sampling.fine())}
+    out["certificate"] = _certificate_match(Path(design_path), rec)
     fails = [n for n, e in entries.items() if not e["holds"]]
     if tolerance is not None:
         box = tolerance_box(ev, v, tolerance, n_samples)
@@ -251,5 +272,10 @@ def format_check(report: dict) -> list:
             line += (f"; within +-{box['tolerance']:g} {u}: smallest margin {m:.6g}{unit} "
                      f"({'holds' if box['holds'][name] else 'FAILS'}, sampled at {box['evaluated']} mechanisms)")
         lines.append(line)
+    cert = report.get("certificate")
+    if cert is not None:
+        lines.append("certificate.json records this design.json (digest)" if cert["index"] is not None else
+                     "certificate.json does not record this design.json (edited since, or another run's): "
+                     "checked on its own numbers")
     lines.append("all requirements hold" if report["holds"] else f"fails: {', '.join(report['fails'])}")
     return lines

@@ -214,17 +214,14 @@ def _place(problem, x, j, sampling, n=33, levels=3):
         return x
     lo, hi = problem.xl[idx], problem.xu[idx]
     m = n if len(idx) == 1 else n // 3 + 1
-    # heights on both sides of the base line: twice the points (the same step a side)
-    counts = [2 * m - 1 if (problem.evaluator.both_sides and problem.var_names[i] == "task_y_rel") else m
-              for i in idx]
-    axes = [np.linspace(a, b, c) for a, b, c in zip(lo, hi, counts)]
+    axes = [np.linspace(a, b, m) for a, b in zip(lo, hi)]
     P = np.array(np.meshgrid(*axes, indexing="ij")).reshape(len(idx), -1).T
     X = np.repeat(x[None, :], len(P) + 1, axis=0)
     X[1:, idx] = P
     f, G = _rows_eval(problem, X, j, sampling)
     k = _best_row(f, G)
     best, fbest, Gbest = X[k].copy(), f[k], G[k]
-    h = (hi - lo) / (np.array(counts) - 1)
+    h = (hi - lo) / (m - 1)
     off = np.linspace(-1.0, 1.0, 5)
     for _ in range(levels):
         O = np.array(np.meshgrid(*[off] * len(idx), indexing="ij")).reshape(len(idx), -1).T
@@ -595,9 +592,11 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     each objective locally from the front (``polish``; :func:`_polish_front`, on the
     same workers, with the certification's sampling; with a free placement the size
     is searched over the lengths, each candidate placed where its margins are largest,
-    from 3 front designs; the result does not depend on ``n_jobs``; ``place="free"``
-    first runs ``"free-y"`` with the same budget and seed and starts from its certified
-    front, so it never ends worse), certifies every
+    from 3 front designs; the result does not depend on ``n_jobs``; a five-bar of one
+    working mode placed freely is also searched below the base line, a second run of
+    the same budget and seed, its front merged; ``place="free"`` first runs ``"free-y"``
+    with the same budget and seed and starts from its certified front, so it never ends
+    worse), certifies every
     front design with :func:`certify` (designs that fail the fine check are dropped and
     counted in ``info["dropped_by_certification"]``) and returns a
     :class:`DesignResult`. With ``out``, writes ``front.csv``, ``design.json`` (the
@@ -627,20 +626,26 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     if checkpoint_every is not None:
         raise ValueError("design runs are not checkpointed; run mechopt.run.runner.optimize on the "
                          "registered 'design' problem to checkpoint one")
-    def free_y_designs():
-        """With ``place="free"``: the certified front of the same run with ``place="free-y"``
-        (the same budget and seed), as decoded designs (the free search starts its polish
-        from them and its front keeps those no free design dominates)."""
-        if ev.place != "free":
-            return []
+    def sub_front(place_, side, extra):
+        """The certified front of the same run with ``place_`` and ``side`` (the same
+        budget and seed), ``extra`` designs added, as decoded designs."""
         sub = _problem("design", mechanism=mechanism, task=task, requirements=requirements,
-                       objectives=objectives, mode=mode, place="free-y", min_length=min_length,
-                       max_length=max_length, shape=shape)
+                       objectives=objectives, mode=mode, place=place_, min_length=min_length,
+                       max_length=max_length, shape=shape, side=side)
         res = _design(sub, sub.evaluator, None, algorithm, pop, gen, seed, n_jobs, client, None, progress,
-                      polish, None)
+                      polish, None, extra)
         names = (*ev.spec.lengths, *(("D",) if ev.shape is not None else ()), "mode", "task_x", "task_y")
         return [{k: (str(r[k]) if k == "mode" else float(r[k])) for k in names}
                 for r in res.front.to_dict("records")]
+
+    def other_designs():
+        """The designs the main search adds to its front: with a placement searched on
+        both sides of the base line, the front of the search below it; with
+        ``place="free"``, the front of ``"free-y"`` (itself with the designs below)."""
+        extra = sub_front("free-y", "below", []) if ev.both_sides else []
+        if ev.place == "free":
+            extra = sub_front("free-y", "above", extra)
+        return extra
 
     manifest = None
     if out is not None:
@@ -651,10 +656,10 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
                "seed": seed, "polish": polish, "pick": pick}
         with _io.run_in(out, "design", key, DESIGN_OUTPUTS, overwrite) as manifest:
             result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress,
-                             polish, manifest, free_y_designs())
+                             polish, manifest, other_designs())
     else:
         result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, None, progress, polish,
-                         None, free_y_designs())
+                         None, other_designs())
     if result.error is not None:  # the files are written: the empty result is reported
         raise result.error
     return result
@@ -663,8 +668,9 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
 def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest,
             extra=()):
     """The run, polish and certification of :func:`design`, and its files with ``out``.
-    ``extra`` are decoded designs (the ``free-y`` front of a ``free`` run) added to the
-    polish's starts and certified with the front. ``info["stage_times_s"]`` gives the
+    ``extra`` are decoded designs (the front of the search below the base line, the
+    ``free-y`` front of a ``free`` run) certified with the front and, those inside this
+    search's bounds, added to the polish's starts. ``info["stage_times_s"]`` gives the
     wall time [s] of each stage (optimisation, polish, certification, files) and
     ``info["wall_time_s"]`` their sum, the whole call."""
     import time
@@ -678,13 +684,14 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
     info = dict(run.info)
     stages = {"optimisation": time.perf_counter() - t0}
     extra = list(extra)
-    if ev.place == "free":
-        info["free_y_designs"] = len(extra)
+    if ev.place == "free" or ev.both_sides:
+        info["other_designs"] = len(extra)
     if not len(run.front) and not extra:
         return _empty_result(problem, ev, run, info, stages, out, manifest, _no_design(problem, run))
     X = run.front[list(problem.var_names)].to_numpy(float).reshape(-1, len(problem.var_names))
-    if extra:
-        X = np.vstack([X, [ev.encode(v) for v in extra]])
+    if extra:  # polish starts too, those inside this search's bounds (the others were polished in theirs)
+        E = np.array([ev.encode(v) for v in extra])
+        X = np.vstack([X, E[np.all((E >= problem.xl) & (E <= problem.xu), axis=1)]])
     polished = []
     t0 = time.perf_counter()
     if polish:

@@ -335,13 +335,13 @@ class FiveBarDesignSpec(DesignSpec):
         return v["r1"] + v["r2"]
 
     def placement_above_base(self, mode):
-        # the reachable set is symmetric about the base line, and the mirror image of a
-        # design in mode (s1, s2) is the design in mode (-s1, -s2): with every mode
-        # searched (mode None) the upper half holds them all
-        return mode is None
+        return True
 
     def placement_both_sides(self, mode):
-        # one mode fixed: below the line is its mirrored mode, another design
+        # the reachable set is symmetric about the base line, and the mirror image of a
+        # design in mode (s1, s2) is the design in mode (-s1, -s2): with every mode
+        # searched (mode None) the upper half holds them all; with one mode fixed the
+        # lower half holds other designs
         return mode is not None
 
     def sketch(self, mech, px, py, mx, my):
