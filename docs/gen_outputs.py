@@ -375,6 +375,9 @@ DESIGN_RUN = {
     "polished": ("objectives whose best design the local polish improved", ""),
     "dropped_by_certification": ("front designs that failed the fine certification", "-"),
     "front_size": ("rows of `front.csv`", "-"),
+    "other_designs": ("with a free placement searched on both sides of the base line (a five-bar of one "
+                      "mode) or `--place free`: the certified designs of the other searches (below the line; "
+                      "free-y) merged into this front's candidates", "-"),
     "certification": ("the fine sampling: `n_boundary`, `n_interior`, `refine`", ""),
     "chosen": ("`index` (row of `front.csv`) and `by` (`knee` or the `--pick` weights) of design.json",
                ""),
