@@ -371,7 +371,8 @@ DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points"
 DESIGN_RUN = {
     "design": ("the sizing problem: `mechanism`, `task` (`kind`, `unit`, `label`, and `vertices`, "
                "`center`/`radius` or `points`), `requirements` (angles in rad), `objectives`, `mode`, "
-               "`place`, `min_length`, `max_length`, `shape`, `unit`; the same under `settings`", ""),
+               "`place`, `min_length`, `max_length`, `shape`, `unit`, `side` (`above`; `below` for the "
+               "mirrored search below the base line); the same under `settings`", ""),
     "polished": ("objectives whose best design the local polish improved", ""),
     "dropped_by_certification": ("front designs that failed the fine certification", "-"),
     "front_size": ("rows of `front.csv`", "-"),
@@ -392,7 +393,7 @@ DESIGN_RUN = {
               "-"),
 }
 DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
-                   "max_length", "shape", "unit", "kind", "label", "vertices", "center", "radius", "points",
+                   "max_length", "shape", "unit", "side", "kind", "label", "vertices", "center", "radius", "points",
                    "n_boundary", "n_interior", "refine", "sampling", "by", "optimisation", "polish", "certification", "files")
 EXPORT_FILES = {
     "robot.urdf": ("`urdf`: the mechanism as a tree (URDF, lengths in m), cut open at the platform joint; the "

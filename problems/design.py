@@ -38,8 +38,8 @@ class DesignProblem(MechoptProblem):
     """``DesignProblem(mechanism, task, requirements, objectives, mode=None,
     place="fixed", min_length=None, max_length=None, shape=None, sampling=None,
     side="above")``; ``side="below"`` searches a free placement below the base line
-    (the mirror image of the search above it; only where the evaluator's
-    ``both_sides`` holds)."""
+    (the mirror image of a search above it; no effect on a fixed placement or a
+    mechanism whose placement is searched around the task's own height)."""
 
     name = "design"
     summary = "task-driven sizing (mechopt design): any mechanism, a task region, requirements over the whole task"

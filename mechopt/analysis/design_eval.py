@@ -176,10 +176,9 @@ class DesignEvaluator:
         #: other side (:func:`mechopt.workflows.design.design`)
         self.both_sides = (self.place != "fixed" and self._y_lo is not None
                            and self.spec.placement_both_sides(self.mode))
+        #: ``"below"`` mirrors a free placement searched above the base line (no effect
+        #: on a fixed placement or a mechanism searched around the task's own height)
         self.side = _v.choice("side", self._side, ("above", "below"))
-        if self.side == "below" and not self.both_sides:
-            raise ValueError(f"side='below' needs a free placement of a {self.spec.name} searched on both sides "
-                             f"of the base line")
         if self.place == "free":
             names.append("task_x_rel")
             xl.append(-1.0)
@@ -425,8 +424,7 @@ class DesignEvaluator:
                "objectives": list(self.objectives), "mode": "any" if self.mode_any else self.mode,
                "place": self.place, "min_length": self.min_length, "max_length": self.max_length,
                "shape": list(self.shape) if self.shape else None, "unit": self.unit}
-        if self.side == "below":
-            out["side"] = "below"
+        out["side"] = self.side
         return out
 
 
