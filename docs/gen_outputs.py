@@ -278,6 +278,55 @@ DESIGN_JSON = {
     "link1_angle_deg": ("gantry, biglide with `--link-angle`: `[lo, hi]` of link 1's angle", "deg"),
     "link2_angle_deg": ("the same for link 2", "deg"),
 }
+#: `certificate.json` of `mechopt design` (mechopt.workflows.certificate.certificate)
+CERTIFICATE_JSON = {
+    "certificate_version": ("the format of the file (1)", ""),
+    "mechopt_version": ("the mechopt that wrote it", ""),
+    "settings": ("the sizing problem, as run.json's `design`", ""),
+    "sampling": ("the certification's sampling: `n_boundary`, `n_interior`, `refine`", ""),
+    "chosen": ("the index (in `designs`, the row of `front.csv`) of the design of `design.json`", "-"),
+    "note": ("what `proven` and `refined-sampled` mean", ""),
+    "designs": ("one object per front design (the rows of `front.csv`, in order), keys below", ""),
+}
+#: the keys of one design of certificate.json and of one requirement under it
+CERTIFICATE_DESIGN = {
+    "index": ("row of `front.csv`", "-"),
+    "digest": ("sha256 of the design record's canonical JSON (as `export.json`'s `design_sha256`); the "
+               "chosen design's is that of `design.json`", ""),
+    "variables": ("lengths by name and `mode`, as in `design.json`", "unit"),
+    "task_placement": ("`task_x`, `task_y`", "unit"),
+    "feasible": ("every requirement holds", ""),
+    "requirements": ("`{requirement: {...}}` with the keys below", ""),
+    "tolerance": ("what the margins rest on, as in `design.json`", ""),
+}
+CERTIFICATE_REQUIREMENT = {
+    "margin": ("the requirement's margin (> 0 satisfied), as `margin_<name>` of `front.csv`", "its `unit`"),
+    "unit": ("the margin's unit", ""),
+    "g": ("normalised constraint, <= 0 satisfied", "-"),
+    "holds": ("`g <= 0`", ""),
+    "method": ("`proven` (the requirement's own argument over the whole task, `certificate`) or "
+               "`refined-sampled` (the minimum located on the samples and refined by zooming: an estimate, "
+               "not a bound)", ""),
+    "certificate": ("the requirement's argument, in words (empty for a sampled one)", ""),
+    "describe": ("the requirement in words, with its values", ""),
+}
+#: `mechopt check --json`
+CHECK_JSON = {
+    "design": ("the design.json checked", ""),
+    "mechanism": ("the mechanism's name", ""),
+    "unit": ("the length unit", ""),
+    "variables": ("the lengths checked (after `--lengths`), `mode`, `task_x`, `task_y`", "unit"),
+    "requirements": ("per requirement, the keys of certificate.json's requirements above", ""),
+    "sampling": ("the certification's sampling", ""),
+    "box": ("with `--tolerance`: `tolerance` [unit], `evaluated` (mechanisms: the 2^n corners and 32 seeded "
+            "points inside the box), `min_margin` and `worst` (the lengths where it is) per requirement, "
+            "`holds` per requirement, `method` (`sampled`: nothing is proven between the points)", ""),
+    "certificate": ("with a certificate.json beside the design: `index` (the certified design with this "
+                    "design.json's digest, null if none: edited or another run's) and `chosen`; informational, "
+                    "the exit status does not read it", ""),
+    "holds": ("every requirement holds (and within the box)", ""),
+    "fails": ("the requirements that fail", ""),
+}
 DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque", "error_um",
                  "peak_torque", "rms_torque")
 #: `mechopt motion`: motion.csv's columns, motion.json's and bodies.json's keys
@@ -322,10 +371,14 @@ DESIGN_TOLERANCE = ("boundary_gap", "interior_step", "reach", "minima", "points"
 DESIGN_RUN = {
     "design": ("the sizing problem: `mechanism`, `task` (`kind`, `unit`, `label`, and `vertices`, "
                "`center`/`radius` or `points`), `requirements` (angles in rad), `objectives`, `mode`, "
-               "`place`, `min_length`, `max_length`, `shape`, `unit`; the same under `settings`", ""),
+               "`place`, `min_length`, `max_length`, `shape`, `unit`, `side` (`above`; `below` for the "
+               "mirrored search below the base line); the same under `settings`", ""),
     "polished": ("objectives whose best design the local polish improved", ""),
     "dropped_by_certification": ("front designs that failed the fine certification", "-"),
     "front_size": ("rows of `front.csv`", "-"),
+    "other_designs": ("with a free placement searched on both sides of the base line (a five-bar of one "
+                      "mode) or `--place free`: the certified designs of the other searches (below the line; "
+                      "free-y) merged into this front's candidates", "-"),
     "certification": ("the fine sampling: `n_boundary`, `n_interior`, `refine`", ""),
     "chosen": ("`index` (row of `front.csv`) and `by` (`knee` or the `--pick` weights) of design.json",
                ""),
@@ -344,7 +397,7 @@ DESIGN_RUN = {
                     "+10 %); larger helps", "the requirement's unit"),
 }
 DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
-                   "max_length", "shape", "unit", "kind", "label", "vertices", "center", "radius", "points",
+                   "max_length", "shape", "unit", "side", "kind", "label", "vertices", "center", "radius", "points",
                    "n_boundary", "n_interior", "refine", "sampling", "by", "optimisation", "polish", "certification", "files")
 EXPORT_FILES = {
     "robot.urdf": ("`urdf`: the mechanism as a tree (URDF, lengths in m), cut open at the platform joint; the "
@@ -738,7 +791,8 @@ def _design() -> str:
         rows.append((f"`{m}`", _codes(spec.lengths), _codes(spec.modes), _codes(derived)))
     out = ["## `mechopt design MECHANISM`\n",
            "Sizes a mechanism for a task region. It writes into `--out`, all at once when the run "
-           "succeeds: `front.csv`, `design.json`, `run.json`, `history.csv` (as for `optimize`), "
+           "succeeds: `front.csv`, `design.json`, `certificate.json`, `run.json`, `history.csv` (as for "
+           "`optimize`), "
            "`front.png` and `design.png` (the chosen mechanism at the task's centre with the task, its "
            "good-conditioning workspace, the type-II locus, the reachable boundary and the crank "
            "ranges; with a collision option (`--min-clearance`, `--link-width`, `--carriage-length`, "
@@ -786,6 +840,15 @@ def _design() -> str:
            "The chosen design (the knee of the front, or `--pick`), certified:\n",
            _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in DESIGN_JSON.items()]),
            f"Keys under `values`: {_codes(DESIGN_VALUES)}; under `tolerance`: {_codes(DESIGN_TOLERANCE)}.\n",
+           "### `certificate.json`\n",
+           "What every front design's numbers rest on (mechopt.workflows.certificate); `mechopt check` "
+           "re-checks a design:\n",
+           _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in CERTIFICATE_JSON.items()]),
+           "Keys of each design under `designs`:\n",
+           _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in CERTIFICATE_DESIGN.items()]),
+           "Keys of each requirement under a design's `requirements`:\n",
+           _table(["key", "meaning", "unit"],
+                  [(f"`{k}`", m, _unit(u)) for k, (m, u) in CERTIFICATE_REQUIREMENT.items()]),
            "### `run.json`\n",
            "The keys of `optimize`'s `run.json` (`problem` is `design`) and:\n",
            _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in DESIGN_RUN.items()]),
@@ -794,6 +857,19 @@ def _design() -> str:
            "`problems/design.py`) searches the lengths as `ln_<length> = ln(length + min_length)` "
            "(`ln_D` with a shape) and the placement as `task_x_rel`, `task_y_rel`; its `front.csv` is "
            "listed with the other problems above.\n"]
+    return "\n".join(out)
+
+
+def _check() -> str:
+    out = ["## `mechopt check DESIGN.json`\n",
+           "Re-evaluates the design of a `design.json` (lengths possibly rounded by hand, or replaced by "
+           "`--lengths`) with the full evaluator and the certification's sampling against the task and "
+           "requirements of the `run.json` beside it (or `--task`), and with `--tolerance T` every length "
+           "within +-T. Prints one line per requirement (margin in its unit, holds or FAILS, proven or "
+           "refined-sampled) and a last line (`all requirements hold` or `fails: ...`); exit status 0 when "
+           "every requirement holds, 1 when one fails, 2 on bad input. Writes no file. With `--json`, one "
+           "object:\n",
+           _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in CHECK_JSON.items()])]
     return "\n".join(out)
 
 
@@ -972,7 +1048,8 @@ def _reproduce() -> str:
 
 def render() -> str:
     problems = _problem_columns()
-    parts = [_conventions(), _evaluate(), _optimize(problems), _sweep(problems), _design(), _motion(), _export(),
+    parts = [_conventions(), _evaluate(), _optimize(problems), _sweep(problems), _design(), _check(), _motion(),
+             _export(),
              _accuracy(), _atlas(),
              _reproduce()]
     text = "\n".join(p.rstrip("\n") + "\n" for p in parts)

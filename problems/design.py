@@ -36,7 +36,10 @@ EXAMPLE = dict(mechanism="five-bar", task="rect:100,60@0,180", min_lci=0.4, max_
 
 class DesignProblem(MechoptProblem):
     """``DesignProblem(mechanism, task, requirements, objectives, mode=None,
-    place="fixed", min_length=None, max_length=None, shape=None, sampling=None)``.
+    place="fixed", min_length=None, max_length=None, shape=None, sampling=None,
+    side="above")``; ``side="below"`` searches a free placement below the base line
+    (the mirror image of a search above it; no effect on a fixed placement or a
+    mechanism whose placement is searched around the task's own height).
 
     Parameters
     ----------
@@ -58,6 +61,8 @@ class DesignProblem(MechoptProblem):
         Fixed link ratios (the variable is the scale D [L]).
     sampling : mechopt.analysis.sampling.Sampling, optional
         The task's sampling during the search.
+    side : str
+        ``"above"`` or ``"below"`` the base line, for a free placement.
     **kwargs : 
         pymoo's :class:`~pymoo.core.problem.Problem` keywords (``elementwise_runner``,
         ``callback``).
@@ -76,7 +81,7 @@ class DesignProblem(MechoptProblem):
 
     def __init__(self, mechanism="five-bar", task=None, requirements=None, objectives=("size", "min-lci"),
                  mode=None, place="fixed", min_length=None, max_length=None, shape=None, sampling=None,
-                 **kwargs):
+                 side="above", **kwargs):
         from mechopt.analysis.task import parse_task
 
         if task is None:
@@ -86,7 +91,7 @@ class DesignProblem(MechoptProblem):
         if isinstance(task, str):
             task = parse_task(task)
         self.evaluator = ev = DesignEvaluator(mechanism, task, requirements, objectives, mode, place,
-                                              min_length, max_length, shape)
+                                              min_length, max_length, shape, side)
         self.sampling = sampling or Sampling()
         self.var_names = ev.var_names
         self.objectives = tuple(Objective(name, sense, unit, bounds) for name, sense, unit, bounds in ev.objective_specs())

@@ -115,8 +115,8 @@ def test_cli_writes_every_file_and_the_knee(tmp_path, capsys):
     assert main(argv) == 0
     printed = capsys.readouterr().out.strip().splitlines()
     assert "certified designs on the front" in printed[-1]
-    assert sorted(p.name for p in out.iterdir()) == ["design.json", "design.png", "front.csv", "front.png",
-                                                     "history.csv", "manifest.json", "run.json"]
+    assert sorted(p.name for p in out.iterdir()) == ["certificate.json", "design.json", "design.png", "front.csv",
+                                                     "front.png", "history.csv", "manifest.json", "run.json"]
     assert json.loads((out / "manifest.json").read_text())["status"] == "complete"
     front = pd.read_csv(out / "front.csv")
     assert list(front.columns[:6]) == ["r1", "r2", "r3", "mode", "task_x", "task_y"]

@@ -23,7 +23,7 @@ ALTERNATIVES = {
     "wu2008-dynamic": {"b": 600.0, "h": 300.0},
     "design": {"mechanism": "biglide", "task": "rect:80,40@0,150", "objectives": ("size",),
                "mode": "any", "place": "free", "min_length": 1.0, "max_length": 300.0,
-               "shape": None, "sampling": None, "requirements": None},
+               "shape": None, "sampling": None, "requirements": None, "side": "below"},
 }
 #: options whose alternative is set together with another (a shape needs its mechanism's
 #: length count; the five-bar has three)

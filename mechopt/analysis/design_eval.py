@@ -9,7 +9,9 @@ evaluators; :func:`mechopt.workflows.design.design` solves it with the seeded ru
 and certifies every front design with a finer sampling (:func:`certify`).
 
 * the task (:class:`mechopt.analysis.task.Task`), placed ``"fixed"``, ``"free-y"``
-  (moved along y) or ``"free"`` (moved in x and y);
+  (moved along y; for a five-bar of one working mode the design workflow searches
+  above the base line and, ``side="below"``, below it: :meth:`DesignEvaluator._y_range`)
+  or ``"free"`` (moved in x and y);
 * the requirements (:class:`mechopt.requirements.Requirements`), which must hold
   over the WHOLE task, each certified as its module states;
 * the objectives (:func:`mechopt.requirements.objectives`), any non-empty subset.
@@ -136,7 +138,7 @@ class DesignEvaluator:
     """
 
     def __init__(self, mechanism, task: Task, requirements: Requirements, objectives, mode=None,
-                 place="fixed", min_length=None, max_length=None, shape=None):
+                 place="fixed", min_length=None, max_length=None, shape=None, side="above"):
         self.spec = get_spec(mechanism)
         if not isinstance(task, Task):
             raise ValueError(f"task must be a mechopt.analysis.task.Task, got {type(task).__name__}")
@@ -183,6 +185,7 @@ class DesignEvaluator:
                 raise ValueError(f"shape ratios must be >= 0 and not all 0, got {_v.show(shape)}")
             self.shape = s
         self._precheck()
+        self._side = side
         self._build_vars()
         self._contexts = {}  # placement -> samples (_samples_at)
 
@@ -211,7 +214,16 @@ class DesignEvaluator:
         # the placement relative to the design's own reach (spec.placement_scale):
         # task_y = y_lo + task_y_rel * scale, task_x = task_x_rel * scale
         x0, x1, y0, y1 = self.task.bbox
-        self._y_lo = 0.5 * (y1 - y0) if self.spec.placement_above_base(self.mode) else None
+        self._half_height = 0.5 * (y1 - y0)
+        self._y_lo = self._half_height if self.spec.placement_above_base(self.mode) else None
+        #: a free placement to be searched on both sides of the base line: this search
+        #: covers the ``side`` (``"above"`` or ``"below"``, :meth:`_y_range`), another the
+        #: other side (:func:`mechopt.workflows.design.design`)
+        self.both_sides = (self.place != "fixed" and self._y_lo is not None
+                           and self.spec.placement_both_sides(self.mode))
+        #: ``"below"`` mirrors a free placement searched above the base line (no effect
+        #: on a fixed placement or a mechanism searched around the task's own height)
+        self.side = _v.choice("side", self._side, ("above", "below"))
         if self.place == "free":
             names.append("task_x_rel")
             xl.append(-1.0)
@@ -287,12 +299,22 @@ class DesignEvaluator:
         scale = self.spec.placement_scale(out, self.max_length)
         out["task_x"] = float(d["task_x_rel"] * scale) if "task_x_rel" in d else float(rx)
         if "task_y_rel" in d:
-            lo = self._y_lo if self._y_lo is not None else ry - scale
-            span = scale if self._y_lo is not None else 2.0 * scale
+            lo, span = self._y_range(scale)
             out["task_y"] = float(lo + d["task_y_rel"] * span)
         else:
             out["task_y"] = float(ry)
         return out
+
+    def _y_range(self, scale) -> tuple:
+        """``(lo, span)`` [L] of a free task height: ``task_y = lo + task_y_rel * span``,
+        ``task_y_rel`` in [0, 1], ``scale`` the design's
+        :meth:`~mechopt.core.design_spec.DesignSpec.placement_scale`. Above the base line
+        (``placement_above_base``): from half the task's height ``h`` up by ``scale``;
+        with ``side="below"`` its mirror image (from ``-h`` down by ``scale``);
+        otherwise the task's own height ``+- scale``."""
+        if self._y_lo is not None:
+            return (-self._y_lo, -scale) if self.side == "below" else (self._y_lo, scale)
+        return self.task.reference[1] - scale, 2.0 * scale
 
     def encode(self, v: dict) -> np.ndarray:
         """One row of X from a decoded design (the inverse of :meth:`decode`).
@@ -318,9 +340,7 @@ class DesignEvaluator:
                 if n == "task_x_rel":
                     row.append(v["task_x"] / scale)
                 else:
-                    ry = self.task.reference[1]
-                    lo = self._y_lo if self._y_lo is not None else ry - scale
-                    span = scale if self._y_lo is not None else 2.0 * scale
+                    lo, span = self._y_range(scale)
                     row.append((v["task_y"] - lo) / span)
             else:
                 row.append(float(v[n]))
@@ -557,10 +577,12 @@ class DesignEvaluator:
             bounds, shape and unit.
         """
         req = {k: v for k, v in self.req.asdict().items() if v is not None}
-        return {"mechanism": self.spec.name, "task": self.task.to_dict(), "requirements": req,
-                "objectives": list(self.objectives), "mode": "any" if self.mode_any else self.mode,
-                "place": self.place, "min_length": self.min_length, "max_length": self.max_length,
-                "shape": list(self.shape) if self.shape else None, "unit": self.unit}
+        out = {"mechanism": self.spec.name, "task": self.task.to_dict(), "requirements": req,
+               "objectives": list(self.objectives), "mode": "any" if self.mode_any else self.mode,
+               "place": self.place, "min_length": self.min_length, "max_length": self.max_length,
+               "shape": list(self.shape) if self.shape else None, "unit": self.unit}
+        out["side"] = self.side
+        return out
 
 
     def record(self, derived) -> dict:

@@ -1,5 +1,5 @@
-"""The ``mechopt`` command: evaluate, reproduce, report, problems, optimize, sweep, design, motion, export, accuracy,
-atlas, explore.
+"""The ``mechopt`` command: evaluate, reproduce, report, problems, optimize, sweep, design, check, motion, export,
+accuracy, atlas, explore.
 
 Each command is one module of this package with the same interface: ``NAME`` (the
 command), ``add_parser(subparsers)`` (registers it and its options) and ``run(args) ->
@@ -32,12 +32,13 @@ import os
 import sys
 
 from mechopt import __version__
-from mechopt.cli import (accuracy, atlas, design, evaluate, explore, export, motion, optimize, problems, report,
-                         reproduce, sweep)
+from mechopt.cli import (accuracy, atlas, check, design, evaluate, explore, export, motion, optimize, problems,
+                         report, reproduce, sweep)
 from mechopt.cli._common import Parser, UsageError
 
 #: the command modules, in the order of ``mechopt --help``
-COMMANDS = (evaluate, reproduce, report, problems, optimize, sweep, design, motion, export, accuracy, atlas, explore)
+COMMANDS = (evaluate, reproduce, report, problems, optimize, sweep, design, check, motion, export, accuracy, atlas,
+            explore)
 
 EXIT_USAGE = 2
 #: a runtime failure (the Dask cluster, the disk) and an unexpected error (a bug)

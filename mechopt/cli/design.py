@@ -6,7 +6,8 @@ m or in) and the requirements over the whole task
 (:class:`mechopt.requirements.Requirements`: one option per declared
 :class:`~mechopt.requirements.base.Option`; angles given in deg, passed on in rad),
 then runs :func:`mechopt.workflows.design.design`, which writes ``front.csv``,
-``design.json`` (the chosen design: the knee, or the ``--pick`` weights), ``run.json``,
+``design.json`` (the chosen design: the knee, or the ``--pick`` weights),
+``certificate.json`` (each front design's margins and how each is known), ``run.json``,
 ``history.csv``, ``front.png`` and ``design.png`` into ``DIR``. Prints one line: the
 number of certified designs on the front, the chosen design with its objectives in
 their units, the wall time [s].
@@ -55,8 +56,9 @@ def add_parser(subparsers):
     ds.add_argument("--mode", default=None, help=f"working mode ({modes_text}) or any")
     ds.add_argument("--place", default="fixed",
                     help="where the task sits: fixed (default: as given by --task), free-y (the search "
-                         "also moves it along y, away from the base) or free (in x and y); the placed "
-                         "centre is printed and in front.csv (task_x, task_y)")
+                         "also moves it along y; a five-bar of one working mode on both sides of the base "
+                         "line) or free (in x and y; starts from the free-y result, never ends worse); the "
+                         "placed centre is printed and in front.csv (task_x, task_y)")
     ds.add_argument("--objectives", default="size,min-lci",
                     help=f"comma list of {', '.join(_req.objectives())}")
     ds.add_argument("--max-length", type=float, default=None,

@@ -374,6 +374,16 @@ class DesignSpec:
         """
         return False
 
+    def placement_both_sides(self, mode) -> bool:
+        """True when a free placement searched above the base line
+        (:meth:`placement_above_base`) is searched below it too, for ``mode``: the
+        mirror image about the line of a design in one working mode is a design in
+        another (the five-bar's ``"+-"`` mirrored is ``"-+"``), so with one mode fixed
+        the designs below the line are not those above. ``mechopt design`` then runs a
+        second search below the line, the mirror image of the first
+        (:mod:`mechopt.workflows.design`)."""
+        return False
+
     def reach_radius(self, lmax) -> float:
         """No design within the length bounds reaches a point farther than this [L] from
         the base midpoint (a necessary condition, checked before any run).

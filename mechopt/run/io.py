@@ -147,9 +147,11 @@ def write_text(path, text: str) -> Path:
 
 
 def write_csv(df, path, **kw) -> Path:
-    """A DataFrame as CSV (floats with full precision, no index)."""
+    """A DataFrame as CSV, no index, every float in full precision: the shortest text
+    that reads back as the same double (Python's ``repr``, pandas' default), so that
+    ``pandas.read_csv`` of the file gives the written numbers bit for bit (a margin
+    re-read from ``front.csv`` is the computed one, not one rounded to 10 digits)."""
     kw.setdefault("index", False)
-    kw.setdefault("float_format", "%.10g")
     with atomic_path(path) as tmp:
         df.to_csv(tmp, **kw)
     return Path(path)

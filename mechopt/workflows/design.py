@@ -663,12 +663,17 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     each objective locally from the front (``polish``; :func:`_polish_front`, on the
     same workers, with the certification's sampling; with a free placement the size
     is searched over the lengths, each candidate placed where its margins are largest,
-    from 3 front designs; the result does not depend on ``n_jobs``), certifies every
+    from 3 front designs; the result does not depend on ``n_jobs``; a five-bar of one
+    working mode placed freely is also searched below the base line, a second run of
+    the same budget and seed, its front merged; ``place="free"`` first runs ``"free-y"``
+    with the same budget and seed and starts from its certified front, so it never ends
+    worse), certifies every
     front design with :func:`certify` (designs that fail the fine check are dropped and
     counted in ``info["dropped_by_certification"]``) and returns a
     :class:`DesignResult`. With ``out``, writes ``front.csv``, ``design.json`` (the
-    knee, or ``pick`` weights), ``run.json``, ``history.csv``, ``front.png`` and
-    ``design.png`` as one set (:func:`mechopt.run.io.output_set`, with ``manifest.json``
+    knee, or ``pick`` weights), ``certificate.json`` (each front design's requirements,
+    margins, how each is known, its digest: :mod:`mechopt.workflows.certificate`),
+    ``run.json``, ``history.csv``, ``front.png`` and ``design.png`` as one set (:func:`mechopt.run.io.output_set`, with ``manifest.json``
     written last), so a failed run leaves nothing half-written; a folder holding
     another run is refused unless ``overwrite``.
 
@@ -751,6 +756,27 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     if checkpoint_every is not None:
         raise ValueError("design runs are not checkpointed; run mechopt.run.runner.optimize on the "
                          "registered 'design' problem to checkpoint one")
+    def sub_front(place_, side, extra):
+        """The certified front of the same run with ``place_`` and ``side`` (the same
+        budget and seed), ``extra`` designs added, as decoded designs."""
+        sub = _problem("design", mechanism=mechanism, task=task, requirements=requirements,
+                       objectives=objectives, mode=mode, place=place_, min_length=min_length,
+                       max_length=max_length, shape=shape, side=side)
+        res = _design(sub, sub.evaluator, None, algorithm, pop, gen, seed, n_jobs, client, None, progress,
+                      polish, None, extra)
+        names = (*ev.spec.lengths, *(("D",) if ev.shape is not None else ()), "mode", "task_x", "task_y")
+        return [{k: (str(r[k]) if k == "mode" else float(r[k])) for k in names}
+                for r in res.front.to_dict("records")]
+
+    def other_designs():
+        """The designs the main search adds to its front: with a placement searched on
+        both sides of the base line, the front of the search below it; with
+        ``place="free"``, the front of ``"free-y"`` (itself with the designs below)."""
+        extra = sub_front("free-y", "below", []) if ev.both_sides else []
+        if ev.place == "free":
+            extra = sub_front("free-y", "above", extra)
+        return extra
+
     manifest = None
     if out is not None:
         out = _io.prepare_out_dir(out)
@@ -760,19 +786,23 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
                "seed": seed, "polish": polish, "pick": pick}
         with _io.run_in(out, "design", key, DESIGN_OUTPUTS, overwrite) as manifest:
             result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress,
-                             polish, manifest)
+                             polish, manifest, other_designs())
     else:
         result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, None, progress, polish,
-                         None)
+                         None, other_designs())
     if result.error is not None:  # the files are written: the empty result is reported
         raise result.error
     return result
 
 
-def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest):
+def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest,
+            extra=()):
     """The run, polish and certification of :func:`design`, and its files with ``out``.
-    ``info["stage_times_s"]`` gives the wall time [s] of each stage (optimisation,
-    polish, certification, files) and ``info["wall_time_s"]`` their sum, the whole call."""
+    ``extra`` are decoded designs (the front of the search below the base line, the
+    ``free-y`` front of a ``free`` run) certified with the front and, those inside this
+    search's bounds, added to the polish's starts. ``info["stage_times_s"]`` gives the
+    wall time [s] of each stage (optimisation, polish, certification, files) and
+    ``info["wall_time_s"]`` their sum, the whole call."""
     import time
 
     from mechopt.run import io as _io
@@ -783,9 +813,15 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
                    plot=False)
     info = dict(run.info)
     stages = {"optimisation": time.perf_counter() - t0}
-    if not len(run.front):
+    extra = list(extra)
+    if ev.place == "free" or ev.both_sides:
+        info["other_designs"] = len(extra)
+    if not len(run.front) and not extra:
         return _empty_result(problem, ev, run, info, stages, out, manifest, _no_design(problem, run))
-    X = run.front[list(problem.var_names)].to_numpy(float)
+    X = run.front[list(problem.var_names)].to_numpy(float).reshape(-1, len(problem.var_names))
+    if extra:  # polish starts too, those inside this search's bounds (the others were polished in theirs)
+        E = np.array([ev.encode(v) for v in extra])
+        X = np.vstack([X, E[np.all((E >= problem.xl) & (E <= problem.xu), axis=1)]])
     polished = []
     t0 = time.perf_counter()
     if polish:
@@ -797,8 +833,7 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
     stages["polish"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     rows, kept, dropped = [], [], 0
-    for x in X:
-        v = ev.decode(x)
+    for v in [ev.decode(x) for x in X] + extra:  # the extra designs as given (exactly their placement)
         res = certify(ev, v)
         if not res["feasible"]:
             dropped += 1
@@ -834,6 +869,7 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
             _io.write_csv(front, stage / "front.csv")
             _io.write_csv(run.history, stage / "history.csv")
             _io.write_json(json_record(chosen), stage / "design.json")
+            _io.write_json(_certificate(result), stage / "certificate.json")
             _io.write_json(info, stage / "run.json")
             _io.save_figure(fig_front, stage / "front.png")
             _io.save_figure(fig_design, stage / "design.png")
@@ -887,7 +923,15 @@ def _task_digest(task) -> str:
 
 
 #: the names a design run writes (such files no run manifest accounts for are refused)
-DESIGN_OUTPUTS = ("front.csv", "history.csv", "design.json", "run.json", "front.png", "design.png", "population.csv")
+DESIGN_OUTPUTS = ("front.csv", "history.csv", "design.json", "certificate.json", "run.json", "front.png",
+                  "design.png", "population.csv")
+
+
+def _certificate(result) -> dict:
+    """certificate.json (:func:`mechopt.workflows.certificate.certificate`)."""
+    from mechopt.workflows.certificate import certificate
+
+    return certificate(result)
 
 
 def _non_dominated(F):

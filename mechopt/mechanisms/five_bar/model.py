@@ -609,6 +609,13 @@ class FiveBarDesignSpec(DesignSpec):
     def placement_above_base(self, mode):
         return True
 
+    def placement_both_sides(self, mode):
+        # the reachable set is symmetric about the base line, and the mirror image of a
+        # design in mode (s1, s2) is the design in mode (-s1, -s2): with every mode
+        # searched (mode None) the upper half holds them all; with one mode fixed the
+        # lower half holds other designs
+        return mode is not None
+
     def sketch(self, mech, px, py, mx, my):
         b1x, b1y, b2x, b2y, _ = mech.elbows(px, py)
         chains = [[(-mech.r3, 0), (float(b1x), float(b1y)), (px, py)],

@@ -1,0 +1,52 @@
+"""``mechopt check DESIGN.json [--lengths r1=85,...] [--task TASK] [--tolerance T]``:
+re-check a design.
+
+Runs :func:`mechopt.workflows.certificate.check`: the design of a ``design.json`` of
+``mechopt design`` (its lengths possibly rounded by hand, in the file or with
+``--lengths``), re-evaluated with the full evaluator and the certification's sampling
+against the task and requirements of the ``run.json`` beside it (or ``--task``), and with
+``--tolerance T`` every mechanism whose lengths lie within ``+- T`` (the box's corners and
+a seeded sample inside it: a sampled check, not a proof). Prints one line per requirement
+(its margin in its unit, holds or FAILS, proven or refined-sampled) and a last line;
+exit status 0 when every requirement holds, 1 naming those that fail, 2 on bad input.
+"""
+from __future__ import annotations
+
+import json
+
+NAME = "check"
+
+
+def add_parser(subparsers):
+    """Register ``check``."""
+    p = subparsers.add_parser(NAME, help="re-check a design.json (rounded lengths, a tolerance box): exit 0 "
+                                         "if every requirement holds, 1 if one fails",
+                              description="Re-evaluate the design of a design.json with the full evaluator "
+                                          "against the task and requirements of the run.json beside it; exit 0 "
+                                          "when every requirement holds, 1 when one fails (named), 2 on bad "
+                                          "input.")
+    p.add_argument("design", metavar="DESIGN.json", help="a design.json written by mechopt design (a run.json "
+                                                         "must lie beside it)")
+    p.add_argument("--lengths", default=None, metavar="NAME=VALUE,...",
+                   help="lengths [the design's unit] replacing the file's, e.g. rounded ones: r1=85,r3=12.5")
+    p.add_argument("--task", default=None,
+                   help="check against this task instead (same syntax as mechopt design --task, lengths [unit] "
+                        "of the design, placed as given; default: run.json's task at the design's placement)")
+    p.add_argument("--tolerance", default=None, metavar="T",
+                   help="also check every length within +-T [the design's unit] of the nominal one: the box's "
+                        "2^n corners and 32 seeded points inside it (sampled, not proven)")
+    p.add_argument("--json", action="store_true", help="print the report as one JSON object (keys: "
+                                                       "docs/outputs.md)")
+
+
+def run(args) -> int:
+    """Check the design, print the report, return 0 (holds) or 1 (fails)."""
+    from mechopt.run.io import plain_json
+    from mechopt.workflows.certificate import check, format_check
+
+    report = check(args.design, task=args.task, tolerance=args.tolerance, lengths=args.lengths)
+    if args.json:
+        print(json.dumps(plain_json(report), sort_keys=True))
+    else:
+        print("\n".join(format_check(report)))
+    return 0 if report["holds"] else 1

@@ -1,0 +1,281 @@
+"""What a design's numbers rest on, and re-checking a design: ``certificate.json`` and
+``mechopt check``.
+
+:func:`certificate` is the content of ``certificate.json``, written by ``mechopt design``
+next to ``design.json``: for every front design (and which one ``design.json`` holds)
+each active requirement with its margin [its unit], its ``g``, whether it holds, how it
+is known (``"proven"``: the requirement's own argument over the whole task, e.g. the
+reach's 1-Lipschitz clearance bound; ``"refined-sampled"``: the minimum located on the
+samples and refined by zooming, an estimate, not a bound), the sampling, and the
+design's digest (:func:`mechopt.export.source.design_digest` of its design record: for
+the chosen design, the digest of ``design.json`` itself).
+
+:func:`check` re-evaluates a ``design.json`` (its lengths possibly rounded or edited by
+hand, ``--lengths``) with the full evaluator and the certification's sampling
+(:func:`mechopt.analysis.design_eval.certify`) against the task and requirements of the
+``run.json`` beside it (or ``--task``), and with a tolerance ``T`` also every mechanism
+whose lengths lie within ``+- T`` of the nominal ones (:func:`tolerance_box`).
+"""
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import asdict
+from pathlib import Path
+
+import numpy as np
+
+from mechopt.analysis.design_eval import DesignEvaluator, certify
+from mechopt.analysis.sampling import Sampling
+
+__all__ = ["certificate", "check", "tolerance_box", "requirement_entries", "format_check", "BOX_SAMPLES",
+           "CERTIFICATE_VERSION"]
+
+#: the format of certificate.json (a new key keeps it; a changed meaning raises it)
+CERTIFICATE_VERSION = 1
+#: random mechanisms drawn inside a tolerance box besides its 2^n corners (seeded)
+BOX_SAMPLES = 32
+
+
+def _method(member) -> str:
+    return "proven" if member.proven else "refined-sampled"
+
+
+def requirement_entries(ev: DesignEvaluator, res: dict) -> dict:
+    """``{requirement: {margin, unit, g, holds, method, certificate}}`` of an evaluation
+    ``res`` (:func:`~mechopt.analysis.design_eval.certify`) by the evaluator ``ev``."""
+    out = {}
+    for r in ev.active:
+        m, g = res["margin"][r.name], res["g"][r.name]
+        out[r.name] = {"margin": float(m), "unit": r.margin_unit.format(L=ev.unit), "g": float(g),
+                       "holds": bool(g <= 0), "method": _method(r), "certificate": r.certificate,
+                       "describe": ev.req.describe(r.name, ev.unit)}
+    return out
+
+
+def certificate(result) -> dict:
+    """certificate.json's content for a :class:`~mechopt.workflows.design.DesignResult`:
+    the mechopt version, the mechanism, unit, task and requirements (run.json's
+    ``design`` settings), the sampling of the certification, the index of the chosen
+    design, and per front design its variables, placement, digest, each requirement
+    (:func:`requirement_entries`) and what the margins rest on (``tolerance``)."""
+    from mechopt import __version__
+    from mechopt.export.source import design_digest
+    from mechopt.run.io import plain_json
+
+    ev = result.evaluator
+    designs = []
+    for i in range(len(result.front)):
+        rec = result.design_at(i)
+        res = {"margin": rec["margins"], "g": rec["constraints_g"]}
+        # the digest of the record as design.json holds it (without the mechanism object)
+        digest = design_digest(plain_json({k: val for k, val in rec.items() if k != "mechanism"}))
+        designs.append({"index": i, "digest": digest, "variables": rec["variables"],
+                        "task_placement": rec["task_placement"], "feasible": bool(rec["feasible"]),
+                        "requirements": requirement_entries(ev, res), "tolerance": rec["tolerance"]})
+    return {"certificate_version": CERTIFICATE_VERSION, "mechopt_version": __version__,
+            "settings": ev.settings(), "sampling": asdict(Sampling.fine()),
+            "chosen": int(result.chosen_index), "designs": designs,
+            "note": "proven: the requirement's argument holds over the whole task; refined-sampled: the "
+                    "minimum located on the samples and refined by zooming (an estimate, not a bound)"}
+
+
+# ------------------------------------------------------------------ check
+def _read_design(path):
+    """``(design.json, run.json's design settings)``: one-line ValueError otherwise."""
+    from mechopt.run import io as _io
+
+    path = Path(path)
+    try:
+        rec = _io.read_json(path, f"DESIGN.json {str(path)!r}")
+    except FileNotFoundError:
+        raise ValueError(f"DESIGN.json {str(path)!r} does not exist") from None
+    except IsADirectoryError:
+        raise ValueError(f"DESIGN.json {str(path)!r} is a folder") from None
+    if not isinstance(rec, dict) or not {"mechanism_name", "variables", "task_placement", "unit"} <= set(rec):
+        raise ValueError(f"{str(path)!r} is not a design.json of mechopt design")
+    run_path = path.parent / "run.json"
+    try:
+        run = _io.read_json(run_path, f"run.json {str(run_path)!r}")
+    except FileNotFoundError:
+        raise ValueError(f"no run.json beside {str(path)!r} (it holds the task and the requirements)") from None
+    settings = run.get("design") if isinstance(run, dict) else None
+    if not isinstance(settings, dict) or settings.get("mechanism") != rec["mechanism_name"]:
+        raise ValueError(f"{str(run_path)!r} is not the run.json of this design's run")
+    return rec, settings
+
+
+def _variables(rec, spec, lengths):
+    """The design's variables (lengths [L], mode, placement), ``lengths`` (``{name: value}``
+    or ``"r1=85,r2=160"``) replacing some."""
+    from mechopt.core import validation as _v
+
+    v = rec["variables"]
+    try:
+        out = {n: float(v[n]) for n in spec.lengths}
+        out["mode"] = str(v["mode"])
+        out["task_x"] = float(rec["task_placement"]["task_x"])
+        out["task_y"] = float(rec["task_placement"]["task_y"])
+    except (KeyError, TypeError, ValueError) as exc:
+        raise ValueError(f"design.json lacks a design variable or its placement ({exc})") from None
+    if isinstance(lengths, str):
+        pairs = [p.partition("=") for p in lengths.split(",") if p.strip()]
+        if any(not sep for _, sep, _ in pairs):
+            raise ValueError(f"--lengths must be name=value,... (e.g. r1=85,r2=160), got {lengths!r}")
+        lengths = {k.strip(): val for k, _, val in pairs}
+    for k, val in dict(lengths or {}).items():
+        _v.choice("length", k, tuple(spec.lengths))
+        x = _v.finite_number(k, val)
+        if x < 0:
+            raise ValueError(f"{k} must be >= 0, got {x!r}")
+        out[k] = x
+    for k in spec.lengths:
+        if not (math.isfinite(out[k]) and out[k] >= 0):
+            raise ValueError(f"design.json's {k} must be a finite length >= 0, got {out[k]!r}")
+    return out
+
+
+def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX_SAMPLES, seed: int = 0,
+                  sampling: Sampling | None = None) -> dict:
+    """The smallest margin of each requirement over the mechanisms whose lengths lie
+    within ``+- tol`` [L] of those of ``v`` (a length the box would make negative is
+    clipped at 0).
+
+    What is evaluated: the ``2^n`` corners of the box (``n`` lengths) and ``n_samples``
+    points drawn uniformly inside it (seeded), each by
+    :func:`~mechopt.analysis.design_eval.certify` with ``sampling`` (default the
+    certification's); the placement and working mode stay the design's. What is
+    proven: nothing beyond those mechanisms. The margins are not monotone in the
+    lengths in general (LCI has interior maxima along a length, the polish leaves
+    designs at such peaks), so a minimum inside the box between the evaluated points
+    can be lower: the result is a sampled bound, ``method "sampled"``, never called
+    proven. Returns ``{"tolerance", "evaluated", "min_margin": {name: value},
+    "worst": {name: lengths}, "holds": {name: bool}, "method": "sampled"}``."""
+    names = list(ev.spec.lengths)
+    nominal = np.array([v[n] for n in names])
+    corners = np.array(list(itertools.product(*[(-1.0, 1.0)] * len(names))))
+    rng = np.random.default_rng(seed)
+    offsets = np.vstack([corners, rng.uniform(-1.0, 1.0, size=(n_samples, len(names)))])
+    worst_m = {r.name: math.inf for r in ev.active}
+    worst_at, holds = {}, {r.name: True for r in ev.active}
+    for off in offsets:
+        L = np.maximum(nominal + tol * off, 0.0)
+        res = certify(ev, {**v, **dict(zip(names, map(float, L)))}, sampling)
+        for r in ev.active:
+            m, g = float(res["margin"][r.name]), float(res["g"][r.name])
+            if not g <= 0:
+                holds[r.name] = False
+            if not m >= worst_m[r.name]:  # NaN counts as the worst
+                worst_m[r.name], worst_at[r.name] = m, dict(zip(names, map(float, L)))
+    return {"tolerance": float(tol), "evaluated": int(len(offsets)), "min_margin": worst_m, "worst": worst_at,
+            "holds": holds, "method": "sampled"}
+
+
+def _certificate_match(path: Path, rec: dict):
+    """Whether the certificate.json beside ``path`` records this very design.json (its
+    digest among the certified designs'): ``{"index": k or None, "chosen": bool}``, or
+    None without a readable certificate.json. Informational: a design edited by hand
+    (rounded lengths) is checked on its own numbers, whatever the certificate says."""
+    from mechopt.export.source import design_digest
+    from mechopt.run import io as _io
+
+    try:
+        cert = _io.read_json(path.parent / "certificate.json")
+        digest = design_digest(rec)
+        designs = cert["designs"]
+        index = next((d["index"] for d in designs if d.get("digest") == digest), None)
+        return {"index": index, "chosen": index is not None and index == cert.get("chosen")}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None
+
+
+def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int = BOX_SAMPLES) -> dict:
+    """Re-check the design of ``design_path`` (a design.json of ``mechopt design``).
+
+    Parameters
+    ----------
+    design_path : path
+        The design.json; the run.json beside it gives the task, requirements and bounds.
+    task : str or Task, optional
+        Another task (:func:`~mechopt.analysis.task.parse_task` text in the design's
+        unit), placed as it is given; default run.json's task at the design's placement.
+    tolerance : float, optional
+        ``T`` [L]: also check every length within ``+- T`` (:func:`tolerance_box`).
+    lengths : dict or str, optional
+        Lengths [L] that replace the design's (``"r1=85,r2=160"``), e.g. rounded ones.
+    n_samples : int
+        Random mechanisms inside the tolerance box besides its corners.
+
+    Returns
+    -------
+    dict
+        ``variables``, ``requirements`` (:func:`requirement_entries` at the nominal
+        lengths), ``box`` (:func:`tolerance_box`, with ``tolerance``), ``certificate``
+        (whether the certificate.json beside the design records it, by digest:
+        informational), ``holds`` (all of them) and ``fails`` (the names of those that
+        do not).
+    """
+    from mechopt.analysis.task import Task, parse_task
+    from mechopt.core import validation as _v
+    from mechopt.export.source import task_from_dict
+    from mechopt.requirements import Requirements
+
+    rec, settings = _read_design(design_path)
+    from mechopt.analysis.design_eval import get_spec
+
+    spec = get_spec(rec["mechanism_name"])
+    v = _variables(rec, spec, lengths)
+    unit = rec["unit"]
+    if task is None:
+        the_task = task_from_dict(settings["task"])
+    else:
+        the_task = task if isinstance(task, Task) else parse_task(task, unit=unit)
+        if the_task.unit != unit:
+            raise ValueError(f"--task is in {the_task.unit}, the design in {unit}")
+        v["task_x"], v["task_y"] = map(float, the_task.reference)
+    if tolerance is not None:
+        tolerance = _v.finite_number("--tolerance", tolerance)
+        if not tolerance > 0:
+            raise ValueError(f"--tolerance must be a length > 0, got {tolerance!r}")
+    req = Requirements(**settings.get("requirements", {}))
+    ev = DesignEvaluator(spec.name, the_task, req, settings.get("objectives") or ("size",), mode=v["mode"],
+                         place="fixed", min_length=settings.get("min_length"), max_length=settings.get("max_length"))
+    res = certify(ev, v)
+    entries = requirement_entries(ev, res)
+    out = {"design": str(design_path), "mechanism": spec.name, "unit": unit, "variables": v,
+           "requirements": entries, "sampling": asdict(Sampling.fine())}
+    out["certificate"] = _certificate_match(Path(design_path), rec)
+    fails = [n for n, e in entries.items() if not e["holds"]]
+    if tolerance is not None:
+        box = tolerance_box(ev, v, tolerance, n_samples)
+        out["box"] = box
+        fails += [f"{n} (within +-{tolerance:g} {unit})" for n, ok in box["holds"].items()
+                  if not ok and n not in fails]
+    out["fails"], out["holds"] = fails, not fails
+    return out
+
+
+def format_check(report: dict) -> list:
+    """The lines ``mechopt check`` prints for a :func:`check` report."""
+    u = report["unit"]
+    L = ", ".join(f"{k}={report['variables'][k]:.10g}" for k in report["variables"]
+                  if k not in ("mode", "task_x", "task_y"))
+    lines = [f"{report['mechanism']} {L} {u}, mode {report['variables']['mode']}, task centre at "
+             f"({report['variables']['task_x']:.6g}, {report['variables']['task_y']:.6g}) {u}"]
+    box = report.get("box")
+    for name, e in report["requirements"].items():
+        unit = f" {e['unit']}".rstrip(" -")
+        line = (f"{name}: margin {e['margin']:.6g}{unit} ({'holds' if e['holds'] else 'FAILS'}, {e['method']}; "
+                f"{e['describe']})")
+        if box is not None:
+            m = box["min_margin"][name]
+            line += (f"; within +-{box['tolerance']:g} {u}: smallest margin {m:.6g}{unit} "
+                     f"({'holds' if box['holds'][name] else 'FAILS'}, sampled at {box['evaluated']} mechanisms)")
+        lines.append(line)
+    cert = report.get("certificate")
+    if cert is not None:
+        lines.append("certificate.json records this design.json (digest)" if cert["index"] is not None else
+                     "certificate.json does not record this design.json (edited since, or another run's): "
+                     "checked on its own numbers")
+    lines.append("all requirements hold" if report["holds"] else f"fails: {', '.join(report['fails'])}")
+    return lines
