@@ -63,7 +63,7 @@ import numpy as np
 from mechopt.core import indices as _ix
 from mechopt.core import validation as _v
 
-__all__ = ["ACTUATOR_NORMS", "guaranteed_speed", "guaranteed_force"]
+__all__ = ["ACTUATOR_NORMS", "actuator_norm", "guaranteed_speed", "guaranteed_force"]
 
 #: readings of the actuator limits: per actuator (``"box"``) or one Euclidean budget (``2``)
 ACTUATOR_NORMS = ("box", 2)
@@ -78,7 +78,9 @@ def _limits(name, value, unit):
     return arr
 
 
-def _norm(norm):
+def actuator_norm(norm):
+    """The reading ``norm`` normalised: ``"box"`` (also ``"inf"``) or ``2`` (also ``"2"``);
+    anything else is a one-line ValueError."""
     if norm in ("box", "inf"):
         return "box"
     if norm in (2, "2"):
@@ -113,7 +115,7 @@ def guaranteed_speed(J, w, norm="box"):
     """
     J = _matrix(J)
     w = _limits("w", w, "actuator unit/s")
-    if _norm(norm) == 2:
+    if actuator_norm(norm) == 2:
         return 1.0 / _ix.singular_values(J / w[:, None])[0]
     rows = np.hypot(J[..., 0], J[..., 1])  # (..., 2): ||row_i||
     with np.errstate(divide="ignore"):
@@ -142,7 +144,7 @@ def guaranteed_force(J, t, norm="box"):
     """
     J = _matrix(J)
     t = _limits("t", t, "N m or N")
-    if _norm(norm) == 2:
+    if actuator_norm(norm) == 2:
         return _ix.singular_values(J * t[:, None])[1]
     det = np.abs(J[..., 0, 0] * J[..., 1, 1] - J[..., 0, 1] * J[..., 1, 0])
     e1 = t[0] * np.hypot(J[..., 0, 0], J[..., 0, 1])

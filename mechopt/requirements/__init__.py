@@ -16,7 +16,7 @@ line read the registry alone: a new requirement is one new module added to
 - ``link_angle``: requirement link_angle (``--link-angle``)
 - ``stroke``: requirement stroke (``--max-stroke``, sliders)
 - ``lengths``: requirement lengths (bipod struts, always)
-- ``speed``: requirement speed (``--min-speed``, ``--actuator-speed``); objective speed
+- ``speed``: requirement speed (``--min-speed``, ``--actuator-speed``, ``--actuator-norm``); objective speed
 - ``force``: requirement force (``--min-force``, ``--actuator-torque``); objective force
 - ``torque``: objective torque (``--payload``)
 - ``accuracy``: requirement error (``--max-error``); objective error

@@ -60,11 +60,16 @@ class Option:
         unit (``0.5m/s``, ``2Nm``; a :class:`mechopt.core.units.Quantity` or such a
         string in Python), converted to the option's unit when checked; a bare
         number is in that unit.
+    per_actuator : bool
+        True for a value given once for both actuators or once per actuator: one value
+        or two (``3,2.5`` on the command line, a pair in Python), each checked on its
+        own; the checked value is a float for one, a tuple of two floats for two.
     """
 
-    def __init__(self, name, help, check=None, parse=None, metavar=None, default=None, cli=True, kind=None):
+    def __init__(self, name, help, check=None, parse=None, metavar=None, default=None, cli=True, kind=None,
+                 per_actuator=False):
         self.name, self.help, self.metavar, self.default, self.cli = name, help, metavar, default, cli
-        self.kind = kind
+        self.kind, self.per_actuator = kind, per_actuator
         self._check, self._parse = check, parse
 
     @property
@@ -74,6 +79,27 @@ class Option:
 
     def check(self, value, spec, unit="mm"):
         """The validated value (see the class docstring) for a task in ``unit``."""
+        if self.per_actuator:
+            values = tuple(self._check_one(v, spec, unit) for v in self._values(value))
+            return values[0] if len(values) == 1 else values
+        return self._check_one(value, spec, unit)
+
+    def _values(self, value) -> tuple:
+        """The one or two values of a per-actuator option (a text split at commas)."""
+        from mechopt.core import validation as _v
+
+        if isinstance(value, str):
+            items = tuple(v.strip() for v in value.split(","))
+        elif isinstance(value, (tuple, list)) or (hasattr(value, "shape") and getattr(value, "ndim", 0) == 1):
+            items = tuple(value)
+        else:
+            items = (value,)
+        if len(items) not in (1, 2):
+            raise ValueError(f"{self.name} takes one value (both actuators) or two (one per actuator), "
+                             f"got {_v.show(value)}")
+        return items
+
+    def _check_one(self, value, spec, unit):
         from mechopt.core import units as _u
         from mechopt.core import validation as _v
 
@@ -87,7 +113,14 @@ class Option:
 
     def parse(self, text):
         """The Python value of the option's command-line ``text`` (a
-        :class:`mechopt.core.units.Quantity` for an option with a ``kind``)."""
+        :class:`mechopt.core.units.Quantity` for an option with a ``kind``; a tuple of two
+        for two values of a per-actuator option)."""
+        if self.per_actuator:
+            values = tuple(self._parse_one(v) for v in self._values(str(text)))
+            return values[0] if len(values) == 1 else values
+        return self._parse_one(text)
+
+    def _parse_one(self, text):
         from mechopt.core import units as _u
         from mechopt.core import validation as _v
 
