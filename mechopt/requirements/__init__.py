@@ -140,7 +140,9 @@ class Requirements:
         """The requirements validated for the mechanism of design spec ``spec`` and a task
         in ``unit`` (each option's check, values with units converted; an option of a
         requirement that does not apply to it, or a requirement missing the options it
-        needs, is refused with one line)."""
+        needs, is refused with one line). A member's ``implied(values, spec, unit)``
+        fills options left None from others (``--actuator``'s datasheet gives the
+        actuators' limits)."""
         kw = {}
         for name, (opt, member) in options().items():
             value = self._values[name]
@@ -150,6 +152,11 @@ class Requirements:
             if not member.applies(spec):
                 raise ValueError(_not_applicable(member, opt, spec))
             kw[name] = opt.check(value, spec, unit)
+        for member in registry():  # values implied by another option (an actuator's datasheet)
+            implied = getattr(member, "implied", None)
+            for name, value in (implied(kw, spec, unit) if implied else {}).items():
+                if kw[name] is None:
+                    kw[name] = value
         out = Requirements(**kw)
         for member in requirements():
             for needed in getattr(member, "needs_options", ()):

@@ -125,6 +125,12 @@ def speed(ctx) -> float:
     return 1.0 / smax if smax > 0 and math.isfinite(smax) else 0.0
 
 
+def _motors_option(value, spec):
+    from mechopt.core.actuators import read_motors
+
+    return read_motors(value)
+
+
 def _norm_option(value, spec):
     from mechopt.core.actuators import actuator_norm
 
@@ -140,7 +146,14 @@ class MinSpeed(Requirement):
                Option("actuator_norm", "reading of the actuators' speed and torque limits: box (default: "
                                        "each actuator within its own limits) or 2 (Liu 2006 eq. 10, 13: one "
                                        "Euclidean budget shared by both, as in the paper)",
-                      check=_norm_option, parse=str, metavar="box|2"))
+                      check=_norm_option, parse=str, metavar="box|2"),
+               Option("actuator", "the actuators' datasheet: key=value,... (both; two separated by ;) or a "
+                                  ".json/.toml file; keys rated_torque, peak_torque [N m], max_speed [rad/s, or "
+                                  "3000rpm], gear_ratio [-, rad/m for a screw], rotor_inertia [kg m^2]; gives "
+                                  "--actuator-speed (max_speed/ratio), --actuator-torque (rated x ratio), "
+                                  "with --cycle-time --max-torque (peak x ratio) and --max-rms-torque (rated x ratio), unless given; "
+                                  "and adds the reflected rotor inertia to the motion's dynamics",
+                      check=_motors_option, parse=str, metavar="SPEC|FILE"))
     needs_options = ("actuator_speed",)
     needs = ("points", "jacobian", "singular_values")
     margin_text = ("`--min-speed`: guaranteed speed minus the required one (per-actuator limits, or Liu eq. 10 "
@@ -148,6 +161,27 @@ class MinSpeed(Requirement):
     margin_unit = "{L}/s"
     certificate = ("boundary and interior critical points of 1/||row_i(J)|| (per-actuator limits) or s_max(J) "
                    "(--actuator-norm 2) located on the samples and refined by zooming (mechopt.analysis.sampling)")
+
+    def implied(self, values, spec, unit) -> dict:
+        """The actuators' limits at the output from ``--actuator``'s datasheet
+        (:class:`mechopt.core.actuators.Motor`): rates [rad/s, or the task's unit per
+        second for sliders], continuous (rated) torque for the guaranteed force (a force
+        held for as long as needed), peak and rated torque for the motion's peak and RMS
+        limits [N m or N]; one value when both actuators are alike."""
+        motors = values.get("actuator")
+        if motors is None:
+            return {}
+        from mechopt.analysis.task import UNITS
+
+        per_s = 1.0 if spec.angular else 1.0 / UNITS[unit]  # [m/s] -> [L/s] for sliders
+
+        def pair(f):
+            a, b = (float(f(m)) for m in motors)
+            return a if a == b else (a, b)
+        out = {"actuator_speed": pair(lambda m: m.speed * per_s), "actuator_torque": pair(lambda m: m.torque)}
+        if values.get("cycle_time") is not None:  # the motion's limits apply along a timed cycle
+            out.update(max_torque=pair(lambda m: m.peak), max_rms_torque=pair(lambda m: m.torque))
+        return out
 
     def describe(self, req, unit) -> str:
         how = "one Euclidean budget, Liu 2006" if (req.actuator_norm or "box") in (2, "2") else "per actuator"
