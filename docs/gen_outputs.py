@@ -390,9 +390,10 @@ EXPORT_JSON = {
                    "distance", "unit"),
     "home": ("`x`, `y`: the task's centre, where the SVG and the MJCF keyframe put the platform", "unit"),
     "inertia": ("where the URDF's and MJCF's masses come from (a sentence)", ""),
-    "masses": ("with `urdf` or `mjcf`: `{tree body: {mass_kg, com_m (x, y, 0 in the body's frame), "
-               "inertia_kg_m2 (Ixx, Iyy, Izz about the centre of mass)}}`: the mass model's bodies riding on each "
-               "body of the tree (mechopt.export.inertia.body_masses); a body without mass gets 1e-6 kg", ""),
+    "masses": ("with `urdf` or `mjcf`: one entry per body of the tree, `body` (its name), `mass_kg`, "
+               "`com_m` (x, y, 0 in the body's frame [m]), `inertia_kg_m2` (Ixx, Iyy, Izz about the centre of "
+               "mass): the mass model's bodies riding on it (mechopt.export.inertia.body_masses); a body "
+               "without mass gets 1e-6 kg", ""),
     "masses_omitted": ("with `urdf` or `mjcf`: the mass model's bodies riding on no body of the tree "
                        "(counterweights on a cable): not in the simulators' files", ""),
     "frames": ("with `gif`: frames of `path.gif`", "-"),

@@ -116,8 +116,8 @@ def export(design, to, formats=None, samples: int = DEFAULT_SAMPLES, overwrite: 
         k = [len(t) // 3, (2 * len(t)) // 3]
         mx, my = src.spec.to_mech(src.mech, np.array([hx, px[k[0]], px[k[1]]]), np.array([hy, py[k[0]], py[k[1]]]))
         masses, omitted = body_masses(src.mech, mx, my, src.metres)
-        info["masses"] = {b: {"mass_kg": m, "com_m": list(c), "inertia_kg_m2": list(i)}
-                          for b, (m, c, i) in masses.items()}
+        info["masses"] = [{"body": b, "mass_kg": m, "com_m": list(c), "inertia_kg_m2": list(i)}
+                          for b, (m, c, i) in masses.items()]
         info["masses_omitted"] = list(omitted)
     out = _io.prepare_out_dir(to)
     key = {"design_sha256": src.digest, "formats": list(fmts), "samples": int(len(t))}

@@ -33,7 +33,7 @@ from mechopt.analysis.sampling import bad_to
 from mechopt.requirements.base import Objective, Option, Requirement
 
 __all__ = ["MinSpeed", "SpeedObjective", "singular_value_extremes", "liu_extremes", "box_extremes", "limits",
-           "reading", "speed", "MEMBERS"]
+           "reading", "extremes_known", "speed", "MEMBERS"]
 
 
 def limits(value) -> np.ndarray:
