@@ -125,3 +125,16 @@ def test_reflected_rotor_inertia_enters_the_cycle_efforts():
     rms = np.sqrt(np.trapezoid(tau ** 2, m["t"], axis=0) / 0.5)
     assert res["margin"]["peak_torque"] == pytest.approx(19.0 - np.max(np.abs(tau)), rel=1e-3)
     assert res["margin"]["rms_torque"] == pytest.approx(6.4 - np.max(rms), rel=1e-3)
+
+
+def test_a_datasheet_survives_run_json(tmp_path):
+    """The requirements are written into run.json and design.json (``settings``): the
+    motors as the lists of their five values, read back into the same requirements."""
+    from mechopt.run.io import write_json
+
+    ev = DesignEvaluator("five-bar", Task.rect(300, 200, (0, 300)),
+                         Requirements(min_speed=100.0, actuator=SPEC, cycle_time=0.5), ("size",), max_length=1000)
+    write_json(ev.settings(), tmp_path / "run.json")
+    back = json.loads((tmp_path / "run.json").read_text())["requirements"]
+    assert back["actuator"][0] == [0.32, 0.95, pytest.approx(100 * math.pi), 10.0, pytest.approx(4.5e-6)]
+    assert Requirements(**back).checked(FIVE_BAR, "mm") == ev.req

@@ -60,7 +60,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -172,8 +172,15 @@ _SI = {"rated_torque": {"Nm": 1.0, "N.m": 1.0, "N*m": 1.0, "Nmm": 1e-3, "mNm": 1
 _SI["peak_torque"] = _SI["rated_torque"]
 
 
-@dataclass(frozen=True)
-class Motor:
+class _MotorFields(NamedTuple):
+    rated_torque: float
+    peak_torque: float
+    max_speed: float
+    gear_ratio: float = 1.0
+    rotor_inertia: float = 0.0
+
+
+class Motor(_MotorFields):
     """One actuator as its datasheet states it, and what its gearbox makes of it.
 
     Values at the motor, SI: ``rated_torque`` and ``peak_torque`` [N m] (the continuous
@@ -183,25 +190,24 @@ class Motor:
     ``gear_ratio`` 1. At the output (:attr:`torque`, :attr:`peak`, :attr:`speed`,
     :attr:`reflected_inertia`) a lossless gear multiplies torques by ``N``, divides
     speeds by ``N`` and reflects the rotor's inertia as ``I_r N^2`` (its kinetic energy
-    ``1/2 I_r (N q_dot)^2``).
+    ``1/2 I_r (N q_dot)^2``). A named tuple (JSON writes it as the list of the five
+    values in this order, and :func:`read_motors` reads that list back).
     """
 
-    rated_torque: float
-    peak_torque: float
-    max_speed: float
-    gear_ratio: float = 1.0
-    rotor_inertia: float = 0.0
+    __slots__ = ()
 
-    def __post_init__(self):
-        for k in MOTOR_KEYS:
-            v = getattr(self, k)
-            ok = isinstance(v, (int, float)) and math.isfinite(v) and (v >= 0 if k == "rotor_inertia" else v > 0)
+    def __new__(cls, rated_torque, peak_torque, max_speed, gear_ratio=1.0, rotor_inertia=0.0):
+        values = dict(rated_torque=rated_torque, peak_torque=peak_torque, max_speed=max_speed,
+                      gear_ratio=gear_ratio, rotor_inertia=rotor_inertia)
+        for k, v in values.items():
+            ok = (isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool)
+                  and math.isfinite(v) and (v >= 0 if k == "rotor_inertia" else v > 0))
             if not ok:
                 raise ValueError(f"actuator {k} must be a {'non-negative' if k == 'rotor_inertia' else 'positive'} "
                                  f"finite number [{MOTOR_KEYS[k]}], got {_v.show(v)}")
-        if self.peak_torque < self.rated_torque:
-            raise ValueError(f"actuator peak_torque {self.peak_torque:g} is below its rated_torque "
-                             f"{self.rated_torque:g} [N m]")
+        if peak_torque < rated_torque:
+            raise ValueError(f"actuator peak_torque {peak_torque:g} is below its rated_torque {rated_torque:g} [N m]")
+        return super().__new__(cls, *(float(v) for v in values.values()))
 
     @property
     def torque(self) -> float:
@@ -241,6 +247,8 @@ def _si(key, value, where):
 
 
 def _motor(d, where) -> Motor:
+    if isinstance(d, (list, tuple)) and 3 <= len(d) <= 5:  # the values in MOTOR_KEYS order (design.json)
+        d = dict(zip(MOTOR_KEYS, d))
     if not isinstance(d, dict):
         raise ValueError(f"{where} must be a table of {', '.join(MOTOR_KEYS)}, got {_v.show(d)}")
     unknown = sorted(set(d) - set(MOTOR_KEYS))
@@ -321,7 +329,8 @@ def read_motors(value) -> tuple:
             data = _inline(text)
         if isinstance(data, dict) and set(data) == {"motor"}:
             data = data["motor"]
-        items = data if isinstance(data, list) else [data]
+        one = isinstance(data, (list, tuple)) and all(isinstance(v, (int, float)) for v in data)
+        items = list(data) if isinstance(data, (list, tuple)) and not one else [data]
         items = [_motor(d, where) for d in items]
     if len(items) not in (1, 2):
         raise ValueError(f"an actuator spec gives one motor (both actuators) or two, got {len(items)}")
