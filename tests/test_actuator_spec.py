@@ -138,3 +138,32 @@ def test_a_datasheet_survives_run_json(tmp_path):
     back = json.loads((tmp_path / "run.json").read_text())["requirements"]
     assert back["actuator"][0] == [0.32, 0.95, pytest.approx(100 * math.pi), 10.0, pytest.approx(4.5e-6)]
     assert Requirements(**back).checked(FIVE_BAR, "mm") == ev.req
+
+
+def test_motion_command_takes_the_datasheet(tmp_path, capsys):
+    """``mechopt motion DIR --actuator SPEC``: the efforts grow by ``I_r N^2 q_ddot_i`` (the
+    table's own accelerations) and the limits checked are peak x N and rated x N; a bad
+    spec is one line and exit 2."""
+    import csv
+
+    from test_motion import _design_dir
+
+    d = _design_dir(tmp_path / "d")
+    runs = {}
+    for name, extra in (("plain", []), ("geared", ["--actuator", SPEC])):
+        out = tmp_path / name
+        assert main(["motion", str(d), "--cycle-time", "0.5", "--samples", "101", "--out", str(out)] + extra) == 0
+        rows = list(csv.DictReader(open(out / "motion.csv")))
+        runs[name] = ({k: np.array([float(r[k]) for r in rows]) for k in rows[0]},
+                      json.loads((out / "motion.json").read_text()))
+    (a, _), (b, summary) = runs["plain"], runs["geared"]
+    for i in (1, 2):
+        # motion.csv holds about 9 significant digits: 1e-8 N m of the 0.04 N m rotor term
+        np.testing.assert_allclose(b[f"tau_{i}"] - a[f"tau_{i}"], 4.5e-6 * 100 * b[f"qdd_{i}"], rtol=1e-6, atol=1e-8)
+        assert np.abs(b[f"tau_{i}"] - a[f"tau_{i}"]).max() > 0.01
+    assert summary["limits"]["max_torque"] == pytest.approx([9.5, 9.5])
+    assert summary["limits"]["rms_limit"] == pytest.approx([3.2, 3.2])
+    assert summary["limits"]["max_speed"] == pytest.approx([10 * math.pi] * 2)
+    capsys.readouterr()
+    assert main(["motion", str(d), "--actuator", "rated_torque=1", "--out", str(tmp_path / "bad")]) == 2
+    assert "peak_torque is missing" in capsys.readouterr().err and not (tmp_path / "bad").exists()
