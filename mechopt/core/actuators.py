@@ -67,7 +67,8 @@ import numpy as np
 from mechopt.core import indices as _ix
 from mechopt.core import validation as _v
 
-__all__ = ["ACTUATOR_NORMS", "MOTOR_KEYS", "Motor", "read_motors", "actuator_norm", "guaranteed_speed", "guaranteed_force"]
+__all__ = ["ACTUATOR_NORMS", "MOTOR_KEYS", "Motor", "read_motors", "actuator_norm", "guaranteed_speed",
+           "guaranteed_force"]
 
 #: readings of the actuator limits: per actuator (``"box"``) or one Euclidean budget (``2``)
 ACTUATOR_NORMS = ("box", 2)

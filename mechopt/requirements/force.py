@@ -117,7 +117,8 @@ class ForceObjective(Objective):
     def bounds(self, ev):
         # a reference range: s_min(J) of a crank of length L is about 1/L [rad/L], at
         # least 1/max_length; ten times the effort over the shortest link allowed
-        return (0.0, 10.0 * float(np.max(ev.req.actuator_torque)) * effort_factor(ev) / (ev.min_length if ev.spec.angular else 1.0))
+        t = float(np.max(ev.req.actuator_torque))
+        return (0.0, 10.0 * t * effort_factor(ev) / (ev.min_length if ev.spec.angular else 1.0))
 
     def invalid_value(self, ev, lengths) -> float:
         return 0.0

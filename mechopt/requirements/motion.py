@@ -8,7 +8,10 @@ shrunk about its centre until its corners lie in the task, each piece cycloidal,
 whole in ``--cycle-time`` seconds, sampled at :data:`SAMPLES` times. The masses: the
 mechanism's default mass model (:func:`mechopt.analysis.dynamics.mass_model`: 20 x 20 x 2
 mm aluminium tubes, 0.5 kg motors, 0.2 kg payload, 0.3 kg carriages; Wu 2008 Table 2
-for the gantry); gravity ``--motion-gravity`` (default down, -y). The efforts: the
+for the gantry), with ``--actuator``'s reflected rotor inertias ``I_r N^2`` in place of
+the law's; gravity ``--motion-gravity`` (default down, -y). The limits are per actuator
+(one value for both or two; ``--actuator`` gives peak x N and rated x N): ``g`` is the
+largest of the two actuators' relative excess, the margin the smaller of their margins. The efforts: the
 inverse dynamics of :mod:`mechopt.analysis.dynamics` (exact, checked against a sympy
 Lagrange derivation), the peak over the samples and the RMS by the trapezoidal rule.
 

@@ -151,7 +151,8 @@ class MinSpeed(Requirement):
                                   ".json/.toml file; keys rated_torque, peak_torque [N m], max_speed [rad/s, or "
                                   "3000rpm], gear_ratio [-, rad/m for a screw], rotor_inertia [kg m^2]; gives "
                                   "--actuator-speed (max_speed/ratio), --actuator-torque (rated x ratio), "
-                                  "with --cycle-time --max-torque (peak x ratio) and --max-rms-torque (rated x ratio), unless given; "
+                                  "with --cycle-time --max-torque (peak x ratio) and --max-rms-torque "
+                                  "(rated x ratio), unless given; "
                                   "and adds the reflected rotor inertia to the motion's dynamics",
                       check=_motors_option, parse=str, metavar="SPEC|FILE"))
     needs_options = ("actuator_speed",)
