@@ -403,7 +403,8 @@ EXPORT_FILES = {
     "robot.urdf": ("`urdf`: the mechanism as a tree (URDF, lengths in m), cut open at the platform joint; the "
                    "closure frames `closedloop1_A` (leg 1, the platform point) and `closedloop1_B` (leg 2) are "
                    "massless links on fixed joints; in Pinocchio close the loop with a `RigidConstraintModel` "
-                   "(`CONTACT_3D`) between them; placeholder inertias (a 1 kg cylinder per body)"),
+                   "(`CONTACT_3D`) between them; each body's inertial (mass, centre of mass, inertia) from the "
+                   "mechanism's default mass model, as `mechopt motion` uses (`masses` in export.json)"),
     "robot.yaml": ("`urdf`: `closed_loop`, `type` and `name_mot` (the motors) in the format of Gepetto's "
                    "example-parallel-robots"),
     "robot.xml": ("`mjcf`: MuJoCo, the loop closed by `<equality><connect site1=\"closedloop1_A\" "
@@ -442,10 +443,16 @@ EXPORT_JSON = {
     "samples": ("path samples (`--samples`, or the points of a point task)", "-"),
     "actuated_joints": ("the motors' joint names, leg 1 first", ""),
     "closure_frames": ("`closedloop1_A`, `closedloop1_B`", ""),
-    "link_width": ("width of the links (DXF capsules, the inertias' cylinders): 0.1 x the longest pin "
+    "link_width": ("width of the links (DXF capsules, the simulators' geoms): 0.1 x the longest pin "
                    "distance", "unit"),
     "home": ("`x`, `y`: the task's centre, where the SVG and the MJCF keyframe put the platform", "unit"),
-    "inertia": ("the placeholder mass model (a sentence)", ""),
+    "inertia": ("where the URDF's and MJCF's masses come from (a sentence)", ""),
+    "masses": ("with `urdf` or `mjcf`: one entry per body of the tree, `body` (its name), `mass_kg`, "
+               "`com_m` (x, y, 0 in the body's frame [m]), `inertia_kg_m2` (Ixx, Iyy, Izz about the centre of "
+               "mass): the mass model's bodies riding on it (mechopt.export.inertia.body_masses); a body "
+               "without mass gets 1e-6 kg", ""),
+    "masses_omitted": ("with `urdf` or `mjcf`: the mass model's bodies riding on no body of the tree "
+                       "(counterweights on a cable): not in the simulators' files", ""),
     "frames": ("with `gif`: frames of `path.gif`", "-"),
     "frame_step": ("with `gif`: the sample step k between frames", "-"),
     "files": ("`{file name: sha256}` of the exported files", ""),

@@ -282,20 +282,32 @@ def test_problem_conventions_finite_objectives_graded_violations():
 
 
 def test_speed_force_torque_are_liu_extremes_with_units():
-    """speed = w / max s_max(J) [mm/s], force = t s_min(J) [N] with t in N m and J in
-    rad/mm, torque = payload / min s_min(J) [N m] (module docstring of mechopt.workflows.design)."""
+    """With --actuator-norm 2 (Liu 2006): speed = w / max s_max(J) [mm/s], force = t
+    s_min(J) [N] with t in N m and J in rad/mm, torque = payload / min s_min(J) [N m].
+    Per actuator (the default): speed = w min 1/|row_i J|, force = t min over the task
+    and over i of 1 / |column i of J^-1|, torque = payload max |column i of J^-1|
+    (mechopt.requirements.speed, force, torque), by numpy's inverse on a dense grid."""
     task = Task.rect(40, 30, (0, 160))
-    req = Requirements(actuator_speed=2.0, actuator_torque=1.5, payload=10.0)
-    p = DesignProblem("five-bar", task, req, ("size", "speed", "force", "torque"), max_length=300)
-    ev = p.evaluator
-    v = ev.decode(ev.encode(dict(r1=120.0, r2=150.0, r3=40.0, mode="+-")))
-    res = certify(ev, v)
     fb = FiveBar(120.0, 150.0, 40.0)
     x, y = dense_points(task, 120)
     smax, smin = fb.singular_values(x, y)
-    assert res["values"]["speed"] == pytest.approx(2.0 / smax.max(), rel=1e-4)        # mm/s
-    assert res["values"]["force"] == pytest.approx(1.5 * 1e3 * smin.min(), rel=1e-4)  # N
-    assert res["values"]["torque"] == pytest.approx(10.0 / smin.min() * 1e-3, rel=1e-4)  # N m
+    J = fb.jacobian(x, y)
+    rows = np.linalg.norm(J, axis=2).max()  # [rad/mm]
+    cols = np.linalg.norm(np.linalg.inv(J), axis=1).max()  # [mm/rad]: the worst column of J^-1
+    for norm in (2, "box"):
+        req = Requirements(actuator_speed=2.0, actuator_torque=1.5, payload=10.0, actuator_norm=norm)
+        p = DesignProblem("five-bar", task, req, ("size", "speed", "force", "torque"), max_length=300)
+        ev = p.evaluator
+        v = ev.decode(ev.encode(dict(r1=120.0, r2=150.0, r3=40.0, mode="+-")))
+        res = certify(ev, v)
+        if norm == 2:
+            assert res["values"]["speed"] == pytest.approx(2.0 / smax.max(), rel=1e-4)        # mm/s
+            assert res["values"]["force"] == pytest.approx(1.5 * 1e3 * smin.min(), rel=1e-4)  # N
+            assert res["values"]["torque"] == pytest.approx(10.0 / smin.min() * 1e-3, rel=1e-4)  # N m
+        else:
+            assert res["values"]["speed"] == pytest.approx(2.0 / rows, rel=1e-4)
+            assert res["values"]["force"] == pytest.approx(1.5 * 1e3 / cols, rel=1e-4)
+            assert res["values"]["torque"] == pytest.approx(10.0 * cols * 1e-3, rel=1e-4)
     # a speed requirement is a constraint, normalised by the required value
     p2 = DesignProblem("five-bar", task, Requirements(actuator_speed=2.0, min_speed=1e6), ("size",),
                        max_length=300)

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import pytest
 
-docscrape = pytest.importorskip("numpydoc.docscrape")  # the test extra installs it
+from numpydoc import docscrape  # the test extra installs it
 
 ROOT = Path(__file__).resolve().parents[1]
 

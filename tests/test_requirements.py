@@ -176,12 +176,20 @@ def test_torque_without_force_capacity_is_undefined_and_infeasible():
     assert math.isnan(res["objectives"]["torque"]) and res["g"]["reach"] > 0
     ok = ev.evaluate(dict(r1=90.0, r2=120.0, r3=20.0, mode="+-", task_x=0.0, task_y=120.0))
     assert all(g <= 0 for g in ok["g"].values())
-    # torque = payload / min s_min(J) [N m]: check against the singular values on a dense grid
+    # per actuator (the default): tau = J^-T F, so actuator i needs payload x ||column i of
+    # J^-1|| in the worst direction; the largest over a dense grid, with numpy's inverse
     fb = ok["mechanism"]
     x, y = np.meshgrid(np.linspace(-20, 20, 201), np.linspace(105, 135, 151))
     J = fb.jacobian(x.ravel(), y.ravel())
+    worst = np.linalg.norm(np.linalg.inv(J), axis=1).max()  # [mm/rad]: the largest column norm
+    assert ok["objectives"]["torque"] == pytest.approx(10.0 * worst * 1e-3, rel=1e-4)
+    # --actuator-norm 2 (Liu 2006 eq. 13): payload / min s_min(J) [N m], by the singular values
+    liu = DesignEvaluator("five-bar", task, Requirements(payload=10.0, actuator_norm=2), ("size", "torque"),
+                          max_length=300).evaluate(dict(r1=90.0, r2=120.0, r3=20.0, mode="+-", task_x=0.0,
+                                                        task_y=120.0))
     smin = np.linalg.svd(J, compute_uv=False)[:, -1].min()  # rad/mm
-    assert ok["objectives"]["torque"] == pytest.approx(10.0 / (smin * 1e3), rel=1e-4)
+    assert liu["objectives"]["torque"] == pytest.approx(10.0 / (smin * 1e3), rel=1e-4)
+    assert liu["objectives"]["torque"] > ok["objectives"]["torque"]
 
 
 def test_bipod_footprint_counts_its_base_joints_at_half_the_base():

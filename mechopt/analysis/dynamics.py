@@ -40,7 +40,8 @@ from mechopt.core import rigid_bodies as _b
 from mechopt.core import validation as _v
 
 __all__ = ["STANDARD_GRAVITY", "MassModel", "mass_model", "load_mass_model", "inverse_dynamics",
-           "energies", "parse_gravity", "motion_efforts", "MOTION_COLUMNS", "peak_torque", "rms_torque"]
+           "energies", "parse_gravity", "motion_efforts", "MOTION_COLUMNS", "peak_torque", "rms_torque",
+           "body_centres"]
 
 #: the columns of :func:`motion_efforts`'s table (``_i`` for each actuator 1, 2)
 MOTION_COLUMNS = ("t", "x", "y", "q_i", "qd_i", "qdd_i", "tau_i", "power_i")
@@ -247,6 +248,34 @@ def _kinematics(mech, model, x, y, xd, yd, xdd, ydd):
     q, qd, qdd, frames = mech.body_frames(x, y, xd, yd, xdd, ydd)
     kin = {b.name: _b.point_kinematics(frames[b.name], b.com) for b in model.bodies}
     return q, qd, qdd, kin
+
+
+def body_centres(mech, model: MassModel, x, y, length_unit: float = 1.0) -> dict:
+    """``{body name: (..., 2)}``: the centre of mass of every body of ``model`` [m] with
+    the platform at ``(x, y)`` [L] (the exporters place the bodies' masses with it).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism, lengths in [L].
+    model : MassModel
+        From :func:`mass_model` with the same ``length_unit``.
+    x, y : array_like
+        Platform points [L].
+    length_unit : float
+        Metres per [L].
+
+    Returns
+    -------
+    dict
+        NaN where unreachable.
+    """
+    unit = _v.positive_length("length_unit", length_unit)
+    m_si = mech.scaled(unit) if unit != 1.0 else mech
+    x, y = (np.asarray(v, float) * unit for v in np.broadcast_arrays(x, y))
+    zero = np.zeros(x.shape)
+    kin = _kinematics(m_si, model, x, y, zero, zero, zero, zero)[3]
+    return {name: k[0] for name, k in kin.items()}
 
 
 def _motion_arrays(motion, unit):

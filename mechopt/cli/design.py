@@ -184,9 +184,13 @@ def _echo_requirements(req, spec, task):
         if opt.kind is None or given is None:
             continue
         unit = _u.base_unit(opt.kind, task.unit, spec.angular)
-        parts.append(f"{name} {value:.6g} {unit}" + (f" (given {given})" if getattr(given, "unit", "") else ""))
+        values = value if isinstance(value, tuple) else (value,)  # per actuator: two values
+        givens = given if isinstance(given, tuple) else (given,)
+        shown = ",".join(f"{v:.6g}" for v in values)
+        with_unit = ",".join(str(g) for g in givens) if any(getattr(g, "unit", "") for g in givens) else ""
+        parts.append(f"{name} {shown} {unit}" + (f" (given {with_unit})" if with_unit else ""))
         scale = task.diameter  # [unit]: a task's size, or its size per second
-        if opt.kind in ("length", "speed") and value < scale / 100:
+        if opt.kind in ("length", "speed") and min(values) < scale / 100:
             warnings.append(f"mechopt: warning: {opt.flag} {value:g} {unit} is over 100 times below the task's "
                             f"size ({scale:g} {task.unit}); give a unit if another was meant (e.g. "
                             f"{given}m{'/s' if opt.kind == 'speed' else ''})")

@@ -45,6 +45,11 @@ def add_parser(subparsers):
                     help="peak effort limit(s) drawn and checked [N m or N]")
     mp.add_argument("--max-rms-torque", default=None, metavar="T[,T2]",
                     help="RMS effort limit(s) (rated torque) drawn and checked [N m or N]")
+    mp.add_argument("--actuator", default=None, metavar="SPEC|FILE",
+                    help="the motors' datasheet, as for mechopt design --actuator (rated_torque, peak_torque "
+                         "[N m], max_speed [rad/s or 3000rpm], gear_ratio, rotor_inertia [kg m^2]; inline or "
+                         ".json/.toml): the reflected rotor inertia I_r N^2 enters the dynamics and max_speed/N, "
+                         "peak x N and rated x N are the limits not given")
     mp.add_argument("--out", default=None, help="output folder (default: DESIGN_DIR)")
 
 
@@ -54,7 +59,7 @@ def run(args) -> int:
 
     s = run_motion(args.design_dir, args.out, args.path, args.profile, args.cycle_time,
                    args.samples, args.masses, args.gravity, args.max_speed, args.max_torque,
-                   args.max_rms_torque, args.accel_fraction, args.jerk_fraction)
+                   args.max_rms_torque, args.accel_fraction, args.jerk_fraction, args.actuator)
     print("; ".join(f"actuator {i + 1}: peak {s['tau_peak'][i]:.4g}, RMS {s['tau_rms'][i]:.4g} "
                     f"(N m or N), peak rate {s['qd_peak'][i]:.4g}" for i in (0, 1))
           + f"; moving mass {s['moving_mass']:.4g} kg; within limits: {s['within_limits']}")

@@ -108,7 +108,7 @@ def export(design, to, formats=None, samples: int = DEFAULT_SAMPLES, overwrite: 
     """
     from mechopt.core import validation as _v
     from mechopt.export import drawings, simulators
-    from mechopt.export.inertia import MASS_KG, WIDTH_RATIO, link_width
+    from mechopt.export.inertia import body_masses, link_width
     from mechopt.export.source import load, path_samples
     from mechopt.run import io as _io
 
@@ -132,17 +132,24 @@ def export(design, to, formats=None, samples: int = DEFAULT_SAMPLES, overwrite: 
             "formats": list(fmts), "unit": src.unit, "simulator_unit": "m", "samples": int(len(t)),
             "actuated_joints": list(tree.actuated), "closure_frames": [c.name for c in tree.closure],
             "link_width": width, "home": {"x": hx, "y": hy},
-            "inertia": f"placeholder: every moving body a uniform solid cylinder of {MASS_KG:g} kg along its "
-                       f"pins, diameter {WIDTH_RATIO:g} x the longest pin distance (mechopt.export.inertia)"}
+            "inertia": "the mechanism's default mass model (mechopt.analysis.dynamics.mass_model) on the tree's "
+                       "bodies (mechopt.export.inertia.body_masses)"}
+    if "urdf" in fmts or "mjcf" in fmts:
+        k = [len(t) // 3, (2 * len(t)) // 3]
+        mx, my = src.spec.to_mech(src.mech, np.array([hx, px[k[0]], px[k[1]]]), np.array([hy, py[k[0]], py[k[1]]]))
+        masses, omitted = body_masses(src.mech, mx, my, src.metres)
+        info["masses"] = [{"body": b, "mass_kg": m, "com_m": list(c), "inertia_kg_m2": list(i)}
+                          for b, (m, c, i) in masses.items()]
+        info["masses_omitted"] = list(omitted)
     out = _io.prepare_out_dir(to)
     key = {"design_sha256": src.digest, "formats": list(fmts), "samples": int(len(t))}
     with _io.run_in(out, "export", key, EXPORT_OUTPUTS, overwrite) as manifest:
         with _io.output_set(out, manifest) as stage:
             if "urdf" in fmts:
-                (stage / "robot.urdf").write_text(simulators.urdf(si, src.digest))
+                (stage / "robot.urdf").write_text(simulators.urdf(si, src.digest, masses))
                 (stage / "robot.yaml").write_text(simulators.robot_yaml(si, src.digest))
             if "mjcf" in fmts:
-                (stage / "robot.xml").write_text(simulators.mjcf(si, src.digest, home_si))
+                (stage / "robot.xml").write_text(simulators.mjcf(si, src.digest, home_si, masses))
             if "dxf" in fmts:
                 for body, pins in tree.pins().items():
                     if len(pins) >= 2:

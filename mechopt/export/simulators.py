@@ -23,14 +23,15 @@ mechanism's actuators (``theta1``, ``theta2`` or ``q1``, ``q2``), closure frames
   plane, it does no work on the mechanism. The keyframe ``home`` holds the pose at the
   task's centre.
 
-Masses and inertias are the placeholders of :func:`mechopt.export.inertia.body_inertia`.
+Masses and inertias are the mechanism's mass model on the tree's bodies
+(:func:`mechopt.export.inertia.body_masses`), given as ``masses``.
 """
 from __future__ import annotations
 
 import math
 
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES
-from mechopt.export.inertia import body_inertia, link_width
+from mechopt.export.inertia import link_width
 
 __all__ = ["urdf", "robot_yaml", "mjcf", "body_length", "servo_gains", "MJCF_TIMESTEP", "SERVO_HZ",
            "CONSTRAINT_SOLREF", "CONSTRAINT_SOLIMP", "PLACEHOLDER_LIMIT"]
@@ -77,28 +78,15 @@ def _digest_comment(digest) -> str:
     return f"<!-- mechopt design sha256 {digest} -->"
 
 
-def urdf(tree, digest: str) -> str:
-    """The URDF of ``tree`` (lengths in m; module docstring).
-
-    Parameters
-    ----------
-    tree : mechopt.core.kinematic_tree.KinematicTree
-        The mechanism's tree.
-    digest : str
-        The design's digest (:func:`mechopt.export.source.design_digest`), written into the
-        file.
-
-    Returns
-    -------
-    str
-        The URDF text.
-    """
+def urdf(tree, digest: str, masses: dict) -> str:
+    """The URDF of ``tree`` (lengths in m; module docstring); ``masses``: ``{body: (mass
+    [kg], com [m], (Ixx, Iyy, Izz) [kg m^2])}`` (:func:`mechopt.export.inertia.body_masses`)."""
     w = link_width(tree)
     lines = ['<?xml version="1.0"?>', _digest_comment(digest), f'<robot name="{tree.name}">',
              f'  <link name="{BASE}"/>']
     for j in tree.joints:
         L = body_length(tree, j.child)
-        m, com, (ixx, iyy, izz) = body_inertia(L, w)
+        m, com, (ixx, iyy, izz) = masses[j.child]
         lines += [f'  <link name="{j.child}">',
                   '    <inertial>',
                   f'      <origin xyz="{_xyz(*com)}" rpy="0 0 0"/>',
@@ -107,7 +95,7 @@ def urdf(tree, digest: str) -> str:
                   '    </inertial>']
         if L > 0:
             lines += ['    <visual>',
-                      f'      <origin xyz="{_xyz(*com)}" rpy="0 {_f(math.pi / 2)} 0"/>',
+                      f'      <origin xyz="{_xyz(L / 2, 0.0, 0.0)}" rpy="0 {_f(math.pi / 2)} 0"/>',
                       f'      <geometry><cylinder radius="{_f(w / 2)}" length="{_f(L)}"/></geometry>',
                       '    </visual>']
         lines.append('  </link>')
@@ -158,51 +146,25 @@ def robot_yaml(tree, digest: str) -> str:
             f"name_mot: [{motors}]\n")
 
 
-def servo_gains(tree, kind: str):
+def servo_gains(tree, kind: str, masses: dict):
     """``(kp, kv)`` of a position servo on a joint of ``kind``: critically damped at
-    :data:`SERVO_HZ` for a reference inertia, the total placeholder mass of the bodies
-    [kg] for a prismatic joint, that mass times the squared longest body length
-    [kg m^2] for a revolute one (tree lengths in m).
-
-    Parameters
-    ----------
-    tree : mechopt.core.kinematic_tree.KinematicTree
-        The mechanism's tree.
-    kind : str
-        ``"revolute"`` or ``"prismatic"``.
-
-    Returns
-    -------
-    kp, kv : float
-        The gains (SI).
-    """
-    from mechopt.export.inertia import MASS_KG
-
-    mass = MASS_KG * len(tree.bodies)
-    ref = mass if kind == "prismatic" else mass * max(body_length(tree, b) for b in tree.bodies) ** 2
+    :data:`SERVO_HZ` for a reference inertia that bounds what the motor moves: for a
+    prismatic joint the bodies' masses plus their moments over the shortest body length
+    squared, ``sum m + sum Izz / L_min^2`` [kg] (a link turned by a prismatic joint's travel); for
+    a revolute one ``sum m L_max^2 + sum Izz`` [kg m^2] (``masses`` of :func:`urdf`,
+    tree lengths in m)."""
+    lengths = [L for L in (body_length(tree, b) for b in tree.bodies) if L > 0] or [1.0]
+    mass = sum(m for m, _, _ in masses.values())
+    izz = sum(i[2] for _, _, i in masses.values())
+    ref = mass + izz / min(lengths) ** 2 if kind == "prismatic" else mass * max(lengths) ** 2 + izz
     w = 2.0 * math.pi * SERVO_HZ
     return ref * w * w, 2.0 * ref * w
 
 
-def mjcf(tree, digest: str, home: dict) -> str:
+def mjcf(tree, digest: str, home: dict, masses: dict) -> str:
     """The MJCF of ``tree`` (lengths in m; module docstring); ``home``: every joint's
-    value at the task's centre (the keyframe ``home`` and its controls).
-
-    Parameters
-    ----------
-    tree : mechopt.core.kinematic_tree.KinematicTree
-        The mechanism's tree.
-    digest : str
-        The design's digest (:func:`mechopt.export.source.design_digest`), written into the
-        file.
-    home : dict
-        ``{joint: value}`` [rad or m] at the task's centre.
-
-    Returns
-    -------
-    str
-        The MJCF text.
-    """
+    value at the task's centre (the keyframe ``home`` and its controls); ``masses`` as
+    for :func:`urdf`."""
     w = link_width(tree)
     children = {}
     for j in tree.joints:
@@ -214,7 +176,7 @@ def mjcf(tree, digest: str, home: dict) -> str:
         order.append(j.name)
         pad = "  " * depth
         L = body_length(tree, j.child)
-        m, com, (ixx, iyy, izz) = body_inertia(L, w)
+        m, com, (ixx, iyy, izz) = masses[j.child]
         out = [f'{pad}<body name="{j.child}" pos="{_xyz(*j.origin, 0.0)}">']
         if j.kind == "revolute":
             jt = f'{pad}  <joint name="{j.name}" type="hinge" axis="0 0 1"'
@@ -254,7 +216,7 @@ def mjcf(tree, digest: str, home: dict) -> str:
               '  </equality>', '  <actuator>']
     for n in tree.actuated:
         j = tree.joint(n)
-        kp, kv = servo_gains(tree, j.kind)
+        kp, kv = servo_gains(tree, j.kind, masses)
         rng = f' ctrlrange="{_xyz(*j.limits)}"' if j.limits is not None else ""
         lines.append(f'    <position name="{n}" joint="{n}" kp="{_f(kp)}" kv="{_f(kv)}"{rng}/>')
     lines += ['  </actuator>', '  <sensor>']

@@ -16,7 +16,7 @@ line read the registry alone: a new requirement is one new module added to
 - ``link_angle``: requirement link_angle (``--link-angle``)
 - ``stroke``: requirement stroke (``--max-stroke``, sliders)
 - ``lengths``: requirement lengths (bipod struts, always)
-- ``speed``: requirement speed (``--min-speed``, ``--actuator-speed``); objective speed
+- ``speed``: requirement speed (``--min-speed``, ``--actuator-speed``, ``--actuator-norm``); objective speed
 - ``force``: requirement force (``--min-force``, ``--actuator-torque``); objective force
 - ``torque``: objective torque (``--payload``)
 - ``accuracy``: requirement error (``--max-error``); objective error
@@ -210,27 +210,12 @@ class Requirements:
         return Requirements(**{**self._values, **changes})
 
     def checked(self, spec, unit="mm") -> "Requirements":
-        """The requirements validated for a mechanism and a task's unit.
-
-        Parameters
-        ----------
-        spec : mechopt.core.design_spec.DesignSpec
-            The mechanism's design spec.
-        unit : str
-            The task's length unit (default ``"mm"``).
-
-        Returns
-        -------
-        Requirements
-            Each value passed through its option's check, values with units
-            converted to the option's unit.
-
-        Raises
-        ------
-        ValueError
-            One line, for an invalid value, an option of a requirement that does not
-            apply to the mechanism, or a requirement missing an option it needs.
-        """
+        """The requirements validated for the mechanism of design spec ``spec`` and a task
+        in ``unit`` (each option's check, values with units converted; an option of a
+        requirement that does not apply to it, or a requirement missing the options it
+        needs, is refused with one line). A member's ``implied(values, spec, unit)``
+        fills options left None from others (``--actuator``'s datasheet gives the
+        actuators' limits)."""
         kw = {}
         for name, (opt, member) in options().items():
             value = self._values[name]
@@ -240,6 +225,11 @@ class Requirements:
             if not member.applies(spec):
                 raise ValueError(_not_applicable(member, opt, spec))
             kw[name] = opt.check(value, spec, unit)
+        for member in registry():  # values implied by another option (an actuator's datasheet)
+            implied = getattr(member, "implied", None)
+            for name, value in (implied(kw, spec, unit) if implied else {}).items():
+                if kw[name] is None:
+                    kw[name] = value
         out = Requirements(**kw)
         for member in requirements():
             for needed in getattr(member, "needs_options", ()):

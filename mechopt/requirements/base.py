@@ -60,11 +60,16 @@ class Option:
         unit (``0.5m/s``, ``2Nm``; a :class:`mechopt.core.units.Quantity` or such a
         string in Python), converted to the option's unit when checked; a bare
         number is in that unit.
+    per_actuator : bool
+        True for a value given once for both actuators or once per actuator: one value
+        or two (``3,2.5`` on the command line, a pair in Python), each checked on its
+        own; the checked value is a float for one, a tuple of two floats for two.
     """
 
-    def __init__(self, name, help, check=None, parse=None, metavar=None, default=None, cli=True, kind=None):
+    def __init__(self, name, help, check=None, parse=None, metavar=None, default=None, cli=True, kind=None,
+                 per_actuator=False):
         self.name, self.help, self.metavar, self.default, self.cli = name, help, metavar, default, cli
-        self.kind = kind
+        self.kind, self.per_actuator = kind, per_actuator
         self._check, self._parse = check, parse
 
     @property
@@ -73,31 +78,28 @@ class Option:
         return "--" + self.name.replace("_", "-")
 
     def check(self, value, spec, unit="mm"):
-        """The validated value of the option for a task in ``unit``.
+        """The validated value (see the class docstring) for a task in ``unit``."""
+        if self.per_actuator:
+            values = tuple(self._check_one(v, spec, unit) for v in self._values(value))
+            return values[0] if len(values) == 1 else values
+        return self._check_one(value, spec, unit)
 
-        Parameters
-        ----------
-        value : object
-            The Python value (a number in the option's unit, or for an option with a
-            ``kind`` a :class:`mechopt.core.units.Quantity` or a string with its unit,
-            ``"0.5m/s"``).
-        spec : mechopt.core.design_spec.DesignSpec
-            The design spec of the mechanism the requirement is checked for.
-        unit : str
-            The task's length unit (``"mm"``, ``"cm"``, ``"m"`` or ``"in"``).
+    def _values(self, value) -> tuple:
+        """The one or two values of a per-actuator option (a text split at commas)."""
+        from mechopt.core import validation as _v
 
-        Returns
-        -------
-        object
-            The value normalised: converted to the option's unit [the task's length
-            unit, rad, N, ...] and validated by the option's ``check`` (default: a
-            positive finite number).
+        if isinstance(value, str):
+            items = tuple(v.strip() for v in value.split(","))
+        elif isinstance(value, (tuple, list)) or (hasattr(value, "shape") and getattr(value, "ndim", 0) == 1):
+            items = tuple(value)
+        else:
+            items = (value,)
+        if len(items) not in (1, 2):
+            raise ValueError(f"{self.name} takes one value (both actuators) or two (one per actuator), "
+                             f"got {_v.show(value)}")
+        return items
 
-        Raises
-        ------
-        ValueError
-            One line naming the option, when the value or its unit is invalid.
-        """
+    def _check_one(self, value, spec, unit):
         from mechopt.core import units as _u
         from mechopt.core import validation as _v
 
@@ -110,25 +112,15 @@ class Option:
         return _v.positive_length(self.name, value)
 
     def parse(self, text):
-        """The Python value of the option's command-line ``text``.
+        """The Python value of the option's command-line ``text`` (a
+        :class:`mechopt.core.units.Quantity` for an option with a ``kind``; a tuple of two
+        for two values of a per-actuator option)."""
+        if self.per_actuator:
+            values = tuple(self._parse_one(v) for v in self._values(str(text)))
+            return values[0] if len(values) == 1 else values
+        return self._parse_one(text)
 
-        Parameters
-        ----------
-        text : str
-            What follows the option on the command line.
-
-        Returns
-        -------
-        object
-            The option's ``parse(text)`` when declared; else a
-            :class:`mechopt.core.units.Quantity` for an option with a ``kind``, else a
-            float.
-
-        Raises
-        ------
-        ValueError
-            One line naming the option, when ``text`` does not parse.
-        """
+    def _parse_one(self, text):
         from mechopt.core import units as _u
         from mechopt.core import validation as _v
 

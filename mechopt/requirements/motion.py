@@ -8,7 +8,10 @@ shrunk about its centre until its corners lie in the task, each piece cycloidal,
 whole in ``--cycle-time`` seconds, sampled at :data:`SAMPLES` times. The masses: the
 mechanism's default mass model (:func:`mechopt.analysis.dynamics.mass_model`: 20 x 20 x 2
 mm aluminium tubes, 0.5 kg motors, 0.2 kg payload, 0.3 kg carriages; Wu 2008 Table 2
-for the gantry); gravity ``--motion-gravity`` (default down, -y). The efforts: the
+for the gantry), with ``--actuator``'s reflected rotor inertias ``I_r N^2`` in place of
+the law's; gravity ``--motion-gravity`` (default down, -y). The limits are per actuator
+(one value for both or two; ``--actuator`` gives peak x N and rated x N): ``g`` is the
+largest of the two actuators' relative excess, the margin the smaller of their margins. The efforts: the
 inverse dynamics of :mod:`mechopt.analysis.dynamics` (exact, checked against a sympy
 Lagrange derivation), the peak over the samples and the RMS by the trapezoidal rule.
 
@@ -21,6 +24,7 @@ objectives.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -69,6 +73,8 @@ def cycle_efforts(ctx) -> dict:
 
         unit = UNITS[ctx.unit]
         model = dyn.mass_model(ctx.mech, length_unit=unit)
+        if ctx.req.actuator is not None:  # the datasheet's rotors replace the law's
+            model = replace(model, actuator_inertia=tuple(m.reflected_inertia for m in ctx.req.actuator))
         if ctx.req.cycle_time is None:
             return {"peak": np.full(2, math.nan), "rms": np.full(2, math.nan),
                     "moving_mass": model.moving_mass}
@@ -104,9 +110,11 @@ class _EffortLimit(Requirement):
                    "(mechopt.requirements.motion); not bounded between samples")
 
     def evaluate(self, ctx):
-        limit = getattr(ctx.req, self.options[0].name)
-        worst = float(np.max(cycle_efforts(ctx)[self.key]))
-        return limit - worst, (worst - limit) / limit
+        from mechopt.requirements.speed import limits
+
+        limit = limits(getattr(ctx.req, self.options[0].name))  # per actuator
+        effort = cycle_efforts(ctx)[self.key]
+        return float(np.min(limit - effort)), float(np.max((effort - limit) / limit))
 
     def describe(self, req, unit) -> str:
         return f"{self.label} effort <= {getattr(req, self.options[0].name)} along the {req.cycle_time} s cycle"
@@ -121,21 +129,25 @@ class _EffortLimit(Requirement):
 class MaxTorque(_EffortLimit):
     name = "peak_torque"
     key = "peak"
-    options = (Option("max_torque", "peak actuator effort along the pick-and-place cycle [N m or N]"),
+    options = (Option("max_torque", "peak actuator effort along the pick-and-place cycle, one for both or one "
+                                    "per actuator [N m or N, or with a unit]", kind="effort", per_actuator=True,
+                      metavar="T[,T2]"),
                Option("cycle_time", "duration of the pick-and-place cycle [s] (dynamics requirements "
                                     "and objectives)", check=_cycle_time),
                Option("motion_gravity", "gravity of the dynamics: down (default, -y), off or GX,GY [m/s^2]",
                       check=lambda v, spec: _gravity(v), parse=_gravity, metavar="G"))
     label = "peak"
-    margin_text = "`--max-torque`: limit minus the largest peak effort of the two actuators along the cycle"
+    margin_text = "`--max-torque`: the smaller of the two actuators' limit minus its peak effort along the cycle"
 
 
 class MaxRmsTorque(_EffortLimit):
     name = "rms_torque"
     key = "rms"
-    options = (Option("max_rms_torque", "RMS actuator effort over the pick-and-place cycle [N m or N]"),)
+    options = (Option("max_rms_torque", "RMS actuator effort over the pick-and-place cycle (the rated torque), "
+                                        "one for both or one per actuator [N m or N, or with a unit]",
+                      kind="effort", per_actuator=True, metavar="T[,T2]"),)
     label = "RMS"
-    margin_text = "`--max-rms-torque`: limit minus the largest RMS effort of the two actuators"
+    margin_text = "`--max-rms-torque`: the smaller of the two actuators' limit minus its RMS effort"
 
 
 class PeakTorqueObjective(Objective):

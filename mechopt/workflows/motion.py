@@ -218,44 +218,12 @@ def plot_motion(table, summary, joint_names, angular, max_speed=None, max_torque
 
 def run_motion(folder, out=None, path="pick-place", profile="cycloidal", cycle_time=0.5,
                samples=401, masses=None, gravity="down", max_speed=None, max_torque=None,
-               rms_limit=None, accel_fraction=1.0 / 3.0, jerk_fraction=0.25) -> dict:
+               rms_limit=None, accel_fraction=1.0 / 3.0, jerk_fraction=0.25, actuator=None) -> dict:
     """Compute and write the motion of the design in ``folder`` (module docstring) into
-    ``out`` (default ``folder``). Returns the summary (``motion.json``).
-
-    Parameters
-    ----------
-    folder : str or Path
-        A design run folder.
-    out : str or Path, optional
-        Output folder (default ``folder``).
-    path : str
-        One of :data:`PATH_KINDS`.
-    profile : str
-        The profile.
-    cycle_time : float
-        Duration [s].
-    samples : int
-        Time samples.
-    masses : str or Path, optional
-        A mass-law JSON file.
-    gravity : str
-        ``"down"``, ``"off"`` or ``"GX,GY"`` [m/s^2].
-    max_speed : float, optional
-        Actuator speed limit [rad/s or L/s], drawn.
-    max_torque : float, optional
-        Actuator effort limit [N m or N], drawn.
-    rms_limit : float, optional
-        RMS effort limit [N m or N], drawn.
-    accel_fraction : float
-        Of the trapezoidal and s-curve profiles.
-    jerk_fraction : float
-        Of the s-curve profile.
-
-    Returns
-    -------
-    dict
-        motion.json's content.
-    """
+    ``out`` (default ``folder``). Returns the summary (``motion.json``). ``actuator``: a
+    datasheet (:func:`mechopt.core.actuators.read_motors`): its reflected rotor inertia
+    ``I_r N^2`` replaces the mass model's, and its output-side max speed, peak and rated
+    torque are the limits not given."""
     from mechopt.run import io
 
     _v.choice("profile", profile, _mo.PROFILES)
@@ -266,6 +234,16 @@ def run_motion(folder, out=None, path="pick-place", profile="cycloidal", cycle_t
     motion = design_motion(path, task, cycle_time, profile, samples, **shape)
     model = (_dyn.load_mass_model(mech, masses, length_unit) if masses is not None
              else _dyn.mass_model(mech, length_unit=length_unit))
+    if actuator is not None:
+        from dataclasses import replace
+
+        from mechopt.core.actuators import read_motors
+
+        motors = read_motors(actuator)
+        model = replace(model, actuator_inertia=tuple(m.reflected_inertia for m in motors))
+        max_speed = [m.speed for m in motors] if max_speed is None else max_speed
+        max_torque = [m.peak for m in motors] if max_torque is None else max_torque
+        rms_limit = [m.torque for m in motors] if rms_limit is None else rms_limit
     grav = _dyn.parse_gravity(gravity, model.g)
     table, summary = _dyn.motion_efforts(mech, motion, model, grav, length_unit,
                                          to_mech=lambda x, y: spec.to_mech(mech, x, y))
