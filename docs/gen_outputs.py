@@ -322,10 +322,11 @@ CHECK_JSON = {
             "points inside the box), `min_margin` and `worst` (the lengths where it is) per requirement, "
             "`holds` per requirement, `method` (`sampled`: nothing is proven between the points)", ""),
     "certificate": ("with a certificate.json beside the design: `index` (the certified design with this "
-                    "design.json's digest, null if none: edited or another run's) and `chosen`; informational, "
-                    "the exit status does not read it", ""),
+                    "design.json's digest, null if none: edited or another run's), `chosen`, and `disagrees`: "
+                    "for a recorded design, each requirement whose claimed margin or verdict the re-check does "
+                    "not find (a tampered or stale certificate: it fails the check)", ""),
     "holds": ("every requirement holds (and within the box)", ""),
-    "fails": ("the requirements that fail", ""),
+    "fails": ("the requirements that fail, and `certificate.json: ...` for each claim it disagrees with", ""),
 }
 DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque", "error_um",
                  "peak_torque", "rms_torque")

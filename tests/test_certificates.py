@@ -208,7 +208,8 @@ def test_check_cli_exit_statuses(run_dir, capsys, tmp_path):
     (edited / "certificate.json").write_text((run_dir / "certificate.json").read_text())
     code, out, _ = _main(["check", str(edited / "design.json"), "--json"], capsys)
     rep = json.loads(out)
-    assert rep["certificate"] == {"index": None, "chosen": False}  # edited: the certificate does not vouch
+    # edited: the certificate does not vouch (and claims nothing about it)
+    assert rep["certificate"] == {"index": None, "chosen": False, "disagrees": []}
     assert code == (0 if rep["holds"] else 1)
     assert rep["variables"]["r1"] == round(r1, 2)
     ev = DesignEvaluator("five-bar", parse_task(RUN_TASK), Requirements(min_lci=RUN_GAMMA), ("size",), max_length=200)
@@ -266,3 +267,31 @@ def test_tolerance_box_that_holds_holds_on_a_dense_own_check(run_dir):
         assert ok, (off, lmin)
         worst = min(worst, lmin - RUN_GAMMA)
     assert rep["box"]["min_margin"]["lci"] <= worst + 1e-3
+
+
+def test_check_fails_on_a_tampered_certificate(run_dir, tmp_path, capsys):
+    """The certificate.json beside an untouched design.json, with one claimed margin
+    raised (or a verdict turned): the re-check finds another number, and the check
+    fails (exit 1) naming it; the untampered copy passes."""
+    chosen = json.loads((run_dir / "design.json").read_text())
+    cert = json.loads((run_dir / "certificate.json").read_text())
+    k = cert["chosen"]
+    name = next(iter(cert["designs"][k]["requirements"]))
+    for tamper in ("margin", "holds"):
+        folder = tmp_path / tamper
+        folder.mkdir()
+        for f in ("design.json", "run.json"):
+            (folder / f).write_text((run_dir / f).read_text())
+        bad = json.loads(json.dumps(cert))
+        entry = bad["designs"][k]["requirements"][name]
+        if tamper == "margin":
+            entry["margin"] = entry["margin"] + 1.0
+        else:
+            entry["holds"] = not entry["holds"]
+        (folder / "certificate.json").write_text(json.dumps(bad))
+        code, out, _ = _main(["check", str(folder / "design.json")], capsys)
+        assert code == 1 and f"certificate.json: {name} (certificate.json claims margin" in out, out
+        (folder / "certificate.json").write_text(json.dumps(cert))
+        code, out, _ = _main(["check", str(folder / "design.json")], capsys)
+        assert code == (0 if all(m >= 0 for m in chosen["margins"].values()) else 1), out
+        assert "certificate.json records this design.json" in out

@@ -29,7 +29,7 @@ from mechopt.analysis.design_eval import DesignEvaluator, certify
 from mechopt.analysis.sampling import Sampling
 
 __all__ = ["certificate", "check", "tolerance_box", "requirement_entries", "format_check", "BOX_SAMPLES",
-           "CERTIFICATE_VERSION"]
+           "CERTIFICATE_VERSION", "CLAIM_RTOL"]
 
 #: the format of certificate.json (a new key keeps it; a changed meaning raises it)
 CERTIFICATE_VERSION = 1
@@ -171,11 +171,20 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
             "holds": holds, "method": "sampled"}
 
 
-def _certificate_match(path: Path, rec: dict):
+#: a margin a certificate claims agrees with the re-check when within this relative
+#: difference (the same code gives the same double; another platform's libm may differ
+#: in the last bits)
+CLAIM_RTOL = 1e-9
+
+
+def _certificate_match(path: Path, rec: dict, entries: dict):
     """Whether the certificate.json beside ``path`` records this very design.json (its
-    digest among the certified designs'): ``{"index": k or None, "chosen": bool}``, or
-    None without a readable certificate.json. Informational: a design edited by hand
-    (rounded lengths) is checked on its own numbers, whatever the certificate says."""
+    digest among the certified designs'): ``{"index": k or None, "chosen": bool,
+    "disagrees": [...]}``, or None without a readable certificate.json. A design edited
+    by hand (rounded lengths) is not recorded and is checked on its own numbers; for a
+    recorded one, every margin and verdict the certificate claims must equal the
+    re-check's ``entries`` (to :data:`CLAIM_RTOL`): ``disagrees`` names each that does
+    not (a tampered or stale certificate), which fails the check."""
     from mechopt.export.source import design_digest
     from mechopt.run import io as _io
 
@@ -183,10 +192,23 @@ def _certificate_match(path: Path, rec: dict):
         cert = _io.read_json(path.parent / "certificate.json")
         digest = design_digest(rec)
         designs = cert["designs"]
-        index = next((d["index"] for d in designs if d.get("digest") == digest), None)
-        return {"index": index, "chosen": index is not None and index == cert.get("chosen")}
+        entry = next((d for d in designs if d.get("digest") == digest), None)
+        index = None if entry is None else entry["index"]
+        claimed = {} if entry is None else dict(entry["requirements"])
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
+    disagrees = []
+    for name, e in (entries.items() if entry is not None else ()):
+        c = claimed.get(name)
+        try:
+            m, ok = float(c["margin"]), c["holds"]
+        except (TypeError, KeyError, ValueError):
+            disagrees.append(f"{name} (not in certificate.json)")
+            continue
+        same = m == e["margin"] or abs(m - e["margin"]) <= CLAIM_RTOL * max(1.0, abs(e["margin"]))
+        if not same or ok is not e["holds"]:
+            disagrees.append(f"{name} (certificate.json claims margin {m:.6g}, the check finds {e['margin']:.6g})")
+    return {"index": index, "chosen": index is not None and index == cert.get("chosen"), "disagrees": disagrees}
 
 
 def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int = BOX_SAMPLES) -> dict:
@@ -211,9 +233,10 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
     dict
         ``variables``, ``requirements`` (:func:`requirement_entries` at the nominal
         lengths), ``box`` (:func:`tolerance_box`, with ``tolerance``), ``certificate``
-        (whether the certificate.json beside the design records it, by digest:
-        informational), ``holds`` (all of them) and ``fails`` (the names of those that
-        do not).
+        (whether the certificate.json beside the design records it, by digest, and
+        for a recorded design every claimed margin that the re-check does not find:
+        each fails the check), ``holds`` (all of them) and ``fails`` (the names of
+        those that do not).
     """
     from mechopt.analysis.task import Task, parse_task
     from mechopt.core import validation as _v
@@ -244,8 +267,10 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
     entries = requirement_entries(ev, res)
     out = {"design": str(design_path), "mechanism": spec.name, "unit": unit, "variables": v,
            "requirements": entries, "sampling": asdict(Sampling.fine())}
-    out["certificate"] = _certificate_match(Path(design_path), rec)
+    out["certificate"] = _certificate_match(Path(design_path), rec, entries)
     fails = [n for n, e in entries.items() if not e["holds"]]
+    if out["certificate"] is not None:
+        fails += [f"certificate.json: {d}" for d in out["certificate"]["disagrees"]]
     if tolerance is not None:
         box = tolerance_box(ev, v, tolerance, n_samples)
         out["box"] = box
