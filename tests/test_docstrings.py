@@ -210,11 +210,9 @@ MODULES = _modules()
 
 #: modules whose public callables do not all have their sections yet: each entry is an
 #: expected failure that fails, strict, once its module passes (remove it then). Not a
-#: skip: ``python tests/test_docstrings.py [MODULE ...]`` prints each gap. Left: the
-#: two functions other work was rewriting at the time (design_eval.certify and
-#: io.write_csv, 2 gaps each).
+#: skip: ``python tests/test_docstrings.py [MODULE ...]`` prints each gap. Left:
+#: io.write_csv, which other work was rewriting at the time (2 gaps).
 PENDING = {
-    "mechopt.analysis.design_eval",
     "mechopt.run.io",
 }
 
