@@ -210,11 +210,8 @@ MODULES = _modules()
 
 #: modules whose public callables do not all have their sections yet: each entry is an
 #: expected failure that fails, strict, once its module passes (remove it then). Not a
-#: skip: ``python tests/test_docstrings.py [MODULE ...]`` prints each gap. Left:
-#: io.write_csv, which other work was rewriting at the time (2 gaps).
-PENDING = {
-    "mechopt.run.io",
-}
+#: skip: ``python tests/test_docstrings.py [MODULE ...]`` prints each gap. None left.
+PENDING = set()
 
 
 def test_the_walk_finds_the_package():
