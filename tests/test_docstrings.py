@@ -210,13 +210,8 @@ MODULES = _modules()
 
 #: modules whose public callables do not all have their sections yet: each entry is an
 #: expected failure that fails, strict, once its module passes (remove it then). Not a
-#: skip: ``python tests/test_docstrings.py [MODULE ...]`` prints each gap. Left: the
-#: two functions other work was rewriting at the time (design_eval.certify and
-#: io.write_csv, 2 gaps each).
-PENDING = {
-    "mechopt.analysis.design_eval",
-    "mechopt.run.io",
-}
+#: skip: ``python tests/test_docstrings.py [MODULE ...]`` prints each gap. None left.
+PENDING = set()
 
 
 def test_the_walk_finds_the_package():

@@ -173,7 +173,20 @@ class ErrorModel:
             object.__setattr__(self, f.name, val)
 
     def motor(self, name: str, i: int) -> float:
-        """The value of the actuator field ``name`` (:data:`PER_MOTOR`) for motor ``i`` (0 or 1)."""
+        """The value of the actuator field ``name`` (:data:`PER_MOTOR`) for motor ``i`` (0 or 1).
+
+        Parameters
+        ----------
+        name : str
+            One of :data:`PER_MOTOR`.
+        i : int
+            The motor, 0 or 1.
+
+        Returns
+        -------
+        float
+            The field's value for that motor (its single value when it holds one for both).
+        """
         v = getattr(self, name)
         return v[i] if isinstance(v, tuple) else v
 
@@ -554,7 +567,24 @@ POSE_KEYS = ("error_at", "error_bound_um", "error_linear_um", "error_remainder_u
 def parse_poses(text) -> list:
     """Poses ``[[x, y], ...]`` from ``"x,y"`` texts (one or a list of them, e.g. the
     repeated ``--at`` of ``mechopt evaluate``) or pairs of numbers; ValueError (one
-    line) otherwise."""
+    line) otherwise.
+
+    Parameters
+    ----------
+    text : str or sequence
+        One ``"x,y"`` text, or a list of ``"x,y"`` texts or ``(x, y)`` pairs [unit].
+
+    Returns
+    -------
+    list of [float, float]
+        The poses ``[[x, y], ...]`` [unit].
+
+    Raises
+    ------
+    ValueError
+        One line, for an item that is not two numbers, a coordinate that is not finite
+        or is beyond :data:`~mechopt.core.validation.POINT_MAX`, or no pose at all.
+    """
     items = [text] if isinstance(text, str) else list(text)
     out = []
     for item in items:
@@ -627,6 +657,11 @@ def task_max_error(mech, model: ErrorModel, s: dict, to_mech=None, unit: str = "
         False: the samples' maximum alone.
     vals : array, optional
         The negated bound at ``s["allx"], s["ally"]`` when already computed.
+
+    Returns
+    -------
+    float
+        The largest bound over the task [unit] (inf when a point is unreachable or unproven).
     """
     from mechopt.analysis.sampling import region_mins
 

@@ -227,6 +227,13 @@ class Zone:
         ``n`` points, a half-plane's part of ``box = (x0, x1, y0, y1)`` [L] (the view; an
         empty outline when the zone misses it).
 
+        Parameters
+        ----------
+        box : tuple of float
+            The view ``(x0, x1, y0, y1)`` [L]; used for a half-plane only.
+        n : int
+            Points on a disc's circle (n + 1 with the first repeated).
+
         Returns
         -------
         tuple of numpy.ndarray

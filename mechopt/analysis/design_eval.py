@@ -130,6 +130,10 @@ class DesignEvaluator:
         Link length bounds [L].
     shape : sequence of float, optional
         Fixed link ratios.
+    side : str
+        ``"above"`` or ``"below"``: the side of the base line where a free placement
+        searched above it is placed (``"below"``: its mirror image; no effect on a fixed
+        placement or a mechanism placed around the task's own height).
 
     Raises
     ------
@@ -632,7 +636,24 @@ def certify(evaluator: DesignEvaluator, v: dict, sampling: Sampling | None = Non
     """Re-check one design with the fine sampling (:meth:`Sampling.fine`: 2048 boundary
     points, a 61 x 61 interior grid, zoom refinement); returns the evaluation with
     ``feasible`` (every ``g <= 0``) and ``tolerance`` (what the margins rest on: the
-    sampling, and each active requirement's certificate)."""
+    sampling, and each active requirement's certificate).
+
+    Parameters
+    ----------
+    evaluator : DesignEvaluator
+        The run's evaluator.
+    v : dict
+        A decoded design (:meth:`DesignEvaluator.decode`).
+    sampling : Sampling, optional
+        The certifying sampling (default: :meth:`Sampling.fine`).
+
+    Returns
+    -------
+    dict
+        The evaluation (:meth:`DesignEvaluator.evaluate`) plus ``feasible`` (bool) and
+        ``tolerance`` (dict: the sample gaps [L] of a region or path and each proven
+        requirement's certificate, or the note that a point task is exact at its points).
+    """
     s = sampling or Sampling.fine()
     res = evaluator.evaluate(v, s)
     res["feasible"] = feasible(res["g"].values())
@@ -688,6 +709,11 @@ def sensitivity(evaluator: DesignEvaluator, v: dict, name: str, sampling: Sampli
     dict
         ``{change: margin}``: the requirement's margin [its ``margin_unit``] after each
         change; NaN where the changed design is invalid. A larger margin helps.
+
+    Raises
+    ------
+    ValueError
+        When ``name`` is not an active requirement of the evaluator.
     """
     import copy
 

@@ -85,7 +85,23 @@ def _limits(name, value, unit):
 
 def actuator_norm(norm):
     """The reading ``norm`` normalised: ``"box"`` (also ``"inf"``) or ``2`` (also ``"2"``);
-    anything else is a one-line ValueError."""
+    anything else is a one-line ValueError.
+
+    Parameters
+    ----------
+    norm : str or int
+        ``"box"``, ``"inf"``, ``2`` or ``"2"``.
+
+    Returns
+    -------
+    str or int
+        ``"box"`` or ``2`` (one of :data:`ACTUATOR_NORMS`).
+
+    Raises
+    ------
+    ValueError
+        One line, for any other value.
+    """
     if norm in ("box", "inf"):
         return "box"
     if norm in (2, "2"):

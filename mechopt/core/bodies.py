@@ -235,6 +235,11 @@ def capsule_outline(x0, y0, x1, y1, width, n: int = 16):
     -------
     tuple of numpy.ndarray
         ``(x, y)`` [L], the first point repeated at the end.
+
+    Raises
+    ------
+    ValueError
+        One line, when ``width`` is negative, not finite or too large, or ``n`` is below 2.
     """
     r = 0.5 * _v.nonnegative_length("width", width)
     if int(n) < 2:

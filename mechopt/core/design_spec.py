@@ -381,7 +381,18 @@ class DesignSpec:
         another (the five-bar's ``"+-"`` mirrored is ``"-+"``), so with one mode fixed
         the designs below the line are not those above. ``mechopt design`` then runs a
         second search below the line, the mirror image of the first
-        (:mod:`mechopt.workflows.design`)."""
+        (:mod:`mechopt.workflows.design`).
+
+        Parameters
+        ----------
+        mode : str or None
+            A working mode, or None for ``mode="any"``.
+
+        Returns
+        -------
+        bool
+            False by default.
+        """
         return False
 
     def reach_radius(self, lmax) -> float:

@@ -74,7 +74,27 @@ def tree_frames(tree, config) -> dict:
     at the origin, angle 0) for the joints' values ``config`` (rad, or the tree's length
     unit for prismatic joints): a joint's frame is its parent's moved by the joint's
     ``origin``, then turned by ``q`` about z (revolute) or moved by ``q axis``
-    (prismatic), as URDF reads it."""
+    (prismatic), as URDF reads it.
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree.
+    config : dict
+        ``{joint: value}`` of every joint of ``tree``: [rad] (revolute) or the tree's
+        length unit (prismatic), arrays of one shape.
+
+    Returns
+    -------
+    dict
+        ``{body: (origin, angle)}``: the frame's origin, shape ``(..., 2)`` [the tree's
+        length unit], and its angle, shape ``(...)`` [rad].
+
+    Raises
+    ------
+    ValueError
+        When some joints hang from no body the walk from the base reaches.
+    """
     shape = np.shape(next(iter(config.values()))) if config else ()
     frames = {BASE: (np.zeros(shape + (2,)), np.zeros(shape))}
     pending = list(tree.joints)
@@ -122,6 +142,11 @@ def body_masses(mech, x, y, length_unit: float, model=None) -> tuple:
     -------
     tuple
         ``(dict, tuple of str)``.
+
+    Raises
+    ------
+    ValueError
+        When the poses ``x, y`` leave a mass body's centre undefined (out of reach).
     """
     from mechopt.analysis import dynamics as dyn
 

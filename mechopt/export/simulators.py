@@ -80,7 +80,23 @@ def _digest_comment(digest) -> str:
 
 def urdf(tree, digest: str, masses: dict) -> str:
     """The URDF of ``tree`` (lengths in m; module docstring); ``masses``: ``{body: (mass
-    [kg], com [m], (Ixx, Iyy, Izz) [kg m^2])}`` (:func:`mechopt.export.inertia.body_masses`)."""
+    [kg], com [m], (Ixx, Iyy, Izz) [kg m^2])}`` (:func:`mechopt.export.inertia.body_masses`).
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree, lengths [m].
+    digest : str
+        The design's digest (:func:`mechopt.export.source.design_digest`), written into the
+        file.
+    masses : dict
+        ``{body: (mass, com, (Ixx, Iyy, Izz))}`` of every moving body [kg, m, kg m^2].
+
+    Returns
+    -------
+    str
+        The URDF text.
+    """
     w = link_width(tree)
     lines = ['<?xml version="1.0"?>', _digest_comment(digest), f'<robot name="{tree.name}">',
              f'  <link name="{BASE}"/>']
@@ -152,7 +168,22 @@ def servo_gains(tree, kind: str, masses: dict):
     prismatic joint the bodies' masses plus their moments over the shortest body length
     squared, ``sum m + sum Izz / L_min^2`` [kg] (a link turned by a prismatic joint's travel); for
     a revolute one ``sum m L_max^2 + sum Izz`` [kg m^2] (``masses`` of :func:`urdf`,
-    tree lengths in m)."""
+    tree lengths in m).
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree, lengths [m].
+    kind : str
+        The joint's kind, ``"revolute"`` or ``"prismatic"``.
+    masses : dict
+        ``{body: (mass, com, (Ixx, Iyy, Izz))}`` [kg, m, kg m^2], as for :func:`urdf`.
+
+    Returns
+    -------
+    tuple of float
+        ``(kp, kv)``: stiffness [N m/rad or N/m] and damping [N m s/rad or N s/m].
+    """
     lengths = [L for L in (body_length(tree, b) for b in tree.bodies) if L > 0] or [1.0]
     mass = sum(m for m, _, _ in masses.values())
     izz = sum(i[2] for _, _, i in masses.values())
@@ -164,7 +195,25 @@ def servo_gains(tree, kind: str, masses: dict):
 def mjcf(tree, digest: str, home: dict, masses: dict) -> str:
     """The MJCF of ``tree`` (lengths in m; module docstring); ``home``: every joint's
     value at the task's centre (the keyframe ``home`` and its controls); ``masses`` as
-    for :func:`urdf`."""
+    for :func:`urdf`.
+
+    Parameters
+    ----------
+    tree : mechopt.core.kinematic_tree.KinematicTree
+        The mechanism's tree, lengths [m].
+    digest : str
+        The design's digest (:func:`mechopt.export.source.design_digest`), written into the
+        file.
+    home : dict
+        ``{joint: value}`` of every joint at the task's centre [rad or m].
+    masses : dict
+        ``{body: (mass, com, (Ixx, Iyy, Izz))}`` [kg, m, kg m^2], as for :func:`urdf`.
+
+    Returns
+    -------
+    str
+        The MJCF text.
+    """
     w = link_width(tree)
     children = {}
     for j in tree.joints:

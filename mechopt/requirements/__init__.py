@@ -215,7 +215,26 @@ class Requirements:
         requirement that does not apply to it, or a requirement missing the options it
         needs, is refused with one line). A member's ``implied(values, spec, unit)``
         fills options left None from others (``--actuator``'s datasheet gives the
-        actuators' limits)."""
+        actuators' limits).
+
+        Parameters
+        ----------
+        spec : mechopt.core.design_spec.DesignSpec
+            The mechanism's design spec.
+        unit : str
+            The task's length unit.
+
+        Returns
+        -------
+        Requirements
+            The checked values, with units converted and implied options filled in.
+
+        Raises
+        ------
+        ValueError
+            One line, for an invalid value, an option of a requirement that does not
+            apply to the mechanism, or a requirement missing an option it needs.
+        """
         kw = {}
         for name, (opt, member) in options().items():
             value = self._values[name]

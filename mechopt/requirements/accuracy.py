@@ -45,7 +45,18 @@ SCREEN = 0.9
 
 def model_of(req) -> "_acc.ErrorModel":
     """The error model of the requirements ``req``: ``req.error_model`` (none: every
-    tolerance 0) with the encoder resolution of ``req.encoder`` when it is given."""
+    tolerance 0) with the encoder resolution of ``req.encoder`` when it is given.
+
+    Parameters
+    ----------
+    req : mechopt.requirements.Requirements
+        The requirements.
+
+    Returns
+    -------
+    mechopt.analysis.accuracy.ErrorModel
+        The tolerances.
+    """
     model = _acc.ErrorModel.from_dict(dict(req.error_model or {}))
     if req.encoder is not None:
         model = _acc.ErrorModel.from_dict({**asdict(model), "encoder_counts": req.encoder})
@@ -64,7 +75,18 @@ def _sampled(ctx) -> np.ndarray:
 def error_um(ctx) -> float:
     """The largest proven position error [um] over the task (inf without a proof):
     located on the samples and refined by zooming when ``ctx.refine``
-    (:func:`mechopt.analysis.accuracy.task_max_error`)."""
+    (:func:`mechopt.analysis.accuracy.task_max_error`).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The largest bound over the task [um] (inf where not proven).
+    """
     return ctx.memo("error_um", lambda: _acc.UM_PER_UNIT[ctx.unit] * _acc.task_max_error(
         ctx.mech, model_of(ctx.req), ctx.samples, ctx.to_mech, ctx.unit, ctx.refine, _sampled(ctx)))
 

@@ -78,7 +78,24 @@ class Option:
         return "--" + self.name.replace("_", "-")
 
     def check(self, value, spec, unit="mm"):
-        """The validated value (see the class docstring) for a task in ``unit``."""
+        """The validated value (see the class docstring) for a task in ``unit``.
+
+        Parameters
+        ----------
+        value : object
+            The option's value (a number, a text or a quantity with a unit; one or two
+            for a per-actuator option).
+        spec : mechopt.core.design_spec.DesignSpec
+            The mechanism's design spec.
+        unit : str
+            The task's length unit.
+
+        Returns
+        -------
+        object
+            The checked value in the option's unit (a float, or what ``check`` returns; a
+            tuple of two for two values of a per-actuator option).
+        """
         if self.per_actuator:
             values = tuple(self._check_one(v, spec, unit) for v in self._values(value))
             return values[0] if len(values) == 1 else values
@@ -114,7 +131,18 @@ class Option:
     def parse(self, text):
         """The Python value of the option's command-line ``text`` (a
         :class:`mechopt.core.units.Quantity` for an option with a ``kind``; a tuple of two
-        for two values of a per-actuator option)."""
+        for two values of a per-actuator option).
+
+        Parameters
+        ----------
+        text : str
+            The command-line text.
+
+        Returns
+        -------
+        object
+            The Python value (a float by default).
+        """
         if self.per_actuator:
             values = tuple(self._parse_one(v) for v in self._values(str(text)))
             return values[0] if len(values) == 1 else values

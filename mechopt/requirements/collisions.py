@@ -189,7 +189,18 @@ def joint_angle_min(ctx):
 
 def zone_of(ctx):
     """The ``--keep-out`` zone (:class:`~mechopt.analysis.collisions.Zone`) of the
-    evaluation, ``task`` resolved to its placed task; None without ``--keep-out``."""
+    evaluation, ``task`` resolved to its placed task; None without ``--keep-out``.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    mechopt.analysis.collisions.Zone or None
+        The zone [L, task frame], or None without ``--keep-out``.
+    """
     if ctx.req.keep_out is None:
         return None
     return ctx.memo("keep_out_zone", lambda: _c.parse_zone(ctx.req.keep_out, ctx.task))
@@ -258,6 +269,11 @@ def worst_pose(ctx, what="clearance"):
         platform there) and ``which`` (the two bodies of the closest pair, or the body
         closest to the zone); None when nothing is measured (no pair, no zone) or the
         pose is out of reach.
+
+    Raises
+    ------
+    ValueError
+        When ``what`` is neither ``"clearance"`` nor ``"keep_out"``.
     """
     col = collisions(ctx)
     if what == "clearance":

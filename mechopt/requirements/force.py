@@ -47,7 +47,18 @@ def effort_factor(ctx_or_ev) -> float:
 
 def force(ctx) -> float:
     """The guaranteed force over the task [N] under the reading
-    :func:`~mechopt.requirements.speed.reading` (module docstring)."""
+    :func:`~mechopt.requirements.speed.reading` (module docstring).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The force guaranteed in every direction over the task [N].
+    """
     t = limits(ctx.req.actuator_torque)
     if reading(ctx) == "box":
         m = box_extremes(ctx)
@@ -86,7 +97,23 @@ class MinForce(Requirement):
         w_2 t_2``). Liu 2006 eq. 10, 13 (``--actuator-norm 2``): its speed and force are
         at most the box's (the ball lies in the box), so the same bound holds; for equal
         limits it is Liu's ``v f = w t s_min / s_max <= w t``. Over the task the minima
-        of ``v`` and ``f`` are at most their values at any one pose."""
+        of ``v`` and ``f`` are at most their values at any one pose.
+
+        Parameters
+        ----------
+        req : mechopt.requirements.Requirements
+            The checked requirements.
+        spec : mechopt.core.design_spec.DesignSpec
+            The mechanism's design spec.
+        unit : str
+            The task's length unit.
+
+        Raises
+        ------
+        ValueError
+            One line, when ``min_speed x min_force`` exceeds ``min_i w_i t_i`` of the
+            actuators' limits.
+        """
         if req.min_speed is None or req.min_force is None:
             return
         u_m = UNITS[unit] if spec.angular else 1.0  # [m/L]: the speed in m/s for cranks

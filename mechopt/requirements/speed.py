@@ -38,12 +38,34 @@ __all__ = ["MinSpeed", "SpeedObjective", "singular_value_extremes", "liu_extreme
 
 def limits(value) -> np.ndarray:
     """The two actuators' limits of a per-actuator option's checked value (one number
-    for both, or a pair), shape ``(2,)``."""
+    for both, or a pair), shape ``(2,)``.
+
+    Parameters
+    ----------
+    value : float or (float, float)
+        The checked value [rad/s, L/s, N m or N].
+
+    Returns
+    -------
+    ndarray
+        Shape ``(2,)``: actuator 1's limit, actuator 2's (a new array) [the value's unit].
+    """
     return np.broadcast_to(np.asarray(value, dtype=float), (2,)).copy()
 
 
 def reading(ctx):
-    """The reading of the actuators' limits of the requirements: ``"box"`` or ``2``."""
+    """The reading of the actuators' limits of the requirements: ``"box"`` or ``2``.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    str or int
+        ``"box"`` (also when ``--actuator-norm`` is not given) or ``2``.
+    """
     from mechopt.core.actuators import actuator_norm
 
     return actuator_norm(ctx.req.actuator_norm or "box")
@@ -78,7 +100,23 @@ def singular_value_extremes(ctx) -> tuple:
 def liu_extremes(ctx, w=None, t=None) -> tuple:
     """``(max_T s_max(diag(w)^-1 J), min_T s_min(diag(t) J))`` (Liu 2006 eq. 10, 13 with
     per-actuator budgets ``w``, ``t``: ``(2,)`` arrays, default ones); equal limits reuse
-    :func:`singular_value_extremes` (the singular values scale with a common factor)."""
+    :func:`singular_value_extremes` (the singular values scale with a common factor).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+    w : ndarray, optional
+        The rate limits, shape ``(2,)`` [rad/s or L/s] (default: ones).
+    t : ndarray, optional
+        The effort limits, shape ``(2,)`` [N m or N] (default: ones).
+
+    Returns
+    -------
+    s_max, s_min : float
+        ``max_T s_max(diag(w)^-1 J)`` [s/L with ``w`` in rad/s or L/s] and
+        ``min_T s_min(diag(t) J)`` [the unit of ``t`` times that of ``J``], memoised in ``ctx``.
+    """
     w = np.ones(2) if w is None else w
     t = np.ones(2) if t is None else t
     if w[0] == w[1] and t[0] == t[1]:
@@ -108,7 +146,19 @@ def box_extremes(ctx) -> np.ndarray:
     """The minima over the task of ``1/||row_1(J)||, 1/||row_2(J)||, |det J|/||row_1||,
     |det J|/||row_2||``, searched together: under per-actuator limits the guaranteed
     speed is ``min(w_1 m_0, w_2 m_1)`` and the guaranteed force ``min(t_2 m_2, t_1 m_3)``
-    (:mod:`mechopt.core.actuators`); independent of the limits, so shared."""
+    (:mod:`mechopt.core.actuators`); independent of the limits, so shared.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    ndarray
+        Shape ``(4,)``: ``m_0, m_1`` [the inverse of the unit of ``J``] and ``m_2, m_3``
+        [the unit of ``J``], 0 where unreachable; memoised in ``ctx``.
+    """
     def compute():
         return np.array(ctx.region_mins(lambda x, y: _box_rows(ctx.mech.jacobian(*ctx.to_mech(x, y))),
                                         _box_rows(ctx.jacobian)))
@@ -116,7 +166,23 @@ def box_extremes(ctx) -> np.ndarray:
 
 
 def extremes_known(ctx, w=None, t=None) -> bool:
-    """True when another member already searched the minima the reading needs."""
+    """True when another member already searched the minima the reading needs.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+    w : ndarray, optional
+        The rate limits, shape ``(2,)`` [rad/s or L/s] (default: ones).
+    t : ndarray, optional
+        The effort limits, shape ``(2,)`` [N m or N] (default: ones).
+
+    Returns
+    -------
+    bool
+        Whether ``ctx`` holds them (:func:`box_extremes`, :func:`singular_value_extremes`
+        or :func:`liu_extremes` of these limits).
+    """
     if reading(ctx) == "box":
         return ctx.has("box_extremes")
     w = np.ones(2) if w is None else w
@@ -127,7 +193,18 @@ def extremes_known(ctx, w=None, t=None) -> bool:
 
 def speed(ctx) -> float:
     """The guaranteed speed over the task [L/s] under the reading :func:`reading` (module
-    docstring); 0 where unbounded or unreachable."""
+    docstring); 0 where unbounded or unreachable.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The speed guaranteed in every direction over the task [L/s].
+    """
     w = limits(ctx.req.actuator_speed)
     if reading(ctx) == "box":
         m = box_extremes(ctx)
@@ -179,7 +256,24 @@ class MinSpeed(Requirement):
         (:class:`mechopt.core.actuators.Motor`): rates [rad/s, or the task's unit per
         second for sliders], continuous (rated) torque for the guaranteed force (a force
         held for as long as needed), peak and rated torque for the motion's peak and RMS
-        limits [N m or N]; one value when both actuators are alike."""
+        limits [N m or N]; one value when both actuators are alike.
+
+        Parameters
+        ----------
+        values : dict
+            ``{option: checked value}`` of every option (None where not given).
+        spec : mechopt.core.design_spec.DesignSpec
+            The mechanism's design spec.
+        unit : str
+            The task's length unit.
+
+        Returns
+        -------
+        dict
+            ``actuator_speed`` [rad/s or L/s] and ``actuator_torque`` [N m or N], with
+            ``cycle_time`` also ``max_torque`` and ``max_rms_torque`` [N m or N]; each a
+            float or a pair; empty without ``--actuator``.
+        """
         motors = values.get("actuator")
         if motors is None:
             return {}

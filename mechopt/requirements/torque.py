@@ -28,7 +28,20 @@ __all__ = ["TorqueObjective", "torque", "MEMBERS"]
 
 def torque(ctx) -> float:
     """``payload / min_T min_i |det J| / ||row_i(J)||`` (per actuator) or ``payload /
-    min_T s_min(J)`` (``--actuator-norm 2``) [N m or N], NaN without force capacity."""
+    min_T s_min(J)`` (``--actuator-norm 2``) [N m or N], NaN without force capacity.
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's sample context.
+
+    Returns
+    -------
+    float
+        The effort needed to hold the payload in the worst direction [N m or N]: the
+        larger actuator's, or the two's Euclidean norm with ``--actuator-norm 2`` (NaN
+        without force capacity).
+    """
     smin = float(min(box_extremes(ctx)[2:])) if reading(ctx) == "box" else singular_value_extremes(ctx)[1]
     return ctx.req.payload / smin / effort_factor(ctx) if smin > 0 else math.nan
 

@@ -150,7 +150,23 @@ def write_csv(df, path, **kw) -> Path:
     """A DataFrame as CSV, no index, every float in full precision: the shortest text
     that reads back as the same double (Python's ``repr``, pandas' default), so that
     ``pandas.read_csv`` of the file gives the written numbers bit for bit (a margin
-    re-read from ``front.csv`` is the computed one, not one rounded to 10 digits)."""
+    re-read from ``front.csv`` is the computed one, not one rounded to 10 digits).
+    Written atomically (:func:`atomic_path`).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table.
+    path : str or Path
+        The file.
+    **kw
+        More keywords of :meth:`pandas.DataFrame.to_csv` (``index`` defaults to False).
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
     kw.setdefault("index", False)
     with atomic_path(path) as tmp:
         df.to_csv(tmp, **kw)

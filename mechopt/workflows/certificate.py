@@ -43,7 +43,22 @@ def _method(member) -> str:
 
 def requirement_entries(ev: DesignEvaluator, res: dict) -> dict:
     """``{requirement: {margin, unit, g, holds, method, certificate}}`` of an evaluation
-    ``res`` (:func:`~mechopt.analysis.design_eval.certify`) by the evaluator ``ev``."""
+    ``res`` (:func:`~mechopt.analysis.design_eval.certify`) by the evaluator ``ev``.
+
+    Parameters
+    ----------
+    ev : mechopt.analysis.design_eval.DesignEvaluator
+        The evaluator.
+    res : dict
+        An evaluation of it (``margin`` and ``g`` per active requirement are read).
+
+    Returns
+    -------
+    dict
+        Per active requirement: ``margin`` [``unit``], ``unit``, ``g``, ``holds``
+        (``g <= 0``), ``method`` (``"proven"`` or ``"refined-sampled"``),
+        ``certificate`` and ``describe`` (the requirement in words).
+    """
     out = {}
     for r in ev.active:
         m, g = res["margin"][r.name], res["g"][r.name]
@@ -58,7 +73,19 @@ def certificate(result) -> dict:
     the mechopt version, the mechanism, unit, task and requirements (run.json's
     ``design`` settings), the sampling of the certification, the index of the chosen
     design, and per front design its variables, placement, digest, each requirement
-    (:func:`requirement_entries`) and what the margins rest on (``tolerance``)."""
+    (:func:`requirement_entries`) and what the margins rest on (``tolerance``).
+
+    Parameters
+    ----------
+    result : mechopt.workflows.design.DesignResult
+        A design run's result.
+
+    Returns
+    -------
+    dict
+        Plain JSON data: ``certificate_version``, ``mechopt_version``, ``settings``,
+        ``sampling``, ``chosen``, ``designs`` (one entry per front design) and ``note``.
+    """
     from mechopt import __version__
     from mechopt.export.source import design_digest
     from mechopt.run.io import plain_json
@@ -150,7 +177,32 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
     designs at such peaks), so a minimum inside the box between the evaluated points
     can be lower: the result is a sampled bound, ``method "sampled"``, never called
     proven. Returns ``{"tolerance", "evaluated", "min_margin": {name: value},
-    "worst": {name: lengths}, "holds": {name: bool}, "method": "sampled"}``."""
+    "worst": {name: lengths}, "holds": {name: bool}, "method": "sampled"}``.
+
+    Parameters
+    ----------
+    ev : mechopt.analysis.design_eval.DesignEvaluator
+        The evaluator (task, requirements, length bounds).
+    v : dict
+        The nominal design's decoded variables (lengths [L], mode, placement).
+    tol : float
+        The tolerance ``+-`` on every length [L].
+    n_samples : int
+        Random mechanisms inside the box besides its corners.
+    seed : int
+        Seed of the random draws.
+    sampling : mechopt.analysis.sampling.Sampling, optional
+        The sampling of each evaluation (default: :meth:`Sampling.fine
+        <mechopt.analysis.sampling.Sampling.fine>`).
+
+    Returns
+    -------
+    dict
+        ``tolerance`` [L], ``evaluated`` (how many mechanisms), ``min_margin`` (per
+        requirement, its margin's unit; NaN counts as the worst), ``worst`` (the lengths
+        [L] where that minimum was found), ``holds`` (per requirement, ``g <= 0`` at
+        every evaluated mechanism) and ``method`` (``"sampled"``).
+    """
     names = list(ev.spec.lengths)
     nominal = np.array([v[n] for n in names])
     corners = np.array(list(itertools.product(*[(-1.0, 1.0)] * len(names))))
@@ -237,6 +289,13 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
         for a recorded design every claimed margin that the re-check does not find:
         each fails the check), ``holds`` (all of them) and ``fails`` (the names of
         those that do not).
+
+    Raises
+    ------
+    ValueError
+        One line, for an unreadable design.json or run.json (or one of another run),
+        invalid ``lengths``, a ``task`` in another unit than the design's, or a
+        ``tolerance`` that is not a finite length > 0.
     """
     from mechopt.analysis.task import Task, parse_task
     from mechopt.core import validation as _v
@@ -281,7 +340,19 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
 
 
 def format_check(report: dict) -> list:
-    """The lines ``mechopt check`` prints for a :func:`check` report."""
+    """The lines ``mechopt check`` prints for a :func:`check` report.
+
+    Parameters
+    ----------
+    report : dict
+        A :func:`check` report.
+
+    Returns
+    -------
+    list of str
+        The lines: the design, one per requirement (with the tolerance box's smallest
+        margin when checked), whether certificate.json records it, and the verdict.
+    """
     u = report["unit"]
     L = ", ".join(f"{k}={report['variables'][k]:.10g}" for k in report["variables"]
                   if k not in ("mode", "task_x", "task_y"))

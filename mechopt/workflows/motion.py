@@ -223,7 +223,49 @@ def run_motion(folder, out=None, path="pick-place", profile="cycloidal", cycle_t
     ``out`` (default ``folder``). Returns the summary (``motion.json``). ``actuator``: a
     datasheet (:func:`mechopt.core.actuators.read_motors`): its reflected rotor inertia
     ``I_r N^2`` replaces the mass model's, and its output-side max speed, peak and rated
-    torque are the limits not given."""
+    torque are the limits not given.
+
+    Parameters
+    ----------
+    folder : str or Path
+        A design run folder (design.json, run.json).
+    out : str or Path, optional
+        The output folder (default: ``folder``).
+    path : str
+        One of :data:`PATH_KINDS` (coordinates [unit of the design]).
+    profile : str
+        The timing of each piece, one of :data:`mechopt.core.motion.PROFILES`.
+    cycle_time : float
+        Duration of the whole path [s].
+    samples : int
+        Time samples along the motion.
+    masses : str or Path, optional
+        A mass model JSON file (:func:`mechopt.analysis.dynamics.load_mass_model`);
+        default :func:`mechopt.analysis.dynamics.mass_model`.
+    gravity : str or tuple
+        ``"down"``, ``"off"``, ``"gx,gy"`` or a pair [m/s^2]
+        (:func:`mechopt.analysis.dynamics.parse_gravity`).
+    max_speed : float or (float, float), optional
+        Actuator rate limit(s) drawn and checked [rad/s or m/s].
+    max_torque : float or (float, float), optional
+        Peak effort limit(s) drawn and checked [N m or N].
+    rms_limit : float or (float, float), optional
+        RMS effort limit(s) drawn and checked [N m or N].
+    accel_fraction : float
+        Trapezoidal and s-curve profiles: fraction of each piece's time spent
+        accelerating, in (0, 0.5].
+    jerk_fraction : float
+        S-curve profile: fraction of the acceleration time at constant jerk, in [0, 0.5].
+    actuator : str, Path, dict or list, optional
+        The motors' datasheet: inline, a .json/.toml file or the same as Python objects
+        (:func:`mechopt.core.actuators.read_motors`).
+
+    Returns
+    -------
+    dict
+        The summary written to ``motion.json``: the extremes per actuator, the settings,
+        the limits and ``within_limits``.
+    """
     from mechopt.run import io
 
     _v.choice("profile", profile, _mo.PROFILES)
