@@ -225,10 +225,15 @@ def test_usable_region_is_the_whole_raster_labelling(r):
     assert not x.flags.writeable
 
 
-def test_one_evaluation_imports_neither_scipy_nor_numba():
+def test_one_evaluation_imports_neither_scipy_nor_numba(tmp_path):
+    # a fresh interpreter in an empty folder, without what other tests of this worker may
+    # have put in its environment (warning filters, test tags, numba switches): the
+    # imports measured are the package's own
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTHON", "MECHOPT", "NUMBA"))}
     code = ("import sys; from mechopt.analysis.evaluate import evaluate; from mechopt import FiveBar; "
             "evaluate(FiveBar(0.85, 1.6, 0.55)); "
             "print(sorted(m for m in ('scipy', 'numba', 'mechopt.mechanisms.five_bar.kernels', 'matplotlib', 'pandas') "
             "if m in sys.modules))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env,
+                         cwd=tmp_path)
     assert out.stdout.strip() == "[]"
