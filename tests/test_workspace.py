@@ -94,6 +94,7 @@ def test_empty_inputs_raise():
 
 
 # --- the one-design path: same values as the compiled kernels, no scipy or numba -------------
+import os  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 
