@@ -103,8 +103,9 @@ def _bench():
 @pytest.mark.parametrize("case", list(CASES))
 def test_smallest_design_within_half_a_percent_of_the_brute_force_scan(case):
     """The default run (with its polish) against the scan (lattice 10 mm, then 1 mm, then
-    0.1 mm around the best; fixed placement, mode +-): the smallest front design within
-    0.5 % of the scan's smallest, and it passes the dense check."""
+    0.1 mm around the best; fixed placement, mode +-): the smallest front design at most
+    0.5 % above the scan's smallest, and it passes the dense check (201 x 201 + 4000
+    points)."""
     V, gamma = CASES[case]
     x, y = polygon_points(V)
     fixed = lambda *r: np.zeros(1)  # noqa: E731
@@ -114,5 +115,8 @@ def test_smallest_design_within_half_a_percent_of_the_brute_force_scan(case):
     best = res.front.iloc[int(np.argmin(res.front["size"]))]
     gap = (best["size"] - bf["size"]) / bf["size"]
     print(f"{case}: design {best['size']:.2f} mm, brute force {bf['size']:.2f} mm, gap {100 * gap:.3f} %")
-    assert abs(gap) <= 0.005, (best.to_dict(), bf)
-    assert _holds_on_points(best["r1"], best["r2"], best["r3"], V, gamma)
+    # not more than 0.5 % above the scan; below it only with the dense check passed (the
+    # scan is a descent on a 0.1 mm lattice, not a global certificate: on the arch the
+    # run's 262.22 mm design holds where the scan stopped at 263.6 mm)
+    assert gap <= 0.005, (best.to_dict(), bf)
+    assert _holds_on_points(best["r1"], best["r2"], best["r3"], V, gamma), best.to_dict()
