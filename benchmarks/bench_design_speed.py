@@ -45,8 +45,10 @@ def run(python: str, args: list, n_jobs: int) -> dict:
         out = Path(d) / "run"
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
+        # run in the empty folder: ``-m`` puts the working directory first on sys.path, and
+        # a checkout's mechopt/ there would shadow the installation being measured
         proc = subprocess.run([python, "-m", "mechopt.cli", "design", *args, "--n-jobs", str(n_jobs),
-                               "--out", str(out)], capture_output=True, text=True)
+                               "--out", str(out)], capture_output=True, text=True, cwd=d)
         wall = time.perf_counter() - t0
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         if proc.returncode != 0:
