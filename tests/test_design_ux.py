@@ -236,3 +236,19 @@ def test_the_gantry_knee_is_not_a_far_extreme(tmp_path):
     assert chosen["size"] < 4000
     for name in ("size", "speed", "force"):
         assert front[name].min() < chosen[name] < front[name].max()
+
+
+def test_the_stage_times_cover_the_search_below_the_base_line():
+    """A free-y five-bar of one mode runs a second search below the base line before the
+    main one: run.json's stages list it (``other searches``), and their sum covers the
+    call (a generous margin: the problem's construction is outside the stages)."""
+    from mechopt.workflows.design import design
+
+    t0 = time.perf_counter()
+    res = design("five-bar", Task.rect(60, 40, (0, 150)), Requirements(min_lci=0.4), ("size",), place="free-y",
+                 max_length=200, pop=16, gen=6, n_jobs=1, polish=False)
+    wall = time.perf_counter() - t0
+    stages = res.info["stage_times_s"]
+    assert list(stages)[:2] == ["other searches", "optimisation"] and stages["other searches"] > 0
+    assert res.info["wall_time_s"] == pytest.approx(sum(stages.values()))
+    assert wall >= res.info["wall_time_s"] >= 0.8 * wall - 0.5

@@ -771,11 +771,16 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     def other_designs():
         """The designs the main search adds to its front: with a placement searched on
         both sides of the base line, the front of the search below it; with
-        ``place="free"``, the front of ``"free-y"`` (itself with the designs below)."""
+        ``place="free"``, the front of ``"free-y"`` (itself with the designs below);
+        and the stage times of those searches (``{"other searches": s}``, empty
+        without)."""
+        import time
+
+        t0 = time.perf_counter()
         extra = sub_front("free-y", "below", []) if ev.both_sides else []
         if ev.place == "free":
             extra = sub_front("free-y", "above", extra)
-        return extra
+        return extra, ({"other searches": time.perf_counter() - t0} if ev.both_sides or ev.place == "free" else {})
 
     manifest = None
     if out is not None:
@@ -786,22 +791,23 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
                "seed": seed, "polish": polish, "pick": pick}
         with _io.run_in(out, "design", key, DESIGN_OUTPUTS, overwrite) as manifest:
             result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress,
-                             polish, manifest, other_designs())
+                             polish, manifest, *other_designs())
     else:
         result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, None, progress, polish,
-                         None, other_designs())
+                         None, *other_designs())
     if result.error is not None:  # the files are written: the empty result is reported
         raise result.error
     return result
 
 
 def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest,
-            extra=()):
+            extra=(), before=None):
     """The run, polish and certification of :func:`design`, and its files with ``out``.
     ``extra`` are decoded designs (the front of the search below the base line, the
     ``free-y`` front of a ``free`` run) certified with the front and, those inside this
-    search's bounds, added to the polish's starts. ``info["stage_times_s"]`` gives the
-    wall time [s] of each stage (optimisation, polish, certification, files) and
+    search's bounds, added to the polish's starts; ``before`` the stage times [s] of
+    the searches that found them. ``info["stage_times_s"]`` gives the wall time [s] of
+    each stage (those searches, optimisation, polish, certification, files) and
     ``info["wall_time_s"]`` their sum, the whole call."""
     import time
 
@@ -812,7 +818,7 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
     run = optimize(problem, algorithm, pop, gen, seed, n_jobs, client, None, progress=progress,
                    plot=False)
     info = dict(run.info)
-    stages = {"optimisation": time.perf_counter() - t0}
+    stages = {**(before or {}), "optimisation": time.perf_counter() - t0}
     extra = list(extra)
     if ev.place == "free" or ev.both_sides:
         info["other_designs"] = len(extra)
