@@ -385,7 +385,7 @@ DESIGN_RUN = {
                ""),
     "stage_times_s": ("wall time of each stage of the command: `other searches` (with --place free-y below "
                       "the base line, with --place free the free-y search; only then), `optimisation`, `polish`, "
-                      "`certification`, `files` (figures drawn); `wall_time_s` is their sum", "s"),
+                      "`certification`, `files` (figures drawn, certificate.json computed); `wall_time_s` is their sum", "s"),
     "no_design": ("without a feasible design: the message (the requirement missed most, by how much in its "
                   "unit); the folder then holds run.json, history.csv, population.csv (the final population, "
                   "least violating first, with its g_* columns) and front.png", ""),
