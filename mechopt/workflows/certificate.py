@@ -245,12 +245,13 @@ def _certificate_match(path: Path, rec: dict, entries: dict):
         digest = design_digest(rec)
         designs = cert["designs"]
         entry = next((d for d in designs if d.get("digest") == digest), None)
-        index = None if entry is None else entry["index"]
-        claimed = {} if entry is None else dict(entry["requirements"])
+        if entry is None:  # not this design.json (edited since, or another run's)
+            return {"index": None, "chosen": False, "disagrees": []}
+        index, claimed = entry["index"], dict(entry["requirements"])
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
     disagrees = []
-    for name, e in (entries.items() if entry is not None else ()):
+    for name, e in entries.items():
         c = claimed.get(name)
         try:
             m, ok = float(c["margin"]), c["holds"]
@@ -260,7 +261,7 @@ def _certificate_match(path: Path, rec: dict, entries: dict):
         same = m == e["margin"] or abs(m - e["margin"]) <= CLAIM_RTOL * max(1.0, abs(e["margin"]))
         if not same or ok is not e["holds"]:
             disagrees.append(f"{name} (certificate.json claims margin {m:.6g}, the check finds {e['margin']:.6g})")
-    return {"index": index, "chosen": index is not None and index == cert.get("chosen"), "disagrees": disagrees}
+    return {"index": index, "chosen": index == cert.get("chosen"), "disagrees": disagrees}
 
 
 def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int = BOX_SAMPLES) -> dict:

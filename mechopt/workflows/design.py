@@ -1003,8 +1003,7 @@ def _what_helps(sens: dict, margin: float, unit: str) -> str:
         return "relax it, or change the placement (--place) or the length bounds"
     if not gains:
         return f"measured at that design, none of: {', '.join(sens)} (10 % each) helps: relax the requirement"
-    parts = [f"{k} ({_miss_text(m, unit)}; {_ACTIONS[k]})" for k, m in
-             sorted(((k, sens[k]) for _, k in gains[:3]), key=lambda km: -km[1])]
+    parts = [f"{k} ({_miss_text(sens[k], unit)}; {_ACTIONS[k]})" for _, k in gains[:3]]
     return "what helps, measured at that design (10 % each): " + ", ".join(parts)
 
 
