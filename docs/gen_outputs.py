@@ -812,7 +812,10 @@ def _design() -> str:
            "`mechopt design any` (every mechanism, or `--mechanisms`) writes `front.csv` (the merged front: "
            "a `mechanism` column first, then the columns below of each row's mechanism, empty where that "
            "mechanism has none), `fronts.csv` (every mechanism's certified front, same columns), "
-           "`design.json` (the chosen design, its `mechanism_name`), `run.json` (`mechanisms`, `skipped` "
+           "`design.json` (the chosen design, its `mechanism_name`), `certificate.json` (every "
+           "mechanism's certificate in one `designs` list, each entry with its `mechanism`; `settings` per "
+           "mechanism; `chosen` indexes design.json's design: `mechopt check` re-checks it), "
+           "`run.json` (`mechanisms`, `skipped` "
            "with each reason, `objectives`, `front_size`, `per_mechanism` with each run's run.json, "
            "`chosen`, `wall_time_s`), `front.png` (the fronts coloured by mechanism) and `design.png`.\n",
            "### `front.csv`\n",

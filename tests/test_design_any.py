@@ -65,5 +65,19 @@ def test_cli_design_any_writes_its_files_and_names_what_it_skips(tmp_path, capsy
     front = pd.read_csv(out / "front.csv")
     assert set(front["mechanism"]) == {"five-bar"}
     assert json.loads((out / "design.json").read_text())["mechanism_name"] == "five-bar"
-    assert sorted(p.name for p in out.iterdir()) == ["design.json", "design.png", "front.csv", "front.png",
-                                                     "fronts.csv", "manifest.json", "run.json"]
+    assert sorted(p.name for p in out.iterdir()) == ["certificate.json", "design.json", "design.png", "front.csv",
+                                                     "front.png", "fronts.csv", "manifest.json", "run.json"]
+    # the certificate records the chosen design; `mechopt check` re-checks it with its mechanism's settings
+    cert = json.loads((out / "certificate.json").read_text())
+    chosen = cert["designs"][cert["chosen"]]
+    assert chosen["mechanism"] == "five-bar" and set(cert["settings"]) == {"five-bar"}
+    assert len(cert["designs"]) == len(pd.read_csv(out / "fronts.csv"))
+    capsys.readouterr()
+    assert main(["check", str(out / "design.json")]) == 0
+    text = capsys.readouterr().out
+    assert "certificate.json records this design.json" in text and "all requirements hold" in text
+    # a tampered claim fails the check, naming it
+    chosen["requirements"]["lci"]["margin"] += 0.01
+    (out / "certificate.json").write_text(json.dumps(cert))
+    assert main(["check", str(out / "design.json")]) == 1
+    assert "certificate.json: lci" in capsys.readouterr().out

@@ -127,6 +127,10 @@ def _read_design(path):
     except FileNotFoundError:
         raise ValueError(f"no run.json beside {str(path)!r} (it holds the task and the requirements)") from None
     settings = run.get("design") if isinstance(run, dict) else None
+    if settings is None and isinstance(run, dict) and isinstance(run.get("per_mechanism"), dict):
+        # a design-any run: the chosen mechanism's own run settings
+        own = run["per_mechanism"].get(rec["mechanism_name"])
+        settings = own.get("run", {}).get("design") if isinstance(own, dict) else None
     if not isinstance(settings, dict) or settings.get("mechanism") != rec["mechanism_name"]:
         raise ValueError(f"{str(run_path)!r} is not the run.json of this design's run")
     return rec, settings
@@ -270,7 +274,8 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
     Parameters
     ----------
     design_path : path
-        The design.json; the run.json beside it gives the task, requirements and bounds.
+        The design.json; the run.json beside it gives the task, requirements and bounds
+        (of a ``mechopt design any`` run: those of the design's mechanism).
     task : str or Task, optional
         Another task (:func:`~mechopt.analysis.task.parse_task` text in the design's
         unit), placed as it is given; default run.json's task at the design's placement.

@@ -25,10 +25,10 @@ import pandas as pd
 from mechopt import mechanisms as _mechanisms
 from mechopt.analysis.design_eval import NoFeasibleDesign, parse_pick, pick_index
 
-__all__ = ["design_any", "ANY_OUTPUTS", "AnyResult"]
+__all__ = ["design_any", "any_certificate", "ANY_OUTPUTS", "AnyResult"]
 
 #: the files ``mechopt design any`` writes
-ANY_OUTPUTS = ("front.csv", "fronts.csv", "design.json", "run.json", "front.png", "design.png")
+ANY_OUTPUTS = ("front.csv", "fronts.csv", "design.json", "certificate.json", "run.json", "front.png", "design.png")
 
 
 class AnyResult:
@@ -154,10 +154,48 @@ def design_any(task, requirements=None, objectives=("size", "min-lci"), *, mecha
                 _io.write_csv(front, stage / "front.csv")
                 _io.write_csv(fronts, stage / "fronts.csv")
                 _io.write_json(json_record(chosen), stage / "design.json")
+                _io.write_json(any_certificate(results, chosen), stage / "certificate.json")
                 _io.write_json(info, stage / "run.json")
                 _io.save_figure(fig_front, stage / "front.png")
                 _io.save_figure(fig_design, stage / "design.png")
     return AnyResult(front, fronts, results, skipped, chosen, info)
+
+
+def any_certificate(results: dict, chosen: dict) -> dict:
+    """certificate.json of ``mechopt design any``: every mechanism's certificate
+    (:func:`mechopt.workflows.certificate.certificate`) in one list of designs, each
+    entry with its ``mechanism`` and an index over the list, ``settings`` per mechanism,
+    and ``chosen`` the index of design.json's design (by its digest).
+
+    Parameters
+    ----------
+    results : dict
+        ``{mechanism: DesignResult}`` of the run.
+    chosen : dict
+        The chosen design's record (design.json before JSON conversion).
+
+    Returns
+    -------
+    dict
+        Plain JSON data: ``certificate_version``, ``mechopt_version``, ``settings``
+        (``{mechanism: settings}``), ``sampling``, ``chosen``, ``designs`` and ``note``.
+    """
+    from mechopt.export.source import design_digest
+    from mechopt.run.io import plain_json
+    from mechopt.workflows.certificate import certificate
+
+    out, designs = None, []
+    for m, r in results.items():
+        c = certificate(r)
+        if out is None:
+            out = {k: c[k] for k in ("certificate_version", "mechopt_version", "sampling", "note")}
+            out["settings"] = {}
+        out["settings"][m] = c["settings"]
+        designs += [{**d, "mechanism": m, "index": len(designs) + k} for k, d in enumerate(c["designs"])]
+    digest = design_digest(plain_json({k: val for k, val in chosen.items() if k != "mechanism"}))
+    out["chosen"] = next(d["index"] for d in designs if d["digest"] == digest)
+    out["designs"] = designs
+    return out
 
 
 def _plot_fronts(fronts, front, senses, chosen, units):
