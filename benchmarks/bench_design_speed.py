@@ -8,7 +8,8 @@ the landed code), one after the other in one run, so that both see the same mach
 load; prints one line per case and installation: wall time [s], CPU time [s] (user +
 system of the command and every process it started, from ``resource.getrusage``), the
 stages the command reports (optimisation, polish, certification, files) and the
-smallest size on the front, then the CPU ratio baseline / this. The machine is shared
+smallest size on the front, then the CPU ratio baseline / this and whether the two
+front.csv files are byte-identical. The machine is shared
 and noisy: compare the ratios of one run, not figures across runs.
 
 Cases (the issue's: the tutorial's command, a star polygon with free-y placement, the
@@ -57,8 +58,10 @@ def run(python: str, args: list, n_jobs: int) -> dict:
         import pandas as pd
 
         size = float(pd.read_csv(out / "front.csv")["size"].min()) if (out / "front.csv").exists() else None
+        front = (out / "front.csv").read_bytes() if (out / "front.csv").exists() else b""
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return {"wall_s": wall, "cpu_s": cpu, "stages_s": info.get("stage_times_s", {}), "smallest_size": size}
+    return {"wall_s": wall, "cpu_s": cpu, "stages_s": info.get("stage_times_s", {}), "smallest_size": size,
+            "front": front}
 
 
 def main(argv=None):
@@ -80,8 +83,10 @@ def main(argv=None):
             print(f"{c:20s} {label:8s} wall {r['wall_s']:7.1f} s  CPU {r['cpu_s']:7.1f} s  ({stages})  "
                   f"smallest size {r['smallest_size']:.2f}", flush=True)
         if "baseline" in res:
+            same = res["baseline"]["front"] == res["this"]["front"]
             print(f"{c:20s} CPU baseline / this = {res['baseline']['cpu_s'] / res['this']['cpu_s']:.2f}, "
-                  f"wall {res['baseline']['wall_s'] / res['this']['wall_s']:.2f}", flush=True)
+                  f"wall {res['baseline']['wall_s'] / res['this']['wall_s']:.2f}; front.csv "
+                  f"{'byte-identical' if same else 'DIFFERS'}", flush=True)
 
 
 if __name__ == "__main__":

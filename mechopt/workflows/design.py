@@ -493,15 +493,28 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None):
     if cont.size == 0:
         return None
     rng = np.random.default_rng(seed)
+    ev = problem.evaluator
+    size_only = _placement_free(problem, j)  # the objective is the size of the lengths
 
     def full(z):
         x = np.array(x0, float)
         x[cont] = problem.xl[cont] + np.clip(z, 0.0, 1.0) * span[cont]
         return x
 
-    def batch(Z):
-        f, G = _rows_eval(problem, np.array([full(z) for z in Z]), j, sampling)
-        return f, np.all(G <= 0, axis=1)
+    def batch(Z, below=None):
+        """``(f, feasible)`` of the rows ``Z``; with ``below`` (a placement-free size)
+        a row whose size (from its lengths alone) is not below ``below`` is not
+        evaluated (``f = inf``): the direct search could not accept it."""
+        X = np.array([full(z) for z in Z])
+        f, ok = np.full(len(X), np.inf), np.zeros(len(X), bool)
+        if below is None:
+            keep = np.arange(len(X))
+        else:  # the size of the evaluation is this same sum of the lengths, bit for bit
+            keep = np.flatnonzero([ev.spec.size_of(ev.decode(x)) < below for x in X])
+        if keep.size:
+            fk, G = _rows_eval(problem, X[keep], j, sampling)
+            f[keep], ok[keep] = fk, np.all(G <= 0, axis=1)
+        return f, ok
 
     z = (np.asarray(x0, float)[cont] - problem.xl[cont]) / span[cont]
     f, ok = batch([z])
@@ -552,10 +565,13 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None):
         dirs = np.vstack([np.eye(n), -np.eye(n), rng.normal(size=(8, n))])
         dirs /= np.linalg.norm(dirs, axis=1, keepdims=True)
         cand = np.clip(z + step * dirs, 0.0, 1.0)
-        fc, okc = batch(cand)
+        accept = f - _v.ROUNDING * max(abs(f), 1.0)  # a candidate must be below this
+        # the size is minimised as +size (sense 1): a candidate of no smaller size is
+        # rejected whatever its margins, so it is not evaluated (the same choice)
+        fc, okc = batch(cand, below=accept if size_only else None)
         fc = np.where(okc, fc, np.inf)
         k = int(np.argmin(fc))
-        if fc[k] < f - _v.ROUNDING * max(abs(f), 1.0):
+        if fc[k] < accept:
             z, f = cand[k], fc[k]
             step = min(2.0 * step, 0.2)
         else:
