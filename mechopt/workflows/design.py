@@ -980,7 +980,8 @@ def _no_design(problem, run, certified=False) -> NoFeasibleDesign:
     worst = next((n for n in ("reach", "singular") if per.get(n, 0.0) > 0), None) or max(per, key=per.get)
     fails = {n: int((pop[f"g_{n}"] > 0).sum()) for n in names}
     # the least-violating design's margin in natural units
-    res = ev.evaluate(ev.decode(pop[list(problem.var_names)].to_numpy(float)[k]), problem.sampling)
+    v = ev.decode(pop[list(problem.var_names)].to_numpy(float)[k])
+    res = ev.evaluate(v, problem.sampling)
     req = next(r for r in ev.active if r.name == worst)
     unit = req.margin_unit.format(L=ev.unit)
     miss = -float(res["margin"][worst])
@@ -989,7 +990,7 @@ def _no_design(problem, run, certified=False) -> NoFeasibleDesign:
     reached = res["values"].get(getattr(req, "reached_key", ""))
     if reached is not None:
         by += f", reaching {reached:.4g} {unit}".rstrip(" -")
-    sens = sensitivity(ev, ev.decode(pop[list(problem.var_names)].to_numpy(float)[k]), worst, problem.sampling)
+    sens = sensitivity(ev, v, worst, problem.sampling)
     msg = (f"no design satisfies {ev.req.describe(worst, ev.unit)} (of {len(pop)} designs in the final "
            f"population, {fails[worst]} fail it; the least-violating design misses it by {by})"
            f"{' after certification' if certified else ''}; {_what_helps(sens, -miss, unit)}")
