@@ -231,6 +231,22 @@ class AsymmetricFiveBar(PlanarMechanism):
         """
         return _fb.legs_closure(x, y, self.r3, self._legs())
 
+    def closure_enclosure(self, x, y):
+        """Interval enclosure of :meth:`closure` over boxes
+        (:func:`mechopt.mechanisms.five_bar.model.legs_closure_enclosure`).
+
+        Parameters
+        ----------
+        x, y : mechopt.core.interval.Interval
+            The boxes [L].
+
+        Returns
+        -------
+        tuple
+            ``(A, b, certain)``.
+        """
+        return _fb.legs_closure_enclosure(x, y, self.r3, self._legs())
+
     def reachable(self, x, y):
         return _fb.legs_reachable(x, y, self.r3, self._legs())
 
