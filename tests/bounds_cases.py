@@ -34,8 +34,7 @@ def random_task(mech, rng, kind):
         return Task.circle(0.5 * s, center=tuple(c))
     if kind == "polygon":
         n = int(rng.integers(3, 8))
-        a = np.sort(rng.uniform(0, 2 * np.pi, n))
-        a = a + np.arange(n) * 1e-3  # distinct angles: a simple (star-shaped) polygon
+        a = 2 * np.pi * (np.arange(n) + rng.uniform(0.0, 0.8, n)) / n  # increasing: a simple polygon
         r = 0.5 * s * rng.uniform(0.4, 1.0, n)
         return Task.polygon(c + np.stack([r * np.cos(a), r * np.sin(a)], 1))
     pts = c + rng.uniform(-0.5 * s, 0.5 * s, (int(rng.integers(2, 6)), 2))

@@ -42,14 +42,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mechopt.core import indices as _ix
-from mechopt.core.interval import Interval, hypot, minimum
+from mechopt.core.interval import Gradient, Interval, hypot
 from mechopt.analysis.sampling import bad_to
 
 __all__ = ["Quantity", "Bound", "lci_quantity", "type2_quantity", "speed_quantity", "force_quantity",
            "lower_bound", "BUDGET", "RTOL", "METHOD"]
 
 #: default budget of evaluated cells per quantity
-BUDGET = 6000
+BUDGET = 30000
 #: default stopping gap, relative to ``max(|upper|, scale)`` of the quantity
 RTOL = 2e-3
 #: the name of the method in certificates
@@ -72,9 +72,13 @@ class Quantity:
         Its value at unreachable or singular poses (a lower bound of every value).
     scale : float
         The size of the stopping gap's reference (``tol = rtol * max(|upper|, scale)``).
-    lower : callable
-        ``lower(A, b)``: lower bounds over cells from the closure intervals
-        (:meth:`~mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
+    cap : float
+        An upper bound of every value (LCI and the type-II function: 1).
+    terms : callable
+        ``terms(A, b)``: the quantity is the minimum of these expressions of the closure
+        (:meth:`~mechopt.core.protocol.PlanarMechanism.closure_enclosure`), evaluated on
+        :class:`~mechopt.core.interval.Interval` or
+        :class:`~mechopt.core.interval.Gradient` arguments.
     point : callable
         ``point(mech, x, y)``: the quantity at points of the mechanism's frame, the
         floor where unreachable (the requirements' formula).
@@ -83,7 +87,8 @@ class Quantity:
     name: str
     floor: float
     scale: float
-    lower: object = field(repr=False)
+    cap: float
+    terms: object = field(repr=False)
     point: object = field(repr=False)
 
 
@@ -148,34 +153,29 @@ def _jacobian(A, b, w=(1.0, 1.0)):
     return tuple((A[i][0] / (b[i] * w[i]), A[i][1] / (b[i] * w[i])) for i in range(2))
 
 
-def _lo(v, floor):
-    """Lower ends, NaN or below the floor replaced by the floor."""
-    return np.maximum(np.where(np.isnan(v.lo), floor, v.lo), floor)
-
-
 # ------------------------------------------------------------------ the quantities
 def lci_quantity() -> Quantity:
     """LCI ``= 2 |det J| / (2 s_max^2)`` (Liu 2006 eq. 3, :func:`mechopt.core.indices.lci`),
-    ``J`` rows ``a_i / b_i``; floor 0.
+    ``J`` rows ``a_i / b_i``; floor 0, at most 1.
 
     Returns
     -------
     Quantity
         The quantity.
     """
-    def lower(A, b):
+    def terms(A, b):
         J = _jacobian(A, b)
-        v = 2.0 * abs(_det(J)) / _two_smax_squared(J)
-        return np.minimum(_lo(v, 0.0), 1.0)
+        return [2.0 * abs(_det(J)) / _two_smax_squared(J)]
 
     def point(mech, x, y):
         return bad_to(_ix.lci(mech.jacobian(x, y)), 0.0)
-    return Quantity("lci", 0.0, 1.0, lower, point)
+    return Quantity("lci", 0.0, 1.0, 1.0, terms, point)
 
 
 def type2_quantity(sign: float) -> Quantity:
     """``sign * det A / (|a_1| |a_2|)`` (:meth:`mechopt.core.protocol.PlanarMechanism.type2_function`
-    with the design's sign, :class:`mechopt.requirements.singular.Singular`); floor -1.
+    with the design's sign, :class:`mechopt.requirements.singular.Singular`); floor -1,
+    at most 1.
 
     Parameters
     ----------
@@ -189,13 +189,12 @@ def type2_quantity(sign: float) -> Quantity:
     """
     s = 1.0 if sign >= 0 else -1.0
 
-    def lower(A, b):
-        v = (s * _det(A)) / (hypot(*A[0]) * hypot(*A[1]))
-        return np.minimum(_lo(v, -1.0), 1.0)
+    def terms(A, b):
+        return [(s * _det(A)) / (hypot(*A[0]) * hypot(*A[1]))]
 
     def point(mech, x, y):
         return bad_to(s * mech.type2_function(x, y), -1.0)
-    return Quantity("type2", -1.0, 1.0, lower, point)
+    return Quantity("type2", -1.0, 1.0, 1.0, terms, point)
 
 
 def speed_quantity(w, norm="box") -> Quantity:
@@ -218,12 +217,10 @@ def speed_quantity(w, norm="box") -> Quantity:
     w = np.broadcast_to(np.asarray(w, dtype=float), (2,)).copy()
     box = norm == "box"
 
-    def lower(A, b):
+    def terms(A, b):
         if box:
-            v = minimum(w[0] * abs(b[0]) / hypot(*A[0]), w[1] * abs(b[1]) / hypot(*A[1]))
-        else:
-            v = 1.0 / (_two_smax_squared(_jacobian(A, b, w)) * 0.5).nonneg().sqrt()[0]
-        return _lo(v, 0.0)
+            return [w[i] * abs(b[i]) / hypot(*A[i]) for i in range(2)]
+        return [1.0 / (_two_smax_squared(_jacobian(A, b, w)) * 0.5).nonneg().sqrt()[0]]
 
     def point(mech, x, y):
         J = mech.jacobian(x, y)
@@ -233,7 +230,7 @@ def speed_quantity(w, norm="box") -> Quantity:
                 return np.minimum(*r)
             smax = _ix.singular_values(J / w[:, None])[0]
             return bad_to(1.0 / smax, 0.0)
-    return Quantity("speed", 0.0, 0.0, lower, point)
+    return Quantity("speed", 0.0, 0.0, math.inf, terms, point)
 
 
 def force_quantity(t, norm="box", factor=1.0) -> Quantity:
@@ -259,14 +256,12 @@ def force_quantity(t, norm="box", factor=1.0) -> Quantity:
     t = np.broadcast_to(np.asarray(t, dtype=float), (2,)).copy()
     box, f = norm == "box", float(factor)
 
-    def lower(A, b):
+    def terms(A, b):
         D = abs(_det(A))
         if box:
-            v = minimum(t[1] * D / (abs(b[1]) * hypot(*A[0])), t[0] * D / (abs(b[0]) * hypot(*A[1])))
-        else:
-            M = _jacobian(A, b, 1.0 / t)
-            v = abs(_det(M)) / (_two_smax_squared(M) * 0.5).nonneg().sqrt()[0]
-        return _lo(v * f, 0.0)
+            return [(f * t[1]) * D / (abs(b[1]) * hypot(*A[0])), (f * t[0]) * D / (abs(b[0]) * hypot(*A[1]))]
+        M = _jacobian(A, b, 1.0 / t)
+        return [f * abs(_det(M)) / (_two_smax_squared(M) * 0.5).nonneg().sqrt()[0]]
 
     def point(mech, x, y):
         J = mech.jacobian(x, y)
@@ -277,7 +272,7 @@ def force_quantity(t, norm="box", factor=1.0) -> Quantity:
                 r2 = bad_to(det / np.hypot(J[..., 1, 0], J[..., 1, 1]), 0.0)
                 return np.minimum(t[1] * r1, t[0] * r2) * f
             return bad_to(_ix.singular_values(J * t[:, None])[1], 0.0) * f
-    return Quantity("force", 0.0, 0.0, lower, point)
+    return Quantity("force", 0.0, 0.0, math.inf, terms, point)
 
 
 # ------------------------------------------------------------------ cells
@@ -389,11 +384,20 @@ class _Cells:
 
 
 def _evaluate(mech, q, cells, rows, dx, dy):
-    """Lower bounds over the cells ``rows`` and where they may be out of reach."""
+    """Lower bounds over the cells ``rows`` and where they may be out of reach: per term
+    the larger of the natural interval bound and the mean value form's about the cell's
+    centre (both enclose the term's range), the smallest over the terms, within
+    ``[floor, cap]``; the floor where the cell may be out of reach."""
     X, Y = cells.boxes(rows, dx, dy)
+    cx, cy = X.mid, Y.mid
     with np.errstate(all="ignore"):
-        A, b, certain = mech.closure_enclosure(X, Y)
-        lb = q.lower(A, b)
+        A, b, certain = mech.closure_enclosure(*Gradient.variables(X, Y))
+        Ac, bc, _ = mech.closure_enclosure(Interval(cx), Interval(cy))
+        lb = np.full(len(rows), np.inf)
+        for term, at_c in zip(q.terms(A, b), q.terms(Ac, bc)):
+            low = np.maximum(term.lo, term.mean_value_lower(at_c, ((X, cx), (Y, cy))))
+            lb = np.minimum(lb, np.where(np.isnan(low), -np.inf, low))
+    lb = np.minimum(np.maximum(lb, q.floor), q.cap)
     lb = np.where(certain, lb, q.floor)
     return lb, ~certain
 
