@@ -18,7 +18,8 @@ lower bounds is a lower bound of ``min_T q``.
 Branch and bound: each round splits, all at once (vectorised), every cell whose lower
 bound is below ``upper - tol`` (``upper``: the smallest value of ``q`` at a point of
 ``T`` found so far, at the cells' centres that lie in ``T`` and at boundary samples: an
-upper bound of the minimum) into 4 (a square) or 2 (a piece of a path); it stops when
+upper bound of the minimum) into 4 (a square) or 2 (a piece of a path), or, while the
+cells are few, two levels at once (16 or 4); it stops when
 ``upper - lower <= tol`` or when the budget of evaluated cells would be exceeded (a
 round that does not fit splits the cells of lowest bound that fit, then the search
 stops). A child's bound is at least its parent's (both bound it; interval evaluation
@@ -56,6 +57,8 @@ RTOL = 2e-3
 METHOD = "interval branch-and-bound"
 #: cells are not split below this fraction of the task's diameter
 _MIN_CELL = 1e-9
+#: a round splits its cells two levels deep while that makes at most this many children
+_TWO_LEVELS = 4096
 #: the margin of the cell-keeping test, a fraction of the task's diameter
 _KEEP_MARGIN = 1e-9
 
@@ -361,26 +364,30 @@ class _Cells:
             return self.v[k, 0] + t * self.e[k, 0], self.v[k, 1] + t * self.e[k, 1], np.ones(len(rows), bool)
         return rows[:, 0], rows[:, 1], np.ones(len(rows), bool)
 
-    @property
-    def splits(self) -> int:
-        return {"box": 4, "seg": 2, "pt": 0}[self.kind]
+    def children(self, levels: int) -> int:
+        """How many children one split of ``levels`` levels gives (a square: ``4^levels``,
+        a piece of path: ``2^levels``, a point: 0)."""
+        return {"box": 4, "seg": 2, "pt": 0}[self.kind] ** levels if self.kind != "pt" else 0
 
-    def split(self, rows):
-        """The children of ``rows`` (4 quarters, 2 halves), kept where they may meet the
-        task; and the index of each child's parent."""
-        idx = np.arange(len(rows))
-        if self.kind == "box":
-            x0, x1, y0, y1 = rows.T
-            xm, ym = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
-            kids = np.concatenate([np.stack(c, 1) for c in ((x0, xm, y0, ym), (xm, x1, y0, ym),
-                                                            (x0, xm, ym, y1), (xm, x1, ym, y1))])
-            parent = np.tile(idx, 4)
-            keep = self._meets(kids)
-            return kids[keep], parent[keep]
-        k, t0, t1 = rows.T
-        tm = 0.5 * (t0 + t1)
-        kids = np.concatenate([np.stack([k, t0, tm], 1), np.stack([k, tm, t1], 1)])
-        return kids, np.tile(idx, 2)
+    def split(self, rows, levels: int = 1):
+        """The children of ``rows`` after ``levels`` halvings of each side, kept where they
+        may meet the task; and the index of each child's parent."""
+        parent = np.arange(len(rows))
+        for _ in range(levels):
+            if self.kind == "box":
+                x0, x1, y0, y1 = rows.T
+                xm, ym = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+                rows = np.concatenate([np.stack(c, 1) for c in ((x0, xm, y0, ym), (xm, x1, y0, ym),
+                                                                (x0, xm, ym, y1), (xm, x1, ym, y1))])
+                parent = np.tile(parent, 4)
+                keep = self._meets(rows)
+                rows, parent = rows[keep], parent[keep]
+            else:
+                k, t0, t1 = rows.T
+                tm = 0.5 * (t0 + t1)
+                rows = np.concatenate([np.stack([k, t0, tm], 1), np.stack([k, tm, t1], 1)])
+                parent = np.tile(parent, 2)
+        return rows, parent
 
 
 def _evaluate(mech, q, cells, rows, dx, dy):
@@ -470,18 +477,20 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
         if ub - low <= tol:
             converged = True
             break
-        if not cells.splits:
+        if cells.kind == "pt":
             break
         pick = np.flatnonzero((lb < ub - tol) & (cells.sizes(rows) > cells.min_size))
         if not pick.size:
             break
-        room = (budget - used) // cells.splits
+        # few cells: two levels at once (a round costs mostly its fixed overhead)
+        levels = 2 if pick.size * cells.children(2) <= _TWO_LEVELS else 1
+        room = (budget - used) // cells.children(levels)
         truncated = room < pick.size
         if truncated:
             if room <= 0:
                 break
             pick = pick[np.argsort(lb[pick], kind="stable")[:room]]
-        kids, parent = cells.split(rows[pick])
+        kids, parent = cells.split(rows[pick], levels)
         klb, kunk = _evaluate(mech, q, cells, kids, dx, dy)
         klb = np.maximum(klb, lb[pick][parent])  # both bound the child
         used += len(kids)
