@@ -28,8 +28,8 @@ import numpy as np
 from mechopt.analysis.design_eval import DesignEvaluator, certify
 from mechopt.analysis.sampling import Sampling
 
-__all__ = ["certificate", "check", "tolerance_box", "requirement_entries", "format_check", "BOX_SAMPLES",
-           "CERTIFICATE_VERSION", "CLAIM_RTOL"]
+__all__ = ["certificate", "check", "tolerance_box", "requirement_entries", "proven_bounds", "format_check",
+           "BOX_SAMPLES", "CERTIFICATE_VERSION", "CLAIM_RTOL", "BOUNDED"]
 
 #: the format of certificate.json (a new key keeps it; a changed meaning raises it)
 CERTIFICATE_VERSION = 1
@@ -37,11 +37,15 @@ CERTIFICATE_VERSION = 1
 BOX_SAMPLES = 32
 
 
+#: the requirements whose minimum :func:`proven_bounds` bounds from below
+BOUNDED = ("lci", "singular", "speed", "force")
+
+
 def _method(member) -> str:
     return "proven" if member.proven else "refined-sampled"
 
 
-def requirement_entries(ev: DesignEvaluator, res: dict) -> dict:
+def requirement_entries(ev: DesignEvaluator, res: dict, bounds: dict | None = None) -> dict:
     """``{requirement: {margin, unit, g, holds, method, certificate}}`` of an evaluation
     ``res`` (:func:`~mechopt.analysis.design_eval.certify`) by the evaluator ``ev``.
 
@@ -51,13 +55,17 @@ def requirement_entries(ev: DesignEvaluator, res: dict) -> dict:
         The evaluator.
     res : dict
         An evaluation of it (``margin`` and ``g`` per active requirement are read).
+    bounds : dict, optional
+        :func:`proven_bounds` of the same design: each is recorded as the requirement's
+        ``bound``, and a requirement whose proven lower bound meets it is ``"proven"``.
 
     Returns
     -------
     dict
         Per active requirement: ``margin`` [``unit``], ``unit``, ``g``, ``holds``
         (``g <= 0``), ``method`` (``"proven"`` or ``"refined-sampled"``),
-        ``certificate`` and ``describe`` (the requirement in words).
+        ``certificate`` and ``describe`` (the requirement in words); with ``bounds``
+        also ``bound``.
     """
     out = {}
     for r in ev.active:
@@ -65,6 +73,78 @@ def requirement_entries(ev: DesignEvaluator, res: dict) -> dict:
         out[r.name] = {"margin": float(m), "unit": r.margin_unit.format(L=ev.unit), "g": float(g),
                        "holds": bool(g <= 0), "method": _method(r), "certificate": r.certificate,
                        "describe": ev.req.describe(r.name, ev.unit)}
+        b = (bounds or {}).get(r.name)
+        if b is not None:
+            out[r.name]["bound"] = b
+            if b["proven_margin"] >= 0:
+                out[r.name]["method"] = "proven"
+                out[r.name]["certificate"] = (f"proven lower bound {b['lower_bound']:.6g} of the minimum by "
+                                              f"{b['method']} ({b['cells']} cells, smallest {b['smallest_cell']:.3g} "
+                                              f"{ev.unit}; mechopt.analysis.bounds); estimate "
+                                              f"{b['estimate']:.6g}: {r.certificate}")
+    return out
+
+
+def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, budget: int | None = None) -> dict:
+    """Proven lower bounds of the minima the active requirements of :data:`BOUNDED` rest on,
+    for the decoded design ``v`` (:func:`mechopt.analysis.bounds.lower_bound`, interval
+    branch-and-bound over the placed task): LCI, the type-II function with the design's
+    sign, the guaranteed speed and force in the requirements' reading of the actuator
+    limits. The bound is over the mechanism whose strokes are padded (the evaluator's
+    ``check``: the same Jacobian; a slider mechanism's strokes are sized to cover the
+    task, which the reach requirement proves).
+
+    Parameters
+    ----------
+    ev : mechopt.analysis.design_eval.DesignEvaluator
+        The evaluator.
+    v : dict
+        A decoded design (lengths, mode, placement).
+    margins : dict, optional
+        The design's margins by requirement (its certification's): the estimates are
+        ``margin + required level``; default: computed again.
+    budget : int, optional
+        Cells per quantity (default :data:`mechopt.analysis.bounds.BUDGET`).
+
+    Returns
+    -------
+    dict
+        Per bounded active requirement: ``quantity``, ``lower_bound`` (proven) and
+        ``estimate`` (the sampled-and-zoomed minimum) [the quantity's unit], ``gap``
+        (``estimate - lower_bound``), ``upper`` (the smallest value the search met at a
+        task point), ``proven_margin`` (``lower_bound`` minus the required level [the
+        margin's unit]), ``method``, ``cells``, ``smallest_cell``, ``largest_cell`` [L],
+        ``converged`` and ``may_unreachable``. Empty for an invalid design.
+    """
+    from mechopt.analysis import bounds as _b
+    from mechopt.requirements.force import effort_factor, force
+    from mechopt.requirements.lci import lci_min
+    from mechopt.requirements.speed import limits, reading, speed
+
+    active = {r.name: r for r in ev.active if r.name in BOUNDED}
+    if not active or ev.spec.validity({n: v[n] for n in ev.spec.lengths}, ev.max_length) > 0:
+        return {}
+    ctx = ev.context(v, Sampling.fine())
+    req, out = ctx.req, {}
+    for name, r in active.items():
+        if name == "lci":
+            q, need = _b.lci_quantity(), req.min_lci
+            est = (lambda: lci_min(ctx))
+        elif name == "singular":
+            q, need = _b.type2_quantity(r.sign(ctx)), req.singularity_margin
+            est = (lambda: r.minimum(ctx))
+        elif name == "speed":
+            q, need = _b.speed_quantity(limits(req.actuator_speed), reading(ctx)), req.min_speed
+            est = (lambda: speed(ctx))
+        else:
+            q = _b.force_quantity(limits(req.actuator_torque), reading(ctx), effort_factor(ctx))
+            need, est = req.min_force, (lambda: force(ctx))
+        est = float(margins[name]) + float(need) if margins is not None and name in margins else float(est())
+        b = _b.lower_bound(ctx.check, ctx.task, q, to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y),
+                           budget=budget or _b.BUDGET)
+        out[name] = {"quantity": q.name, "lower_bound": b.lower, "estimate": est, "gap": est - b.lower, "upper": b.upper, "proven_margin": b.lower - float(need),
+                     "method": _b.METHOD, "cells": b.cells, "smallest_cell": b.smallest_cell,
+                     "largest_cell": b.largest_cell, "converged": b.converged, "may_unreachable": b.may_unreachable}
     return out
 
 
@@ -95,16 +175,19 @@ def certificate(result) -> dict:
     for i in range(len(result.front)):
         rec = result.design_at(i)
         res = {"margin": rec["margins"], "g": rec["constraints_g"]}
+        bounds = proven_bounds(ev, _variables(rec, ev.spec, None), rec["margins"])
         # the digest of the record as design.json holds it (without the mechanism object)
         digest = design_digest(plain_json({k: val for k, val in rec.items() if k != "mechanism"}))
         designs.append({"index": i, "digest": digest, "variables": rec["variables"],
                         "task_placement": rec["task_placement"], "feasible": bool(rec["feasible"]),
-                        "requirements": requirement_entries(ev, res), "tolerance": rec["tolerance"]})
+                        "requirements": requirement_entries(ev, res, bounds), "tolerance": rec["tolerance"]})
     return {"certificate_version": CERTIFICATE_VERSION, "mechopt_version": __version__,
             "settings": ev.settings(), "sampling": asdict(Sampling.fine()),
             "chosen": int(result.chosen_index), "designs": designs,
-            "note": "proven: the requirement's argument holds over the whole task; refined-sampled: the "
-                    "minimum located on the samples and refined by zooming (an estimate, not a bound)"}
+            "note": "proven: the requirement's argument holds over the whole task (for LCI, the type-II "
+                    "function, speed and force: the proven lower bound of the minimum by interval "
+                    "branch-and-bound, 'bound', meets it); refined-sampled: the minimum located on the samples "
+                    "and refined by zooming (an estimate, not a bound)"}
 
 
 # ------------------------------------------------------------------ check
@@ -324,7 +407,7 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
     ev = DesignEvaluator(spec.name, the_task, req, settings.get("objectives") or ("size",), mode=v["mode"],
                          place="fixed", min_length=settings.get("min_length"), max_length=settings.get("max_length"))
     res = certify(ev, v)
-    entries = requirement_entries(ev, res)
+    entries = requirement_entries(ev, res, proven_bounds(ev, v, res["margin"]))
     out = {"design": str(design_path), "mechanism": spec.name, "unit": unit, "variables": v,
            "requirements": entries, "sampling": asdict(Sampling.fine())}
     out["certificate"] = _certificate_match(Path(design_path), rec, entries)
