@@ -269,3 +269,43 @@ def test_bad_arguments():
         B.lower_bound(mech, task, B.lci_quantity(), rtol=0.0)
     with pytest.raises(ValueError, match="translation"):
         B.lower_bound(mech, task, B.lci_quantity(), to_mech=lambda x, y: (2 * x, y))
+
+
+# ------------------------------------------------------------------ certificates
+KNIFE = dict(r1=124.36986838734104, r2=45.953153080330914, r3=3.175029087666897, mode="+-",
+             task_x=0.0, task_y=150.0)
+
+
+def _entries(gamma, **req):
+    from mechopt.analysis.design_eval import DesignEvaluator, certify
+    from mechopt.analysis.task import parse_task
+    from mechopt.requirements import Requirements
+    from mechopt.workflows.certificate import proven_bounds, requirement_entries
+
+    ev = DesignEvaluator("five-bar", parse_task("rect:40,30@0,150"), Requirements(min_lci=gamma, **req),
+                         ("size", "min-lci"), max_length=250)
+    res = certify(ev, KNIFE)
+    return ev, requirement_entries(ev, res, proven_bounds(ev, KNIFE, res["margin"]))
+
+
+def test_certificate_records_bounds_and_proves_what_they_meet():
+    """The knife-edge design (LCI margin 5.6e-17): its LCI bound lies below 0.4 by the gap,
+    so LCI stays refined-sampled; required 0.35 it is proven. Each bound is below its
+    estimate and below the dense minimum of the placed task."""
+    from mechopt.analysis.task import parse_task
+    from mechopt.mechanisms.five_bar.model import FiveBar
+
+    ev, e = _entries(0.4, min_speed=10.0, actuator_speed=3.0, min_force=0.5, actuator_torque=2.0)
+    assert set(e) >= {"lci", "singular", "speed", "force", "reach"}
+    assert e["lci"]["method"] == "refined-sampled" and e["lci"]["holds"]
+    mech, task = FiveBar(KNIFE["r1"], KNIFE["r2"], KNIFE["r3"], "+-"), parse_task("rect:40,30@0,150")
+    for name, qn in (("lci", "lci"), ("singular", "type2"), ("speed", "speed"), ("force", "force")):
+        b = e[name]["bound"]
+        assert b["quantity"] == qn and b["method"] == B.METHOD and b["converged"]
+        assert b["lower_bound"] <= b["estimate"] and 0 <= b["gap"] <= 0.01 * max(1.0, abs(b["estimate"]))
+    q = B.lci_quantity()
+    assert e["lci"]["bound"]["lower_bound"] <= dense_min(mech, task, q, 201, 10_000)
+    _, e2 = _entries(0.35)
+    assert e2["lci"]["method"] == "proven" and e2["lci"]["bound"]["proven_margin"] > 0
+    assert "proven lower bound" in e2["lci"]["certificate"]
+    assert e2["singular"]["method"] == "proven"
