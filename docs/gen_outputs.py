@@ -342,7 +342,11 @@ CHECK_JSON = {
     "sampling": ("the certification's sampling", ""),
     "box": ("with `--tolerance`: `tolerance` [unit], `evaluated` (mechanisms: the 2^n corners and 32 seeded "
             "points inside the box), `min_margin` and `worst` (the lengths where it is) per requirement, "
-            "`holds` per requirement, `method` (`sampled`: nothing is proven between the points)", ""),
+            "`holds` per requirement, `methods` per requirement (`proven`: over the whole box, by the interval "
+            "bound over the task and every length of the box, five-bars only; reach proven when every cell is "
+            "certainly reachable; else `sampled`: nothing is proven between the points), `method` (`proven` "
+            "when every requirement is, else `sampled`), `proven` (per bounded requirement over the box: "
+            "`lower_bound`, `proven_margin`, `cells`, `converged`, `may_unreachable`)", ""),
     "certificate": ("with a certificate.json beside the design: `index` (the certified design with this "
                     "design.json's digest, null if none: edited or another run's), `chosen`, and `disagrees`: "
                     "for a recorded design, each requirement whose claimed margin or verdict the re-check does "

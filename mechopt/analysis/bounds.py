@@ -390,23 +390,28 @@ class _Cells:
         return rows, parent
 
 
-def _evaluate(mech, q, cells, rows, dx, dy):
-    """Lower bounds over the cells ``rows`` and where they may be out of reach: per term
-    the larger of the natural interval bound and the mean value form's about the cell's
-    centre (both enclose the term's range), the smallest over the terms, within
+def _evaluate(mech, q, cells, rows, dx, dy, lengths=None):
+    """Lower bounds over the cells ``rows`` (and every length in ``lengths``: ``{name:
+    (lo, hi)}``) and where they may be out of reach: per term the larger of the natural
+    interval bound and the mean value form's about the cell's centre and the lengths'
+    midpoints (both enclose the term's range), the smallest over the terms, within
     ``[floor, cap]``; the floor where the cell may be out of reach."""
     X, Y = cells.boxes(rows, dx, dy)
-    cx, cy = X.mid, Y.mid
+    names = list(lengths or {})
+    boxes = [X, Y] + [Interval(*lengths[n]) for n in names]
+    centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
     with np.errstate(all="ignore"):
-        A, b, certain = mech.closure_enclosure(*Gradient.variables(X, Y))
-        Ac, bc, _ = mech.closure_enclosure(Interval(cx), Interval(cy))
+        v = Gradient.variables(*boxes)
+        A, b, certain = mech.closure_enclosure(v[0], v[1], **({"lengths": dict(zip(names, v[2:]))} if names else {}))
+        at = {"lengths": {n: Interval(c) for n, c in zip(names, centres[2:])}} if names else {}
+        Ac, bc, _ = mech.closure_enclosure(Interval(centres[0]), Interval(centres[1]), **at)
         lb = np.full(len(rows), np.inf)
         for term, at_c in zip(q.terms(A, b), q.terms(Ac, bc)):
-            low = np.maximum(term.lo, term.mean_value_lower(at_c, ((X, cx), (Y, cy))))
+            low = np.maximum(term.lo, term.mean_value_lower(at_c, list(zip(boxes, centres))))
             lb = np.minimum(lb, np.where(np.isnan(low), -np.inf, low))
     lb = np.minimum(np.maximum(lb, q.floor), q.cap)
     lb = np.where(certain, lb, q.floor)
-    return lb, ~certain
+    return lb, ~np.broadcast_to(certain, lb.shape)
 
 
 def _upper(mech, q, cells, rows, dx, dy):
@@ -420,7 +425,7 @@ def _upper(mech, q, cells, rows, dx, dy):
 
 
 def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rtol: float = RTOL,
-                upper: float = math.inf) -> Bound:
+                upper: float = math.inf, lengths: dict | None = None) -> Bound:
     """A proven lower bound of ``min_T q`` by interval branch-and-bound (module docstring).
 
     Parameters
@@ -440,6 +445,10 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
         The stopping gap relative to ``max(|upper|, q.scale)``, > 0.
     upper : float
         A known value of ``q`` at a task point (e.g. a sampled minimum), if any.
+    lengths : dict, optional
+        ``{parameter: (lo, hi)}`` [L]: bound over every mechanism whose lengths lie in
+        these ranges (a tolerance box about ``mech``'s, which must lie inside them), not
+        split (:meth:`~mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
 
     Returns
     -------
@@ -462,7 +471,7 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
     dx, dy = _translation(to_mech)
     cells = _Cells(task)
     rows = cells.rows
-    lb, unk = _evaluate(mech, q, cells, rows, dx, dy)
+    lb, unk = _evaluate(mech, q, cells, rows, dx, dy, lengths)
     used = len(rows)
     ub = min(float(upper), _upper(mech, q, cells, rows, dx, dy))
     if task.is_region:  # boundary samples: the minimum is often on the boundary
@@ -491,7 +500,7 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
                 break
             pick = pick[np.argsort(lb[pick], kind="stable")[:room]]
         kids, parent = cells.split(rows[pick], levels)
-        klb, kunk = _evaluate(mech, q, cells, kids, dx, dy)
+        klb, kunk = _evaluate(mech, q, cells, kids, dx, dy, lengths)
         klb = np.maximum(klb, lb[pick][parent])  # both bound the child
         used += len(kids)
         ub = min(ub, _upper(mech, q, cells, kids, dx, dy))

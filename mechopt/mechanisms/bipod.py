@@ -689,7 +689,7 @@ class Bipod(PlanarMechanism):
         )
         return A, np.stack([q1, q2], -1), ok
 
-    def closure_enclosure(self, x, y):
+    def closure_enclosure(self, x, y, lengths=None):
         """Interval enclosure of :meth:`closure` over boxes: ``A = [P - A_1; P - A_2]``
         (``A_1 = (0, 0)``, ``A_2 = (b, 0)``), ``b = (|P - A_1|, |P - A_2|)``, each operation
         outward rounded (:mod:`mechopt.core.interval`). ``certain`` is False where an
@@ -701,12 +701,15 @@ class Bipod(PlanarMechanism):
         ----------
         x, y : mechopt.core.interval.Interval
             The boxes [L].
+        lengths : dict, optional
+            Length intervals: none supported yet (the strokes are derived from the task).
 
         Returns
         -------
         tuple
-            ``(A, b, certain)`` (:meth:`mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
+            ``(A, b, certain)``, as the protocol's.
         """
+        self._no_length_intervals(lengths)
         from mechopt.core.interval import as_interval, hypot
 
         y = as_interval(y)

@@ -510,7 +510,7 @@ class TwoSliderMechanism(PlanarMechanism):
         b = np.where(ok[..., None], b, np.nan)
         return A, b, ok
 
-    def closure_enclosure(self, x, y):
+    def closure_enclosure(self, x, y, lengths=None):
         """Interval enclosure of :meth:`closure` over boxes: with ``u_i = x - g_i`` and
         ``c_i = -s_i sqrt(L^2 - u_i^2)`` (the working mode's sign), ``A = [[u_1, c_1],
         [u_2, c_2]]``, ``b = (c_1, c_2)``, each operation outward rounded
@@ -524,12 +524,20 @@ class TwoSliderMechanism(PlanarMechanism):
         ----------
         x, y : mechopt.core.interval.Interval
             The boxes [L].
+        lengths : dict, optional
+            Not supported (a tolerance box of its lengths): must be None or empty.
 
         Returns
         -------
         tuple
             ``(A, b, certain)`` (:meth:`mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
+
+        Raises
+        ------
+        ValueError
+            For ``lengths`` given (:meth:`~mechopt.core.protocol.PlanarMechanism._no_length_intervals`).
         """
+        self._no_length_intervals(lengths)
         L2 = _iv.as_interval(self._L).sqr()
         rows, bs, certain = [], [], None
         for g, s, (lo, hi) in zip(self._g, self._s, self._lims):

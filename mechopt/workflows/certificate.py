@@ -85,7 +85,8 @@ def requirement_entries(ev: DesignEvaluator, res: dict, bounds: dict | None = No
     return out
 
 
-def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, budget: int | None = None) -> dict:
+def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, budget: int | None = None,
+                  tolerance: float | None = None) -> dict:
     """Proven lower bounds of the minima the active requirements of :data:`BOUNDED` rest on,
     for the decoded design ``v`` (:func:`mechopt.analysis.bounds.lower_bound`, interval
     branch-and-bound over the placed task): LCI, the type-II function with the design's
@@ -101,10 +102,15 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
     v : dict
         A decoded design (lengths, mode, placement).
     margins : dict, optional
-        The design's margins by requirement (its certification's): the estimates are
-        ``margin + required level``; default: computed again.
+        The design's margins by requirement (its certification's; with ``tolerance``
+        the sampled box's smallest): the estimates are ``margin + required level``;
+        default: computed again.
     budget : int, optional
         Cells per quantity (default :data:`mechopt.analysis.bounds.BUDGET`).
+    tolerance : float, optional
+        ``T`` [L]: bound over every mechanism whose design lengths lie within ``+- T`` of
+        ``v``'s (clipped at 0; the placement and mode stay ``v``'s), for mechanisms whose
+        enclosure takes length intervals (the five-bars); ValueError for the others.
 
     Returns
     -------
@@ -115,6 +121,11 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
         task point), ``proven_margin`` (``lower_bound`` minus the required level [the
         margin's unit]), ``method``, ``cells``, ``smallest_cell``, ``largest_cell`` [L],
         ``converged`` and ``may_unreachable``. Empty for an invalid design.
+
+    Raises
+    ------
+    ValueError
+        With ``tolerance``, for a mechanism whose enclosure takes no length intervals.
     """
     from mechopt.analysis import bounds as _b
     from mechopt.requirements.force import effort_factor, force
@@ -140,8 +151,13 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
             q = _b.force_quantity(limits(req.actuator_torque), reading(ctx), effort_factor(ctx))
             need, est = req.min_force, (lambda: force(ctx))
         est = float(margins[name]) + float(need) if margins is not None and name in margins else float(est())
+        lengths = None if tolerance is None else {
+            n: (max(float(v[n]) - tolerance, 0.0), float(v[n]) + tolerance) for n in ev.spec.lengths}
+        # over a tolerance box the nominal design's values need not reach the box's minimum:
+        # the sampled box minimum (a value of a mechanism of the box) stops the search
+        up = est if tolerance is not None and math.isfinite(est) else math.inf
         b = _b.lower_bound(ctx.check, ctx.task, q, to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y),
-                           budget=budget or _b.BUDGET)
+                           budget=budget or _b.BUDGET, lengths=lengths, upper=up)
         out[name] = {"quantity": q.name, "lower_bound": b.lower, "estimate": est, "gap": est - b.lower, "upper": b.upper, "proven_margin": b.lower - float(need),
                      "method": _b.METHOD, "cells": b.cells, "smallest_cell": b.smallest_cell,
                      "largest_cell": b.largest_cell, "converged": b.converged, "may_unreachable": b.may_unreachable}
@@ -258,9 +274,15 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
     proven: nothing beyond those mechanisms. The margins are not monotone in the
     lengths in general (LCI has interior maxima along a length, the polish leaves
     designs at such peaks), so a minimum inside the box between the evaluated points
-    can be lower: the result is a sampled bound, ``method "sampled"``, never called
-    proven. Returns ``{"tolerance", "evaluated", "min_margin": {name: value},
-    "worst": {name: lengths}, "holds": {name: bool}, "method": "sampled"}``.
+    can be lower: the sampled result is never called proven. What is proven, for the
+    mechanisms whose enclosure takes length intervals (the five-bars): the lower bound
+    of each minimum of :func:`proven_bounds` over the task and every length of the
+    box at once (:func:`proven_bounds` with ``tolerance``); where it meets the
+    requirement, the requirement is ``"proven"`` over the box; reach is proven over
+    the box when every cell of those searches is certainly reachable for every
+    mechanism of the box (both legs assemble). Returns ``{"tolerance", "evaluated",
+    "min_margin": {name: value}, "worst": {name: lengths}, "holds": {name: bool},
+    "method", "methods": {name: "proven" or "sampled"}, "proven": {name: bound}}``.
 
     Parameters
     ----------
@@ -284,7 +306,10 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
         ``tolerance`` [L], ``evaluated`` (how many mechanisms), ``min_margin`` (per
         requirement, its margin's unit; NaN counts as the worst), ``worst`` (the lengths
         [L] where that minimum was found), ``holds`` (per requirement, ``g <= 0`` at
-        every evaluated mechanism) and ``method`` (``"sampled"``).
+        every evaluated mechanism), ``methods`` (per requirement ``"proven"`` over the
+        whole box or ``"sampled"``), ``method`` (``"proven"`` when every requirement is,
+        else ``"sampled"``) and ``proven`` (per bounded requirement: ``lower_bound``,
+        ``proven_margin``, ``cells``, ``converged``, ``may_unreachable``).
     """
     names = list(ev.spec.lengths)
     nominal = np.array([v[n] for n in names])
@@ -302,8 +327,26 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
                 holds[r.name] = False
             if not m >= worst_m[r.name]:  # NaN counts as the worst
                 worst_m[r.name], worst_at[r.name] = m, dict(zip(names, map(float, L)))
-    return {"tolerance": float(tol), "evaluated": int(len(offsets)), "min_margin": worst_m, "worst": worst_at,
-            "holds": holds, "method": "sampled"}
+    out = {"tolerance": float(tol), "evaluated": int(len(offsets)), "min_margin": worst_m, "worst": worst_at,
+           "holds": holds, "method": "sampled", "methods": {r.name: "sampled" for r in ev.active}, "proven": {}}
+    try:
+        sampled = {n: m for n, m in worst_m.items() if math.isfinite(m)}
+        bounds = proven_bounds(ev, v, sampled, tolerance=float(tol))
+    except ValueError:  # no enclosure over length intervals: sampled only
+        return out
+    for name, b in bounds.items():
+        out["proven"][name] = {k: b[k] for k in ("lower_bound", "proven_margin", "cells", "converged",
+                                                 "may_unreachable")}
+        if b["proven_margin"] >= 0:
+            out["methods"][name] = "proven"
+    # every cell of the task certain for every mechanism of the box: each reaches the whole
+    # task in the working mode (both legs assemble, no base joint in a cell)
+    if "reach" in out["methods"] and bounds and not any(b["may_unreachable"] for b in bounds.values()) \
+            and holds.get("reach"):
+        out["methods"]["reach"] = "proven"
+    if all(m == "proven" for m in out["methods"].values()):
+        out["method"] = "proven"
+    return out
 
 
 #: a margin a certificate claims agrees with the re-check when within this relative
@@ -450,7 +493,12 @@ def format_check(report: dict) -> list:
         if box is not None:
             m = box["min_margin"][name]
             line += (f"; within +-{box['tolerance']:g} {u}: smallest margin {m:.6g}{unit} "
-                     f"({'holds' if box['holds'][name] else 'FAILS'}, sampled at {box['evaluated']} mechanisms)")
+                     f"({'holds' if box['holds'][name] else 'FAILS'}, sampled at {box['evaluated']} mechanisms")
+            if box.get("methods", {}).get(name) == "proven":
+                p = box["proven"].get(name)
+                line += (", proven over the box" if p is None else
+                         f", proven over the box: lower bound {p['lower_bound']:.6g}, margin {p['proven_margin']:.6g}")
+            line += ")"
         lines.append(line)
     cert = report.get("certificate")
     if cert is not None:

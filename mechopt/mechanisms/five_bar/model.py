@@ -146,6 +146,16 @@ def legs_closure(x, y, r3, legs):
     return A, np.stack([k1, k2], -1), ok
 
 
+def _length_intervals(mech, names, lengths):
+    """``{name: value}`` of ``mech``'s lengths ``names``, those in ``lengths`` replaced
+    (ValueError for a name not among them)."""
+    lengths = dict(lengths or {})
+    unknown = set(lengths) - set(names)
+    if unknown:
+        raise ValueError(f"{type(mech).__name__} has no length {sorted(unknown)[0]!r} (it has {', '.join(names)})")
+    return {n: lengths.get(n, getattr(mech, n)) for n in names}
+
+
 def legs_closure_enclosure(x, y, r3, legs):
     """Interval enclosure of :func:`legs_closure` over boxes ``x, y`` (intervals):
     ``(A, b, certain)`` (:meth:`mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
@@ -912,20 +922,25 @@ class FiveBar(PlanarMechanism):
         """
         return legs_closure(x, y, self.r3, self._legs())
 
-    def closure_enclosure(self, x, y):
-        """Interval enclosure of :meth:`closure` over boxes (:func:`legs_closure_enclosure`).
+    def closure_enclosure(self, x, y, lengths=None):
+        """Interval enclosure of :meth:`closure` over boxes (:func:`legs_closure_enclosure`),
+        for every mechanism with ``r1, r2, r3`` in ``lengths`` (intervals) where given.
 
         Parameters
         ----------
         x, y : mechopt.core.interval.Interval
             The boxes [L].
+        lengths : dict, optional
+            ``{"r1" | "r2" | "r3": interval}`` [L].
 
         Returns
         -------
         tuple
             ``(A, b, certain)``.
         """
-        return legs_closure_enclosure(x, y, self.r3, self._legs())
+        L = _length_intervals(self, ("r1", "r2", "r3"), lengths)
+        legs = ((L["r1"], L["r2"], self._s1), (L["r1"], L["r2"], self._s2))
+        return legs_closure_enclosure(x, y, L["r3"], legs)
 
     def reachable(self, x, y):
         return legs_reachable(x, y, self.r3, self._legs())
