@@ -304,11 +304,33 @@ CERTIFICATE_REQUIREMENT = {
     "unit": ("the margin's unit", ""),
     "g": ("normalised constraint, <= 0 satisfied", "-"),
     "holds": ("`g <= 0`", ""),
-    "method": ("`proven` (the requirement's own argument over the whole task, `certificate`) or "
-               "`refined-sampled` (the minimum located on the samples and refined by zooming: an estimate, "
-               "not a bound)", ""),
+    "method": ("`proven` (the requirement's own argument over the whole task, `certificate`; for `lci`, "
+               "`singular`, `speed` and `force`: the proven lower bound of the minimum, `bound`, meets the "
+               "requirement) or `refined-sampled` (the minimum located on the samples and refined by zooming: "
+               "an estimate, not a bound)", ""),
     "certificate": ("the requirement's argument, in words (empty for a sampled one)", ""),
     "describe": ("the requirement in words, with its values", ""),
+    "bound": ("`lci`, `singular`, `speed`, `force`: the minimum bounded by interval branch-and-bound over the "
+              "task (mechopt.analysis.bounds), keys below", ""),
+}
+#: the keys of a requirement's `bound` (mechopt.workflows.certificate.proven_bounds)
+CERTIFICATE_BOUND = {
+    "quantity": ("`lci`, `type2` (the type-II function times the design's sign), `speed` or `force`", ""),
+    "lower_bound": ("proven lower bound of the quantity's minimum over the task (the quantity's floor, 0 or -1, "
+                    "where a cell may be out of reach)", "the quantity's unit"),
+    "estimate": ("the sampled-and-zoomed minimum (the margin's value plus the required level)",
+                 "the quantity's unit"),
+    "gap": ("`estimate - lower_bound`", "the quantity's unit"),
+    "upper": ("the smallest value the search met at a task point (an upper bound of the minimum)",
+              "the quantity's unit"),
+    "proven_margin": ("`lower_bound` minus the required level: >= 0 proves the requirement", "its `unit`"),
+    "method": ("`interval branch-and-bound`", ""),
+    "cells": ("cells evaluated", "-"),
+    "smallest_cell": ("the smallest cell of the final cover (side of a square, length of a piece of path; 0 for "
+                      "points)", "unit"),
+    "largest_cell": ("the largest cell of the final cover", "unit"),
+    "converged": ("the search reached its stopping gap (2e-3 relative) within its budget (30000 cells)", ""),
+    "may_unreachable": ("some cell of the final cover may be out of reach (its bound is the floor)", ""),
 }
 #: `mechopt check --json`
 CHECK_JSON = {
@@ -320,7 +342,11 @@ CHECK_JSON = {
     "sampling": ("the certification's sampling", ""),
     "box": ("with `--tolerance`: `tolerance` [unit], `evaluated` (mechanisms: the 2^n corners and 32 seeded "
             "points inside the box), `min_margin` and `worst` (the lengths where it is) per requirement, "
-            "`holds` per requirement, `method` (`sampled`: nothing is proven between the points)", ""),
+            "`holds` per requirement, `methods` per requirement (`proven`: over the whole box, by the interval "
+            "bound over the task and every length of the box, five-bars only; reach proven when every cell is "
+            "certainly reachable; else `sampled`: nothing is proven between the points), `method` (`proven` "
+            "when every requirement is, else `sampled`), `proven` (per bounded requirement over the box: "
+            "`lower_bound`, `proven_margin`, `cells`, `converged`, `may_unreachable`)", ""),
     "certificate": ("with a certificate.json beside the design: `index` (the certified design with this "
                     "design.json's digest, null if none: edited or another run's), `chosen`, and `disagrees`: "
                     "for a recorded design, each requirement whose claimed margin or verdict the re-check does "
@@ -861,6 +887,10 @@ def _design() -> str:
            "Keys of each requirement under a design's `requirements`:\n",
            _table(["key", "meaning", "unit"],
                   [(f"`{k}`", m, _unit(u)) for k, (m, u) in CERTIFICATE_REQUIREMENT.items()]),
+           "Keys of a requirement's `bound` (`lci`, `singular`, `speed`, `force`; the proven lower bound of "
+           "the minimum the requirement rests on, interval branch-and-bound over the task: "
+           "mechopt.analysis.bounds):\n",
+           _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in CERTIFICATE_BOUND.items()]),
            "### `run.json`\n",
            "The keys of `optimize`'s `run.json` (`problem` is `design`) and:\n",
            _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in DESIGN_RUN.items()]),

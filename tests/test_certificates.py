@@ -173,7 +173,10 @@ def test_certificate_json_records_every_front_design(run_dir):
     for d, (_, row) in zip(cert["designs"], front.iterrows()):
         assert set(d["requirements"]) == {"reach", "singular", "lci"}
         assert d["requirements"]["reach"]["method"] == "proven"
-        assert d["requirements"]["lci"]["method"] == "refined-sampled"
+        # LCI is proven where its interval bound meets the level (designs off the LCI edge)
+        b = d["requirements"]["lci"]["bound"]
+        assert b["lower_bound"] <= b["estimate"] and b["gap"] <= 0.01
+        assert d["requirements"]["lci"]["method"] == ("proven" if b["proven_margin"] >= 0 else "refined-sampled")
         for name, e in d["requirements"].items():
             assert e["margin"] == row[f"margin_{name}"] and e["holds"] and e["g"] <= 0
         assert all(d["variables"][k] == row[k] for k in ("r1", "r2", "r3"))
@@ -256,7 +259,10 @@ def test_tolerance_box_that_holds_holds_on_a_dense_own_check(run_dir):
     from mechopt.workflows.certificate import check
 
     rep = check(run_dir / "design.json", tolerance=0.05)
-    assert rep["holds"] and rep["box"]["method"] == "sampled" and rep["box"]["evaluated"] == 8 + 32
+    assert rep["holds"] and rep["box"]["evaluated"] == 8 + 32
+    # the interval bound over the task and the whole box proves it (the five-bar's enclosure
+    # takes length intervals): every requirement proven, each bound below every dense value
+    assert rep["box"]["method"] == "proven" and set(rep["box"]["methods"].values()) == {"proven"}
     v = rep["variables"]
     task = parse_task(RUN_TASK).moved_to(v["task_x"], v["task_y"])
     rng = np.random.default_rng(11)
@@ -267,6 +273,7 @@ def test_tolerance_box_that_holds_holds_on_a_dense_own_check(run_dir):
         assert ok, (off, lmin)
         worst = min(worst, lmin - RUN_GAMMA)
     assert rep["box"]["min_margin"]["lci"] <= worst + 1e-3
+    assert 0 <= rep["box"]["proven"]["lci"]["proven_margin"] <= worst
 
 
 def test_check_fails_on_a_tampered_certificate(run_dir, tmp_path, capsys):

@@ -425,6 +425,43 @@ class PlanarMechanism(ABC):
             A new instance.
         """
 
+    def closure_enclosure(self, x, y, lengths=None):
+        """Interval enclosure of :meth:`closure` over boxes of platform points (for the
+        proven bounds of :mod:`mechopt.analysis.bounds`): ``(A, b, certain)`` with
+        ``A[i][j]`` and ``b[i]`` :class:`~mechopt.core.interval.Interval` arrays that
+        contain the exact ``A`` and ``diag B`` of :meth:`closure` (same working and
+        assembly mode, same row scaling) at every point of each box where ``certain``;
+        ``certain`` False where some point of the box may be out of reach (there ``A``
+        and ``b`` enclose nothing). Written from positions (no angles), each mechanism's
+        argument and rounding in its implementation's docstring. With ``lengths``
+        (``{parameter: interval}``, a tolerance box), the enclosure holds for every
+        mechanism whose named lengths lie in their intervals (a mechanism that does not
+        support it raises ValueError). Default None: no enclosure (the bounds then report
+        none).
+
+        Parameters
+        ----------
+        x : mechopt.core.interval.Interval
+            Abscissae of the boxes [L] (base frame).
+        y : mechopt.core.interval.Interval
+            Ordinates [L]; same shape.
+        lengths : dict, optional
+            Declared length parameters as intervals [L] replacing the instance's.
+
+        Returns
+        -------
+        tuple or None
+            ``(A, b, certain)``: ``A`` a pair of pairs of intervals, ``b`` a pair of
+            intervals, ``certain`` a bool array; or None.
+        """
+        return None
+
+    def _no_length_intervals(self, lengths):
+        """ValueError when a :meth:`closure_enclosure` that takes no length intervals is
+        given some."""
+        if lengths:
+            raise ValueError(f"{type(self).__name__}'s enclosure takes no length intervals")
+
     @property
     def joint_limits(self):
         """``((q1_lo, q1_hi), (q2_lo, q2_hi))``: the actuator ranges, or None for a

@@ -689,6 +689,42 @@ class Bipod(PlanarMechanism):
         )
         return A, np.stack([q1, q2], -1), ok
 
+    def closure_enclosure(self, x, y, lengths=None):
+        """Interval enclosure of :meth:`closure` over boxes: ``A = [P - A_1; P - A_2]``
+        (``A_1 = (0, 0)``, ``A_2 = (b, 0)``), ``b = (|P - A_1|, |P - A_2|)``, each operation
+        outward rounded (:mod:`mechopt.core.interval`). ``certain`` is False where an
+        enclosed strut length is not inside its stroke widened by the point evaluator's
+        tolerance (``LIMIT_RTOL * length_scale``), or the box may cross to the other side
+        of the branch (``y >= 0`` for ``"up"``, ``y <= 0`` for ``"down"``).
+
+        Parameters
+        ----------
+        x, y : mechopt.core.interval.Interval
+            The boxes [L].
+        lengths : dict, optional
+            Length intervals: none supported yet (the strokes are derived from the task).
+
+        Returns
+        -------
+        tuple
+            ``(A, b, certain)``, as the protocol's.
+        """
+        self._no_length_intervals(lengths)
+        from mechopt.core.interval import as_interval, hypot
+
+        y = as_interval(y)
+        rows = ((x, y), (x - self.b, y))
+        q = (hypot(*rows[0]), hypot(*rows[1]))
+        t = LIMIT_RTOL * self.length_scale
+        (lo1, hi1), (lo2, hi2) = self.joint_limits
+        certain = ((q[0].lo >= lo1 - t) & (q[0].hi <= hi1 + t) & (q[1].lo >= lo2 - t) & (q[1].hi <= hi2 + t)
+                   & (q[0].lo > 0.0) & (q[1].lo > 0.0))
+        if self.branch == "up":
+            certain &= y.lo >= 0.0
+        elif self.branch == "down":
+            certain &= y.hi <= 0.0
+        return rows, q, certain
+
     # --- the kinematic tree (mechopt.core.kinematic_tree; mechopt export) -----------------
     def kinematic_tree(self):
         """Per strut ``i`` the passive ``base<i>`` on the base at ``A_i`` (body

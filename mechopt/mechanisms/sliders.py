@@ -70,6 +70,7 @@ import numpy as np
 
 from mechopt.core import rigid_bodies as _b
 from mechopt.core import geometry as _g
+from mechopt.core import interval as _iv
 from mechopt.core import validation as _v
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.error_spec import ErrorSpec
@@ -508,6 +509,48 @@ class TwoSliderMechanism(PlanarMechanism):
         A = np.where(ok[..., None, None], A, np.nan)
         b = np.where(ok[..., None], b, np.nan)
         return A, b, ok
+
+    def closure_enclosure(self, x, y, lengths=None):
+        """Interval enclosure of :meth:`closure` over boxes: with ``u_i = x - g_i`` and
+        ``c_i = -s_i sqrt(L^2 - u_i^2)`` (the working mode's sign), ``A = [[u_1, c_1],
+        [u_2, c_2]]``, ``b = (c_1, c_2)``, each operation outward rounded
+        (:mod:`mechopt.core.interval`). The Biglide computes ``c_i`` as ``(y - e) - q_i``
+        from the slider position ``q_i = y - e + s_i h_i``: the same real number.
+        ``certain`` is False where ``L^2 - u_i^2`` may be <= 0 (the link may not reach its
+        guide, or lie horizontal: type I) or the enclosure of ``q_i = y - e - c_i`` is not
+        inside the stroke widened by the point evaluator's tolerance (module docstring).
+
+        Parameters
+        ----------
+        x, y : mechopt.core.interval.Interval
+            The boxes [L].
+        lengths : dict, optional
+            Not supported (a tolerance box of its lengths): must be None or empty.
+
+        Returns
+        -------
+        tuple
+            ``(A, b, certain)`` (:meth:`mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
+
+        Raises
+        ------
+        ValueError
+            For ``lengths`` given (:meth:`~mechopt.core.protocol.PlanarMechanism._no_length_intervals`).
+        """
+        self._no_length_intervals(lengths)
+        L2 = _iv.as_interval(self._L).sqr()
+        rows, bs, certain = [], [], None
+        for g, s, (lo, hi) in zip(self._g, self._s, self._lims):
+            u = x - g
+            h, neg = (L2 - u.sqr()).sqrt()
+            c = -h if s > 0 else h
+            q = (y - self._e) - c
+            t = self._stroke_tol
+            ok = ~neg & (h.lo > 0.0) & (q.lo >= lo - t) & (q.hi <= hi + t)
+            rows.append((u, c))
+            bs.append(c)
+            certain = ok if certain is None else certain & ok
+        return tuple(rows), tuple(bs), certain
 
     # --- the kinematic tree (mechopt.core.kinematic_tree; mechopt export) -----------------
     def kinematic_tree(self):

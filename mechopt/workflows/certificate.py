@@ -28,8 +28,8 @@ import numpy as np
 from mechopt.analysis.design_eval import DesignEvaluator, certify
 from mechopt.analysis.sampling import Sampling
 
-__all__ = ["certificate", "check", "tolerance_box", "requirement_entries", "format_check", "BOX_SAMPLES",
-           "CERTIFICATE_VERSION", "CLAIM_RTOL"]
+__all__ = ["certificate", "check", "tolerance_box", "requirement_entries", "proven_bounds", "format_check",
+           "BOX_SAMPLES", "CERTIFICATE_VERSION", "CLAIM_RTOL", "BOUNDED"]
 
 #: the format of certificate.json (a new key keeps it; a changed meaning raises it)
 CERTIFICATE_VERSION = 1
@@ -37,11 +37,15 @@ CERTIFICATE_VERSION = 1
 BOX_SAMPLES = 32
 
 
+#: the requirements whose minimum :func:`proven_bounds` bounds from below
+BOUNDED = ("lci", "singular", "speed", "force")
+
+
 def _method(member) -> str:
     return "proven" if member.proven else "refined-sampled"
 
 
-def requirement_entries(ev: DesignEvaluator, res: dict) -> dict:
+def requirement_entries(ev: DesignEvaluator, res: dict, bounds: dict | None = None) -> dict:
     """``{requirement: {margin, unit, g, holds, method, certificate}}`` of an evaluation
     ``res`` (:func:`~mechopt.analysis.design_eval.certify`) by the evaluator ``ev``.
 
@@ -51,13 +55,17 @@ def requirement_entries(ev: DesignEvaluator, res: dict) -> dict:
         The evaluator.
     res : dict
         An evaluation of it (``margin`` and ``g`` per active requirement are read).
+    bounds : dict, optional
+        :func:`proven_bounds` of the same design: each is recorded as the requirement's
+        ``bound``, and a requirement whose proven lower bound meets it is ``"proven"``.
 
     Returns
     -------
     dict
         Per active requirement: ``margin`` [``unit``], ``unit``, ``g``, ``holds``
         (``g <= 0``), ``method`` (``"proven"`` or ``"refined-sampled"``),
-        ``certificate`` and ``describe`` (the requirement in words).
+        ``certificate`` and ``describe`` (the requirement in words); with ``bounds``
+        also ``bound``.
     """
     out = {}
     for r in ev.active:
@@ -65,6 +73,94 @@ def requirement_entries(ev: DesignEvaluator, res: dict) -> dict:
         out[r.name] = {"margin": float(m), "unit": r.margin_unit.format(L=ev.unit), "g": float(g),
                        "holds": bool(g <= 0), "method": _method(r), "certificate": r.certificate,
                        "describe": ev.req.describe(r.name, ev.unit)}
+        b = (bounds or {}).get(r.name)
+        if b is not None:
+            out[r.name]["bound"] = b
+            if b["proven_margin"] >= 0:
+                out[r.name]["method"] = "proven"
+                out[r.name]["certificate"] = (f"proven lower bound {b['lower_bound']:.6g} of the minimum by "
+                                              f"{b['method']} ({b['cells']} cells, smallest {b['smallest_cell']:.3g} "
+                                              f"{ev.unit}; mechopt.analysis.bounds); estimate "
+                                              f"{b['estimate']:.6g}: {r.certificate}")
+    return out
+
+
+def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, budget: int | None = None,
+                  tolerance: float | None = None) -> dict:
+    """Proven lower bounds of the minima the active requirements of :data:`BOUNDED` rest on,
+    for the decoded design ``v`` (:func:`mechopt.analysis.bounds.lower_bound`, interval
+    branch-and-bound over the placed task): LCI, the type-II function with the design's
+    sign, the guaranteed speed and force in the requirements' reading of the actuator
+    limits. The bound is over the mechanism whose strokes are padded (the evaluator's
+    ``check``: the same Jacobian; a slider mechanism's strokes are sized to cover the
+    task, which the reach requirement proves).
+
+    Parameters
+    ----------
+    ev : mechopt.analysis.design_eval.DesignEvaluator
+        The evaluator.
+    v : dict
+        A decoded design (lengths, mode, placement).
+    margins : dict, optional
+        The design's margins by requirement (its certification's; with ``tolerance``
+        the sampled box's smallest): the estimates are ``margin + required level``;
+        default: computed again.
+    budget : int, optional
+        Cells per quantity (default :data:`mechopt.analysis.bounds.BUDGET`).
+    tolerance : float, optional
+        ``T`` [L]: bound over every mechanism whose design lengths lie within ``+- T`` of
+        ``v``'s (clipped at 0; the placement and mode stay ``v``'s), for mechanisms whose
+        enclosure takes length intervals (the five-bars); ValueError for the others.
+
+    Returns
+    -------
+    dict
+        Per bounded active requirement: ``quantity``, ``lower_bound`` (proven) and
+        ``estimate`` (the sampled-and-zoomed minimum) [the quantity's unit], ``gap``
+        (``estimate - lower_bound``), ``upper`` (the smallest value the search met at a
+        task point), ``proven_margin`` (``lower_bound`` minus the required level [the
+        margin's unit]), ``method``, ``cells``, ``smallest_cell``, ``largest_cell`` [L],
+        ``converged`` and ``may_unreachable``. Empty for an invalid design.
+
+    Raises
+    ------
+    ValueError
+        With ``tolerance``, for a mechanism whose enclosure takes no length intervals.
+    """
+    from mechopt.analysis import bounds as _b
+    from mechopt.requirements.force import effort_factor, force
+    from mechopt.requirements.lci import lci_min
+    from mechopt.requirements.speed import limits, reading, speed
+
+    active = {r.name: r for r in ev.active if r.name in BOUNDED}
+    if not active or ev.spec.validity({n: v[n] for n in ev.spec.lengths}, ev.max_length) > 0:
+        return {}
+    ctx = ev.context(v, Sampling.fine())
+    req, out = ctx.req, {}
+    for name, r in active.items():
+        if name == "lci":
+            q, need = _b.lci_quantity(), req.min_lci
+            est = (lambda: lci_min(ctx))
+        elif name == "singular":
+            q, need = _b.type2_quantity(r.sign(ctx)), req.singularity_margin
+            est = (lambda: r.minimum(ctx))
+        elif name == "speed":
+            q, need = _b.speed_quantity(limits(req.actuator_speed), reading(ctx)), req.min_speed
+            est = (lambda: speed(ctx))
+        else:
+            q = _b.force_quantity(limits(req.actuator_torque), reading(ctx), effort_factor(ctx))
+            need, est = req.min_force, (lambda: force(ctx))
+        est = float(margins[name]) + float(need) if margins is not None and name in margins else float(est())
+        lengths = None if tolerance is None else {
+            n: (max(float(v[n]) - tolerance, 0.0), float(v[n]) + tolerance) for n in ev.spec.lengths}
+        # over a tolerance box the nominal design's values need not reach the box's minimum:
+        # the sampled box minimum (a value of a mechanism of the box) stops the search
+        up = est if tolerance is not None and math.isfinite(est) else math.inf
+        b = _b.lower_bound(ctx.check, ctx.task, q, to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y),
+                           budget=budget or _b.BUDGET, lengths=lengths, upper=up)
+        out[name] = {"quantity": q.name, "lower_bound": b.lower, "estimate": est, "gap": est - b.lower, "upper": b.upper, "proven_margin": b.lower - float(need),
+                     "method": _b.METHOD, "cells": b.cells, "smallest_cell": b.smallest_cell,
+                     "largest_cell": b.largest_cell, "converged": b.converged, "may_unreachable": b.may_unreachable}
     return out
 
 
@@ -95,16 +191,19 @@ def certificate(result) -> dict:
     for i in range(len(result.front)):
         rec = result.design_at(i)
         res = {"margin": rec["margins"], "g": rec["constraints_g"]}
+        bounds = proven_bounds(ev, _variables(rec, ev.spec, None), rec["margins"])
         # the digest of the record as design.json holds it (without the mechanism object)
         digest = design_digest(plain_json({k: val for k, val in rec.items() if k != "mechanism"}))
         designs.append({"index": i, "digest": digest, "variables": rec["variables"],
                         "task_placement": rec["task_placement"], "feasible": bool(rec["feasible"]),
-                        "requirements": requirement_entries(ev, res), "tolerance": rec["tolerance"]})
+                        "requirements": requirement_entries(ev, res, bounds), "tolerance": rec["tolerance"]})
     return {"certificate_version": CERTIFICATE_VERSION, "mechopt_version": __version__,
             "settings": ev.settings(), "sampling": asdict(Sampling.fine()),
             "chosen": int(result.chosen_index), "designs": designs,
-            "note": "proven: the requirement's argument holds over the whole task; refined-sampled: the "
-                    "minimum located on the samples and refined by zooming (an estimate, not a bound)"}
+            "note": "proven: the requirement's argument holds over the whole task (for LCI, the type-II "
+                    "function, speed and force: the proven lower bound of the minimum by interval "
+                    "branch-and-bound, 'bound', meets it); refined-sampled: the minimum located on the samples "
+                    "and refined by zooming (an estimate, not a bound)"}
 
 
 # ------------------------------------------------------------------ check
@@ -179,9 +278,15 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
     proven: nothing beyond those mechanisms. The margins are not monotone in the
     lengths in general (LCI has interior maxima along a length, the polish leaves
     designs at such peaks), so a minimum inside the box between the evaluated points
-    can be lower: the result is a sampled bound, ``method "sampled"``, never called
-    proven. Returns ``{"tolerance", "evaluated", "min_margin": {name: value},
-    "worst": {name: lengths}, "holds": {name: bool}, "method": "sampled"}``.
+    can be lower: the sampled result is never called proven. What is proven, for the
+    mechanisms whose enclosure takes length intervals (the five-bars): the lower bound
+    of each minimum of :func:`proven_bounds` over the task and every length of the
+    box at once (:func:`proven_bounds` with ``tolerance``); where it meets the
+    requirement, the requirement is ``"proven"`` over the box; reach is proven over
+    the box when every cell of those searches is certainly reachable for every
+    mechanism of the box (both legs assemble). Returns ``{"tolerance", "evaluated",
+    "min_margin": {name: value}, "worst": {name: lengths}, "holds": {name: bool},
+    "method", "methods": {name: "proven" or "sampled"}, "proven": {name: bound}}``.
 
     Parameters
     ----------
@@ -205,7 +310,10 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
         ``tolerance`` [L], ``evaluated`` (how many mechanisms), ``min_margin`` (per
         requirement, its margin's unit; NaN counts as the worst), ``worst`` (the lengths
         [L] where that minimum was found), ``holds`` (per requirement, ``g <= 0`` at
-        every evaluated mechanism) and ``method`` (``"sampled"``).
+        every evaluated mechanism), ``methods`` (per requirement ``"proven"`` over the
+        whole box or ``"sampled"``), ``method`` (``"proven"`` when every requirement is,
+        else ``"sampled"``) and ``proven`` (per bounded requirement: ``lower_bound``,
+        ``proven_margin``, ``cells``, ``converged``, ``may_unreachable``).
     """
     names = list(ev.spec.lengths)
     nominal = np.array([v[n] for n in names])
@@ -223,8 +331,26 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
                 holds[r.name] = False
             if not m >= worst_m[r.name]:  # NaN counts as the worst
                 worst_m[r.name], worst_at[r.name] = m, dict(zip(names, map(float, L)))
-    return {"tolerance": float(tol), "evaluated": int(len(offsets)), "min_margin": worst_m, "worst": worst_at,
-            "holds": holds, "method": "sampled"}
+    out = {"tolerance": float(tol), "evaluated": int(len(offsets)), "min_margin": worst_m, "worst": worst_at,
+           "holds": holds, "method": "sampled", "methods": {r.name: "sampled" for r in ev.active}, "proven": {}}
+    try:
+        sampled = {n: m for n, m in worst_m.items() if math.isfinite(m)}
+        bounds = proven_bounds(ev, v, sampled, tolerance=float(tol))
+    except ValueError:  # no enclosure over length intervals: sampled only
+        return out
+    for name, b in bounds.items():
+        out["proven"][name] = {k: b[k] for k in ("lower_bound", "proven_margin", "cells", "converged",
+                                                 "may_unreachable")}
+        if b["proven_margin"] >= 0:
+            out["methods"][name] = "proven"
+    # every cell of the task certain for every mechanism of the box: each reaches the whole
+    # task in the working mode (both legs assemble, no base joint in a cell)
+    if "reach" in out["methods"] and bounds and not any(b["may_unreachable"] for b in bounds.values()) \
+            and holds.get("reach"):
+        out["methods"]["reach"] = "proven"
+    if all(m == "proven" for m in out["methods"].values()):
+        out["method"] = "proven"
+    return out
 
 
 #: a margin a certificate claims agrees with the re-check when within this relative
@@ -329,7 +455,7 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
     ev = DesignEvaluator(spec.name, the_task, req, settings.get("objectives") or ("size",), mode=v["mode"],
                          place="fixed", min_length=settings.get("min_length"), max_length=settings.get("max_length"))
     res = certify(ev, v)
-    entries = requirement_entries(ev, res)
+    entries = requirement_entries(ev, res, proven_bounds(ev, v, res["margin"]))
     out = {"design": str(design_path), "mechanism": spec.name, "unit": unit, "variables": v,
            "requirements": entries, "sampling": asdict(Sampling.fine())}
     out["certificate"] = _certificate_match(Path(design_path), rec, entries)
@@ -372,7 +498,12 @@ def format_check(report: dict) -> list:
         if box is not None:
             m = box["min_margin"][name]
             line += (f"; within +-{box['tolerance']:g} {u}: smallest margin {m:.6g}{unit} "
-                     f"({'holds' if box['holds'][name] else 'FAILS'}, sampled at {box['evaluated']} mechanisms)")
+                     f"({'holds' if box['holds'][name] else 'FAILS'}, sampled at {box['evaluated']} mechanisms")
+            if box.get("methods", {}).get(name) == "proven":
+                p = box["proven"].get(name)
+                line += (", proven over the box" if p is None else
+                         f", proven over the box: lower bound {p['lower_bound']:.6g}, margin {p['proven_margin']:.6g}")
+            line += ")"
         lines.append(line)
     cert = report.get("certificate")
     if cert is not None:

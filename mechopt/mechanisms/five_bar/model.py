@@ -30,7 +30,7 @@ from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, Kinem
 from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
 __all__ = ["FiveBar", "FiveBarDesignSpec", "FiveBarErrorSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows",
-           "legs_closure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk",
+           "legs_closure", "legs_closure_enclosure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk",
            "legs_assembly_of", "legs_tree", "legs_tree_configuration",
            "legs_bodies", "legs_body_frames"]
 
@@ -144,6 +144,73 @@ def legs_closure(x, y, r3, legs):
     k1 = (b1x + r3) * a1y - b1y * a1x
     k2 = (b2x - r3) * a2y - b2y * a2x
     return A, np.stack([k1, k2], -1), ok
+
+
+def _length_intervals(mech, names, lengths):
+    """``{name: value}`` of ``mech``'s lengths ``names``, those in ``lengths`` replaced
+    (ValueError for a name not among them)."""
+    lengths = dict(lengths or {})
+    unknown = set(lengths) - set(names)
+    if unknown:
+        raise ValueError(f"{type(mech).__name__} has no length {sorted(unknown)[0]!r} (it has {', '.join(names)})")
+    return {n: lengths.get(n, getattr(mech, n)) for n in names}
+
+
+def legs_closure_enclosure(x, y, r3, legs):
+    """Interval enclosure of :func:`legs_closure` over boxes ``x, y`` (intervals):
+    ``(A, b, certain)`` (:meth:`mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
+
+    The same elbow as :func:`legs_elbows`, written from positions only: with
+    ``v = P - A_i``, ``d^2 = |v|^2``, ``k = 1/2 + (a_i^2 - c_i^2) / (2 d^2)``,
+    ``h^2 = a_i^2 / d^2 - k^2`` and ``h = s_i sqrt(h^2)`` (the working mode's sign),
+    ``B_i - A_i = k v + h perp(v)`` (``perp(v) = (-v_y, v_x)``), so ``a_i = P - B_i =
+    (1 - k) v - h perp(v)`` and ``B_ii = (B_i - A_i) x a_i = -h d^2`` (the cross
+    products of ``v`` and ``perp(v)`` are ``+-d^2``): ``+ - * / sqrt`` only, each with
+    outward rounding (:mod:`mechopt.core.interval`), so the intervals contain the exact
+    values at every point of the box. ``certain`` is False where ``d^2`` may vanish or
+    ``h^2`` may be negative (the leg may not assemble) or may vanish (the point
+    evaluator clips ``h^2`` in ``[-1e-12, 0)`` to 0: a type-I pose, where every bounded
+    quantity takes its floor anyway). Lengths (``r3``, ``a_i``, ``c_i``) may be
+    intervals too (a tolerance box).
+
+    Parameters
+    ----------
+    x, y : mechopt.core.interval.Interval
+        The boxes [L].
+    r3 : float or Interval
+        Half the base distance [L].
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L] (floats or intervals),
+        elbow sign (+1 or -1).
+
+    Returns
+    -------
+    A : tuple
+        ``((a1x, a1y), (a2x, a2y))`` intervals [L].
+    b : tuple
+        ``(B_11, B_22)`` intervals [L^2].
+    certain : ndarray of bool
+        Where every point of the box assembles both legs.
+    """
+    from mechopt.core.interval import as_interval
+
+    r3 = as_interval(r3)
+    rows, bs, certain = [], [], None
+    for ax, (a, c, s) in zip((-r3, r3), legs):
+        a2, c2 = as_interval(a).sqr(), as_interval(c).sqr()
+        vx, vy = x - ax, as_interval(y)
+        d2 = (vx.sqr() + vy.sqr()).nonneg()
+        u = 1.0 / d2
+        k = 0.5 + 0.5 * ((a2 - c2) * u)
+        h, neg = (a2 * u - k.sqr()).sqrt()
+        ok = ~neg & (d2.lo > 0.0) & (h.lo > 0.0)
+        if s < 0:
+            h = -h
+        m = 1.0 - k
+        rows.append((m * vx + h * vy, m * vy - h * vx))
+        bs.append(-(h * d2))
+        certain = ok if certain is None else certain & ok
+    return tuple(rows), tuple(bs), certain
 
 
 def _reach(x, y, r3, legs):
@@ -854,6 +921,26 @@ class FiveBar(PlanarMechanism):
             Where both legs assemble.
         """
         return legs_closure(x, y, self.r3, self._legs())
+
+    def closure_enclosure(self, x, y, lengths=None):
+        """Interval enclosure of :meth:`closure` over boxes (:func:`legs_closure_enclosure`),
+        for every mechanism with ``r1, r2, r3`` in ``lengths`` (intervals) where given.
+
+        Parameters
+        ----------
+        x, y : mechopt.core.interval.Interval
+            The boxes [L].
+        lengths : dict, optional
+            ``{"r1" | "r2" | "r3": interval}`` [L].
+
+        Returns
+        -------
+        tuple
+            ``(A, b, certain)``.
+        """
+        L = _length_intervals(self, ("r1", "r2", "r3"), lengths)
+        legs = ((L["r1"], L["r2"], self._s1), (L["r1"], L["r2"], self._s2))
+        return legs_closure_enclosure(x, y, L["r3"], legs)
 
     def reachable(self, x, y):
         return legs_reachable(x, y, self.r3, self._legs())

@@ -1,0 +1,65 @@
+"""Proven lower bounds of the requirement minima (mechopt.analysis.bounds): seconds, cells
+and gap per front design and quantity.
+
+    python benchmarks/bench_bounds.py [--task rect:100,60@0,180] [--min-lci 0.4] [--pop 24 --gen 20]
+
+Runs ``mechopt design five-bar`` (no files) with LCI, speed and force requirements
+(actuators 3 rad/s and 2 N m each), then, for every front design, bounds each minimum the
+certificate records (:func:`mechopt.workflows.certificate.proven_bounds`, one quantity at
+a time) and prints per design and quantity the seconds, the cells evaluated, the smallest
+cell, the proven bound, the sampled-and-zoomed estimate and their gap; and the
+certificate's whole time per design. Figures are printed, never asserted.
+"""
+from __future__ import annotations
+
+import argparse
+import time
+
+from mechopt.analysis import bounds as _b
+from mechopt.analysis.task import parse_task
+from mechopt.requirements import Requirements
+from mechopt.workflows.certificate import _variables, proven_bounds
+from mechopt.workflows.design import design
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--task", default="rect:100,60@0,180", help="the task (mechopt design's syntax)")
+    ap.add_argument("--min-lci", type=float, default=0.4, help="LCI required over the task")
+    ap.add_argument("--pop", type=int, default=24, help="population of the search")
+    ap.add_argument("--gen", type=int, default=20, help="generations of the search")
+    args = ap.parse_args(argv)
+    req = Requirements(min_lci=args.min_lci, min_speed=50.0, actuator_speed=3.0, min_force=1.0,
+                       actuator_torque=2.0)
+    t0 = time.perf_counter()
+    res = design("five-bar", parse_task(args.task), req, ("size", "min-lci"), pop=args.pop, gen=args.gen,
+                 plot=False)
+    print(f"design: {time.perf_counter() - t0:.1f} s, {len(res.front)} front designs, task {args.task}")
+    ev = res.evaluator
+    seconds, plain = [], _b.lower_bound
+
+    def timed(*a, **k):  # each quantity's own time
+        t = time.perf_counter()
+        out = plain(*a, **k)
+        seconds.append(time.perf_counter() - t)
+        return out
+    _b.lower_bound = timed
+    print(f"{'design':>6} {'quantity':>9} {'seconds':>8} {'cells':>6} {'smallest':>9} {'bound':>12} "
+          f"{'estimate':>12} {'gap':>10} {'rel gap':>8}")
+    totals = []
+    for i in range(len(res.front)):
+        rec = res.design_at(i)
+        v = _variables(rec, ev.spec, None)
+        t_all, seconds[:] = time.perf_counter(), []
+        b_all = proven_bounds(ev, v, rec["margins"])
+        totals.append(time.perf_counter() - t_all)
+        for (name, b), sec in zip(b_all.items(), seconds):
+            rel = b["gap"] / max(abs(b["estimate"]), 1.0 if name in ("lci", "singular") else 1e-300)
+            print(f"{i:>6} {b['quantity']:>9} {sec:>8.3f} {b['cells']:>6} {b['smallest_cell']:>9.3g} "
+                  f"{b['lower_bound']:>12.6g} {b['estimate']:>12.6g} {b['gap']:>10.3g} {rel:>8.2%}")
+        print(f"{i:>6} {'all':>9} {totals[-1]:>8.3f}")
+    print(f"certificate bounds per design: mean {sum(totals) / len(totals):.3f} s, max {max(totals):.3f} s")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,521 @@
+"""Proven lower bounds of the minima over a task of the local quantities the requirements
+bound (LCI, the type-II function, the guaranteed speed and force), by interval
+branch-and-bound.
+
+The argument. Cover the task ``T`` by cells: a region's by squares of its bounding box
+(kept when they may meet ``T``), a path's by pieces of its segments, a point set's by
+its points. Over a cell ``C``, each mechanism's
+:meth:`~mechopt.core.protocol.PlanarMechanism.closure_enclosure` gives intervals that
+contain the exact closure matrices ``A``, ``diag B`` at every point of ``C`` (outward
+rounding, :mod:`mechopt.core.interval`), or says that some point of ``C`` may be out of
+reach. A :class:`Quantity` turns those intervals into a lower bound of the quantity over
+``C`` (the natural interval extension of its formula), or, for a cell that may be out
+of reach, into the quantity's floor (its value at unreachable and singular poses in
+the point evaluators: LCI, speed and force 0, the type-II function -1; the floor is
+a lower bound of every value, so the bound stays sound). The minimum over the cells'
+lower bounds is a lower bound of ``min_T q``.
+
+Branch and bound: each round splits, all at once (vectorised), every cell whose lower
+bound is below ``upper - tol`` (``upper``: the smallest value of ``q`` at a point of
+``T`` found so far, at the cells' centres that lie in ``T`` and at boundary samples: an
+upper bound of the minimum) into 4 (a square) or 2 (a piece of a path), or, while the
+cells are few, two levels at once (16 or 4); it stops when
+``upper - lower <= tol`` or when the budget of evaluated cells would be exceeded (a
+round that does not fit splits the cells of lowest bound that fit, then the search
+stops). A child's bound is at least its parent's (both bound it; interval evaluation
+is inclusion isotone), so the bound never falls as cells split, and a smaller budget
+runs a prefix of the same search: the bound does not rise when the budget shrinks.
+
+Assumptions, stated: the region's signed distance (:meth:`~mechopt.analysis.task.Task.signed_distance`)
+is the exact distance to its boundary up to rounding, absorbed by a margin of
+``1e-9 * diameter`` in the test ``sd(centre) >= -half diagonal`` that keeps a cell; the
+design spec's ``to_mech`` is a translation (checked; every spec's is); a path is the
+polyline through its float points, each piece enclosed by ``v + [t0, t1] e`` in
+interval arithmetic; the quantity at a point is the exact real-number value of the
+formula of the requirement at that point (the point evaluators compute it in floating
+point: a dense check compares within a relative ``1e-9``).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mechopt.core import indices as _ix
+from mechopt.core.interval import Gradient, Interval, hypot
+from mechopt.analysis.sampling import bad_to
+
+__all__ = ["Quantity", "Bound", "lci_quantity", "type2_quantity", "speed_quantity", "force_quantity",
+           "lower_bound", "BUDGET", "RTOL", "METHOD"]
+
+#: default budget of evaluated cells per quantity
+BUDGET = 30000
+#: default stopping gap, relative to ``max(|upper|, scale)`` of the quantity
+RTOL = 2e-3
+#: the name of the method in certificates
+METHOD = "interval branch-and-bound"
+#: cells are not split below this fraction of the task's diameter
+_MIN_CELL = 1e-9
+#: a round splits its cells two levels deep while that makes at most this many children
+_TWO_LEVELS = 4096
+#: the margin of the cell-keeping test, a fraction of the task's diameter
+_KEEP_MARGIN = 1e-9
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A local quantity ``q(P)`` whose minimum over a task is bounded.
+
+    Parameters
+    ----------
+    name : str
+        Its name (``lci``, ``type2``, ``speed``, ``force``).
+    floor : float
+        Its value at unreachable or singular poses (a lower bound of every value).
+    scale : float
+        The size of the stopping gap's reference (``tol = rtol * max(|upper|, scale)``).
+    cap : float
+        An upper bound of every value (LCI and the type-II function: 1).
+    terms : callable
+        ``terms(A, b)``: the quantity is the minimum of these expressions of the closure
+        (:meth:`~mechopt.core.protocol.PlanarMechanism.closure_enclosure`), evaluated on
+        :class:`~mechopt.core.interval.Interval` or
+        :class:`~mechopt.core.interval.Gradient` arguments.
+    point : callable
+        ``point(mech, x, y)``: the quantity at points of the mechanism's frame, the
+        floor where unreachable (the requirements' formula).
+    """
+
+    name: str
+    floor: float
+    scale: float
+    cap: float
+    terms: object = field(repr=False)
+    point: object = field(repr=False)
+
+
+@dataclass
+class Bound:
+    """The result of :func:`lower_bound`.
+
+    Parameters
+    ----------
+    lower : float
+        The proven lower bound of the minimum.
+    upper : float
+        The smallest value found at a task point (an upper bound of the minimum).
+    cells : int
+        Cells evaluated.
+    leaves : int
+        Cells of the final cover.
+    smallest_cell, largest_cell : float
+        Extremes of the final cells' sizes (the larger side of a square, the length of
+        a piece of path) [L]; 0 for a point task.
+    may_unreachable : bool
+        Some cell of the final cover may be out of reach (its bound is the floor).
+    converged : bool
+        ``upper - lower <= tol`` was reached within the budget.
+    tol : float
+        The stopping gap.
+    """
+
+    lower: float
+    upper: float
+    cells: int
+    leaves: int
+    smallest_cell: float
+    largest_cell: float
+    may_unreachable: bool
+    converged: bool
+    tol: float
+
+    @property
+    def gap(self) -> float:
+        """``upper - lower``."""
+        return self.upper - self.lower
+
+
+# ------------------------------------------------------------------ interval helpers
+def _det(m):
+    return m[0][0] * m[1][1] - m[0][1] * m[1][0]
+
+
+def _two_smax_squared(m):
+    """``2 s_max^2 = S + sqrt(P Q)`` (:func:`mechopt.core.indices.two_smax_squared`) of an
+    interval 2x2 matrix, with ``P = (a - d)^2 + (b + c)^2``, ``Q = (a + d)^2 + (b - c)^2``."""
+    (a, b), (c, d) = m
+    S = a.sqr() + b.sqr() + c.sqr() + d.sqr()
+    P = ((a - d).sqr() + (b + c).sqr()).nonneg()
+    Q = ((a + d).sqr() + (b - c).sqr()).nonneg()
+    return S + (P * Q).nonneg().sqrt()[0]
+
+
+def _jacobian(A, b, w=(1.0, 1.0)):
+    """Rows ``a_i / (b_i w_i)``: ``diag(w)^-1 J``."""
+    return tuple((A[i][0] / (b[i] * w[i]), A[i][1] / (b[i] * w[i])) for i in range(2))
+
+
+# ------------------------------------------------------------------ the quantities
+def lci_quantity() -> Quantity:
+    """LCI ``= 2 |det J| / (2 s_max^2)`` (Liu 2006 eq. 3, :func:`mechopt.core.indices.lci`),
+    ``J`` rows ``a_i / b_i``; floor 0, at most 1.
+
+    Returns
+    -------
+    Quantity
+        The quantity.
+    """
+    def terms(A, b):
+        J = _jacobian(A, b)
+        return [2.0 * abs(_det(J)) / _two_smax_squared(J)]
+
+    def point(mech, x, y):
+        return bad_to(_ix.lci(mech.jacobian(x, y)), 0.0)
+    return Quantity("lci", 0.0, 1.0, 1.0, terms, point)
+
+
+def type2_quantity(sign: float) -> Quantity:
+    """``sign * det A / (|a_1| |a_2|)`` (:meth:`mechopt.core.protocol.PlanarMechanism.type2_function`
+    with the design's sign, :class:`mechopt.requirements.singular.Singular`); floor -1,
+    at most 1.
+
+    Parameters
+    ----------
+    sign : float
+        ``s0``, +1 or -1.
+
+    Returns
+    -------
+    Quantity
+        The quantity.
+    """
+    s = 1.0 if sign >= 0 else -1.0
+
+    def terms(A, b):
+        return [(s * _det(A)) / (hypot(*A[0]) * hypot(*A[1]))]
+
+    def point(mech, x, y):
+        return bad_to(s * mech.type2_function(x, y), -1.0)
+    return Quantity("type2", -1.0, 1.0, 1.0, terms, point)
+
+
+def speed_quantity(w, norm="box") -> Quantity:
+    """The guaranteed speed (:func:`mechopt.requirements.speed.speed`) at a pose [L/s]:
+    ``min_i w_i / ||row_i(J)|| = min_i w_i |b_i| / |a_i|`` (``"box"``) or
+    ``1 / s_max(diag(w)^-1 J)`` (``2``, Liu 2006 eq. 10); floor 0.
+
+    Parameters
+    ----------
+    w : array_like
+        The two rate limits [rad/s or L/s].
+    norm : str or int
+        ``"box"`` or ``2``.
+
+    Returns
+    -------
+    Quantity
+        The quantity.
+    """
+    w = np.broadcast_to(np.asarray(w, dtype=float), (2,)).copy()
+    box = norm == "box"
+
+    def terms(A, b):
+        if box:
+            return [w[i] * abs(b[i]) / hypot(*A[i]) for i in range(2)]
+        return [1.0 / (_two_smax_squared(_jacobian(A, b, w)) * 0.5).nonneg().sqrt()[0]]
+
+    def point(mech, x, y):
+        J = mech.jacobian(x, y)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if box:
+                r = [bad_to(w[i] / np.hypot(J[..., i, 0], J[..., i, 1]), 0.0) for i in range(2)]
+                return np.minimum(*r)
+            smax = _ix.singular_values(J / w[:, None])[0]
+            return bad_to(1.0 / smax, 0.0)
+    return Quantity("speed", 0.0, 0.0, math.inf, terms, point)
+
+
+def force_quantity(t, norm="box", factor=1.0) -> Quantity:
+    """The guaranteed force (:func:`mechopt.requirements.force.force`) at a pose [N]:
+    ``factor min(t_2 |det J| / ||row_1||, t_1 |det J| / ||row_2||)`` with ``|det J| /
+    ||row_i|| = |det A| / (|b_j| |a_i|)`` (``"box"``), or ``factor s_min(diag(t) J)``
+    (``2``, Liu 2006 eq. 13); floor 0.
+
+    Parameters
+    ----------
+    t : array_like
+        The two effort limits [N m or N].
+    norm : str or int
+        ``"box"`` or ``2``.
+    factor : float
+        N m -> N per rad/L (:func:`mechopt.requirements.force.effort_factor`).
+
+    Returns
+    -------
+    Quantity
+        The quantity.
+    """
+    t = np.broadcast_to(np.asarray(t, dtype=float), (2,)).copy()
+    box, f = norm == "box", float(factor)
+
+    def terms(A, b):
+        D = abs(_det(A))
+        if box:
+            return [(f * t[1]) * D / (abs(b[1]) * hypot(*A[0])), (f * t[0]) * D / (abs(b[0]) * hypot(*A[1]))]
+        M = _jacobian(A, b, 1.0 / t)
+        return [f * abs(_det(M)) / (_two_smax_squared(M) * 0.5).nonneg().sqrt()[0]]
+
+    def point(mech, x, y):
+        J = mech.jacobian(x, y)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if box:
+                det = np.abs(J[..., 0, 0] * J[..., 1, 1] - J[..., 0, 1] * J[..., 1, 0])
+                r1 = bad_to(det / np.hypot(J[..., 0, 0], J[..., 0, 1]), 0.0)
+                r2 = bad_to(det / np.hypot(J[..., 1, 0], J[..., 1, 1]), 0.0)
+                return np.minimum(t[1] * r1, t[0] * r2) * f
+            return bad_to(_ix.singular_values(J * t[:, None])[1], 0.0) * f
+    return Quantity("force", 0.0, 0.0, math.inf, terms, point)
+
+
+# ------------------------------------------------------------------ cells
+def _translation(to_mech):
+    """``(dx, dy)`` of ``to_mech`` (a translation; ValueError otherwise)."""
+    if to_mech is None:
+        return 0.0, 0.0
+    px = np.array([0.0, 1.0, -3.0])
+    py = np.array([0.0, 2.0, 5.0])
+    mx, my = (np.asarray(v, dtype=float) for v in to_mech(px, py))
+    dx, dy = float(mx[0]), float(my[0])
+    if not (np.allclose(mx - px, dx, rtol=0, atol=1e-12 * (1 + abs(dx)))
+            and np.allclose(my - py, dy, rtol=0, atol=1e-12 * (1 + abs(dy)))):
+        raise ValueError("the bounds need a design spec whose to_mech is a translation")
+    return dx, dy
+
+
+class _Cells:
+    """The cover of a task: ``kind`` ``"box"`` (rows ``x0, x1, y0, y1``), ``"seg"`` (rows
+    ``k, t0, t1``: a piece of segment ``k`` of a path) or ``"pt"`` (rows ``x, y``)."""
+
+    def __init__(self, task, n0=4):
+        self.task = task
+        D = task.diameter
+        if task.is_region:
+            self.kind = "box"
+            x0, x1, y0, y1 = task.bbox
+            side = max(x1 - x0, y1 - y0)
+            nx, ny = (max(1, int(math.ceil(n0 * (s / side)))) for s in (x1 - x0, y1 - y0))
+            ex, ey = np.linspace(x0, x1, nx + 1), np.linspace(y0, y1, ny + 1)
+            X0, Y0 = np.meshgrid(ex[:-1], ey[:-1])
+            X1, Y1 = np.meshgrid(ex[1:], ey[1:])
+            rows = np.stack([X0.ravel(), X1.ravel(), Y0.ravel(), Y1.ravel()], 1)
+            self.rows = rows[self._meets(rows)]
+        elif task.is_path:
+            self.kind = "seg"
+            p = np.asarray(task.pts, dtype=float)
+            self.v, self.e = p[:-1], p[1:] - p[:-1]
+            k = np.arange(len(self.v), dtype=float)
+            self.rows = np.stack([k, np.zeros_like(k), np.ones_like(k)], 1)
+        else:
+            self.kind = "pt"
+            self.rows = np.asarray(task.pts, dtype=float).copy()
+        self.min_size = _MIN_CELL * D
+
+    def _meets(self, rows):
+        """Cells that may meet the task: ``sd(centre) >= -half diagonal - margin``."""
+        cx, cy = 0.5 * (rows[:, 0] + rows[:, 1]), 0.5 * (rows[:, 2] + rows[:, 3])
+        half = 0.5 * np.hypot(rows[:, 1] - rows[:, 0], rows[:, 3] - rows[:, 2])
+        sd = self.task.signed_distance(cx, cy)
+        return sd >= -half - _KEEP_MARGIN * self.task.diameter
+
+    def boxes(self, rows, dx, dy):
+        """``(X, Y)`` intervals of the cells in the mechanism's frame."""
+        if self.kind == "box":
+            X, Y = Interval(rows[:, 0], rows[:, 1]), Interval(rows[:, 2], rows[:, 3])
+        elif self.kind == "seg":
+            k = rows[:, 0].astype(int)
+            T = Interval(rows[:, 1], rows[:, 2])
+            X = T * self.e[k, 0] + self.v[k, 0]
+            Y = T * self.e[k, 1] + self.v[k, 1]
+        else:
+            X, Y = Interval(rows[:, 0]), Interval(rows[:, 1])
+        if dx or dy:
+            X, Y = X + dx, Y + dy
+        return X, Y
+
+    def sizes(self, rows):
+        """Each cell's size [L] (the larger side, the piece's length, 0)."""
+        if self.kind == "box":
+            return np.maximum(rows[:, 1] - rows[:, 0], rows[:, 3] - rows[:, 2])
+        if self.kind == "seg":
+            k = rows[:, 0].astype(int)
+            return (rows[:, 2] - rows[:, 1]) * np.hypot(self.e[k, 0], self.e[k, 1])
+        return np.zeros(len(rows))
+
+    def centres(self, rows):
+        """Task points of the cells (task frame): centres in the task, a path's piece's
+        midpoint; and which of them lie in the task."""
+        if self.kind == "box":
+            cx, cy = 0.5 * (rows[:, 0] + rows[:, 1]), 0.5 * (rows[:, 2] + rows[:, 3])
+            return cx, cy, self.task.contains(cx, cy)
+        if self.kind == "seg":
+            k = rows[:, 0].astype(int)
+            t = 0.5 * (rows[:, 1] + rows[:, 2])
+            return self.v[k, 0] + t * self.e[k, 0], self.v[k, 1] + t * self.e[k, 1], np.ones(len(rows), bool)
+        return rows[:, 0], rows[:, 1], np.ones(len(rows), bool)
+
+    def children(self, levels: int) -> int:
+        """How many children one split of ``levels`` levels gives (a square: ``4^levels``,
+        a piece of path: ``2^levels``, a point: 0)."""
+        return {"box": 4, "seg": 2, "pt": 0}[self.kind] ** levels if self.kind != "pt" else 0
+
+    def split(self, rows, levels: int = 1):
+        """The children of ``rows`` after ``levels`` halvings of each side, kept where they
+        may meet the task; and the index of each child's parent."""
+        parent = np.arange(len(rows))
+        for _ in range(levels):
+            if self.kind == "box":
+                x0, x1, y0, y1 = rows.T
+                xm, ym = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+                rows = np.concatenate([np.stack(c, 1) for c in ((x0, xm, y0, ym), (xm, x1, y0, ym),
+                                                                (x0, xm, ym, y1), (xm, x1, ym, y1))])
+                parent = np.tile(parent, 4)
+                keep = self._meets(rows)
+                rows, parent = rows[keep], parent[keep]
+            else:
+                k, t0, t1 = rows.T
+                tm = 0.5 * (t0 + t1)
+                rows = np.concatenate([np.stack([k, t0, tm], 1), np.stack([k, tm, t1], 1)])
+                parent = np.tile(parent, 2)
+        return rows, parent
+
+
+def _evaluate(mech, q, cells, rows, dx, dy, lengths=None):
+    """Lower bounds over the cells ``rows`` (and every length in ``lengths``: ``{name:
+    (lo, hi)}``) and where they may be out of reach: per term the larger of the natural
+    interval bound and the mean value form's about the cell's centre and the lengths'
+    midpoints (both enclose the term's range), the smallest over the terms, within
+    ``[floor, cap]``; the floor where the cell may be out of reach."""
+    X, Y = cells.boxes(rows, dx, dy)
+    names = list(lengths or {})
+    boxes = [X, Y] + [Interval(*lengths[n]) for n in names]
+    centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
+    with np.errstate(all="ignore"):
+        v = Gradient.variables(*boxes)
+        A, b, certain = mech.closure_enclosure(v[0], v[1], **({"lengths": dict(zip(names, v[2:]))} if names else {}))
+        at = {"lengths": {n: Interval(c) for n, c in zip(names, centres[2:])}} if names else {}
+        Ac, bc, _ = mech.closure_enclosure(Interval(centres[0]), Interval(centres[1]), **at)
+        lb = np.full(len(rows), np.inf)
+        for term, at_c in zip(q.terms(A, b), q.terms(Ac, bc)):
+            low = np.maximum(term.lo, term.mean_value_lower(at_c, list(zip(boxes, centres))))
+            lb = np.minimum(lb, np.where(np.isnan(low), -np.inf, low))
+    lb = np.minimum(np.maximum(lb, q.floor), q.cap)
+    lb = np.where(certain, lb, q.floor)
+    return lb, ~np.broadcast_to(certain, lb.shape)
+
+
+def _upper(mech, q, cells, rows, dx, dy):
+    """The smallest value of ``q`` at the cells' task points (inf when none)."""
+    cx, cy, inside = cells.centres(rows)
+    if not np.any(inside):
+        return math.inf
+    with np.errstate(all="ignore"):
+        v = q.point(mech, cx[inside] + dx, cy[inside] + dy)
+    return float(np.min(v))
+
+
+def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rtol: float = RTOL,
+                upper: float = math.inf, lengths: dict | None = None) -> Bound:
+    """A proven lower bound of ``min_T q`` by interval branch-and-bound (module docstring).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism (with :meth:`~mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
+    task : mechopt.analysis.task.Task
+        The task, as placed (task frame).
+    q : Quantity
+        The quantity.
+    to_mech : callable, optional
+        Task frame -> mechanism frame (a design spec's ``to_mech`` bound to ``mech``; a
+        translation); default the identity.
+    budget : int
+        The most cells evaluated, >= 1.
+    rtol : float
+        The stopping gap relative to ``max(|upper|, q.scale)``, > 0.
+    upper : float
+        A known value of ``q`` at a task point (e.g. a sampled minimum), if any.
+    lengths : dict, optional
+        ``{parameter: (lo, hi)}`` [L]: bound over every mechanism whose lengths lie in
+        these ranges (a tolerance box about ``mech``'s, which must lie inside them), not
+        split (:meth:`~mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
+
+    Returns
+    -------
+    Bound
+        The bound, the best value found, the cells and sizes.
+
+    Raises
+    ------
+    ValueError
+        For a mechanism without enclosure, a ``to_mech`` that is not a translation, a
+        budget < 1 or a non-positive ``rtol``.
+    """
+    budget = int(budget)
+    if budget < 1:
+        raise ValueError(f"budget must be >= 1, got {budget!r}")
+    if not (rtol > 0 and math.isfinite(rtol)):
+        raise ValueError(f"rtol must be a number > 0, got {rtol!r}")
+    if mech.closure_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
+        raise ValueError(f"{type(mech).__name__} has no closure enclosure")
+    dx, dy = _translation(to_mech)
+    cells = _Cells(task)
+    rows = cells.rows
+    lb, unk = _evaluate(mech, q, cells, rows, dx, dy, lengths)
+    used = len(rows)
+    ub = min(float(upper), _upper(mech, q, cells, rows, dx, dy))
+    if task.is_region:  # boundary samples: the minimum is often on the boundary
+        tb, _ = task.boundary_params(256)
+        bx, by = task.boundary_at(tb)
+        with np.errstate(all="ignore"):
+            ub = min(ub, float(np.min(q.point(mech, bx + dx, by + dy))))
+    converged = False
+    while True:
+        tol = rtol * max(abs(ub) if math.isfinite(ub) else 0.0, q.scale, 1e-300)
+        low = float(lb.min()) if len(lb) else math.inf
+        if ub - low <= tol:
+            converged = True
+            break
+        if cells.kind == "pt":
+            break
+        pick = np.flatnonzero((lb < ub - tol) & (cells.sizes(rows) > cells.min_size))
+        if not pick.size:
+            break
+        # few cells: two levels at once (a round costs mostly its fixed overhead)
+        levels = 2 if pick.size * cells.children(2) <= _TWO_LEVELS else 1
+        room = (budget - used) // cells.children(levels)
+        truncated = room < pick.size
+        if truncated:
+            if room <= 0:
+                break
+            pick = pick[np.argsort(lb[pick], kind="stable")[:room]]
+        kids, parent = cells.split(rows[pick], levels)
+        klb, kunk = _evaluate(mech, q, cells, kids, dx, dy, lengths)
+        klb = np.maximum(klb, lb[pick][parent])  # both bound the child
+        used += len(kids)
+        ub = min(ub, _upper(mech, q, cells, kids, dx, dy))
+        keep = np.ones(len(rows), bool)
+        keep[pick] = False
+        rows = np.concatenate([rows[keep], kids])
+        lb = np.concatenate([lb[keep], klb])
+        unk = np.concatenate([unk[keep], kunk])
+        if truncated:
+            break
+    low = float(lb.min()) if len(lb) else math.inf
+    tol = rtol * max(abs(ub) if math.isfinite(ub) else 0.0, q.scale, 1e-300)
+    sizes = cells.sizes(rows)
+    return Bound(lower=low, upper=ub, cells=int(used), leaves=int(len(rows)),
+                 smallest_cell=float(sizes.min()) if len(sizes) else 0.0,
+                 largest_cell=float(sizes.max()) if len(sizes) else 0.0,
+                 may_unreachable=bool(np.any(unk & (lb <= q.floor))), converged=converged or ub - low <= tol,
+                 tol=float(tol))

@@ -1,0 +1,454 @@
+"""A small vectorised interval arithmetic on NumPy arrays, with outward rounding.
+
+An :class:`Interval` holds two float arrays ``lo <= hi`` of one shape: the set of reals
+``[lo, hi]`` elementwise. Every operation returns an interval that contains the exact
+(real-number) result of the operation applied to every pair of reals of its operands:
+
+* ``+ - * /``, :meth:`Interval.sqr`, :meth:`Interval.sqrt` are computed on the
+  endpoints in IEEE 754 double precision, whose basic operations (``+ - * /`` and
+  ``sqrt``) are correctly rounded to nearest: the exact value lies within half an ulp
+  of the float. Each computed endpoint is then moved one ulp outward
+  (``np.nextafter`` toward ``-inf`` for ``lo``, toward ``+inf`` for ``hi``), so the
+  enclosure holds in floating point (a rounding of one ulp is more than the half ulp
+  the rounding can lose; overflow gives an infinite endpoint, still an enclosure).
+* ``abs``, ``min``, ``max`` and negation are exact in floating point: no rounding.
+* division by an interval that contains 0 gives ``(-inf, inf)`` (unbounded); a NaN
+  endpoint (``inf - inf``, ``0 * inf``) is replaced by the infinite endpoint on its
+  side, so a result is always an interval, possibly unbounded.
+* :meth:`Interval.sqrt` of an interval whose lower end is negative takes the root of
+  its non-negative part and reports where that happened (:meth:`Interval.sqrt`
+  returns the flags): the argument may be negative there, which the callers read as
+  "the point may be out of reach".
+
+Inclusion isotonicity: each operation is monotone in its operands' endpoints (rounding
+to nearest and ``nextafter`` are monotone), so the result over a sub-box is contained in
+the result over the box; :mod:`mechopt.analysis.bounds` relies on it (its bounds never
+fall when a cell is split). The natural interval extension of an expression (each
+operation replaced by its interval version) encloses the expression's range over a
+box, overestimating it by the dependency between repeated variables, an error of
+first order in the box's width (Moore, Kearfott, Cloud, *Introduction to Interval
+Analysis*, SIAM 2009, ch. 5-6).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["Interval", "Gradient", "as_interval", "hypot", "minimum", "maximum"]
+
+_NINF, _PINF = -np.inf, np.inf
+
+
+def _make(lo, hi):
+    """An :class:`Interval` of endpoint arrays known to be ordered (no check)."""
+    out = object.__new__(Interval)
+    out.lo, out.hi = lo, hi
+    return out
+
+
+def _down(v):
+    """``v`` moved one ulp toward -inf (NaN -> -inf: unbounded)."""
+    v = np.nextafter(v, _NINF)
+    return np.where(v != v, _NINF, v)
+
+
+def _up(v):
+    """``v`` moved one ulp toward +inf (NaN -> +inf: unbounded)."""
+    v = np.nextafter(v, _PINF)
+    return np.where(v != v, _PINF, v)
+
+
+class Interval:
+    """Closed intervals ``[lo, hi]``, elementwise over arrays (module docstring).
+
+    Parameters
+    ----------
+    lo : array_like
+        Lower ends.
+    hi : array_like, optional
+        Upper ends (default ``lo``: degenerate intervals); broadcast with ``lo``.
+
+    Raises
+    ------
+    ValueError
+        Where ``lo > hi``.
+    """
+
+    __slots__ = ("lo", "hi")
+    __array_priority__ = 1000  # ndarray op Interval -> Interval's reflected op
+
+    def __init__(self, lo, hi=None):
+        lo = np.asarray(lo, dtype=float)
+        hi = lo if hi is None else np.asarray(hi, dtype=float)
+        lo, hi = np.broadcast_arrays(lo, hi)
+        if np.any(lo > hi):
+            raise ValueError("an interval needs lo <= hi")
+        self.lo, self.hi = lo, hi
+
+    # --- helpers -------------------------------------------------------------------
+    @property
+    def shape(self):
+        return self.lo.shape
+
+    def __repr__(self):
+        return f"Interval({self.lo!r}, {self.hi!r})"
+
+    def __getitem__(self, key):
+        return _make(self.lo[key], self.hi[key])
+
+    def contains(self, v):
+        """Elementwise ``lo <= v <= hi``.
+
+        Parameters
+        ----------
+        v : array_like
+            Values.
+
+        Returns
+        -------
+        ndarray of bool
+            Whether each value lies in its interval.
+        """
+        v = np.asarray(v, dtype=float)
+        return (self.lo <= v) & (v <= self.hi)
+
+    @property
+    def width(self):
+        """``hi - lo`` (rounded up)."""
+        return _up(self.hi - self.lo)
+
+    @property
+    def mid(self):
+        """The midpoints (a float inside each interval; not an enclosure)."""
+        m = 0.5 * self.lo + 0.5 * self.hi
+        return np.clip(np.where(np.isfinite(m), m, np.where(np.isfinite(self.lo), self.lo, self.hi)),
+                       self.lo, self.hi)
+
+    def nonneg(self):
+        """The interval with its lower end raised to 0: only for an expression known to be
+        non-negative in exact arithmetic (a sum of squares), whose outward rounding may
+        have moved ``lo`` below 0.
+
+        Returns
+        -------
+        Interval
+            ``[max(lo, 0), max(hi, 0)]``.
+        """
+        return _make(np.maximum(self.lo, 0.0), np.maximum(self.hi, 0.0))
+
+    # --- arithmetic ----------------------------------------------------------------
+    def __neg__(self):
+        return _make(-self.hi, -self.lo)
+
+    def __add__(self, other):
+        if isinstance(other, Gradient):  # its reflected operation keeps the derivatives
+            return NotImplemented
+        o = as_interval(other)
+        return _make(_down(self.lo + o.lo), _up(self.hi + o.hi))
+
+    __radd__ = __add__
+
+    def __sub__(self, other):
+        if isinstance(other, Gradient):  # its reflected operation keeps the derivatives
+            return NotImplemented
+        o = as_interval(other)
+        return _make(_down(self.lo - o.hi), _up(self.hi - o.lo))
+
+    def __rsub__(self, other):
+        return as_interval(other) - self
+
+    def __mul__(self, other):
+        if isinstance(other, Gradient):  # its reflected operation keeps the derivatives
+            return NotImplemented
+        o = as_interval(other)
+        with np.errstate(invalid="ignore", over="ignore"):
+            if o.lo is o.hi:  # a constant: two products
+                p, q = self.lo * o.lo, self.hi * o.lo
+                lo, hi = np.minimum(p, q), np.maximum(p, q)
+            else:
+                p, q, r, t = self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi
+                lo = np.minimum(np.minimum(p, q), np.minimum(r, t))  # NaN (0 * inf) propagates
+                hi = np.maximum(np.maximum(p, q), np.maximum(r, t))
+        return _make(_down(lo), _up(hi))
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, other):
+        if isinstance(other, Gradient):  # its reflected operation keeps the derivatives
+            return NotImplemented
+        o = as_interval(other)
+        zero = (o.lo <= 0.0) & (o.hi >= 0.0)
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            p, q, r, t = self.lo / o.lo, self.lo / o.hi, self.hi / o.lo, self.hi / o.hi
+            lo = np.minimum(np.minimum(p, q), np.minimum(r, t))
+            hi = np.maximum(np.maximum(p, q), np.maximum(r, t))
+        return _make(np.where(zero, _NINF, _down(lo)), np.where(zero, _PINF, _up(hi)))
+
+    def __rtruediv__(self, other):
+        return as_interval(other) / self
+
+    def sqr(self):
+        """``x^2`` (tighter than ``x * x``: one variable), lower end >= 0.
+
+        Returns
+        -------
+        Interval
+            The squares.
+        """
+        with np.errstate(over="ignore"):
+            a, b = self.lo * self.lo, self.hi * self.hi
+        straddle = (self.lo <= 0.0) & (self.hi >= 0.0)
+        lo = np.where(straddle, 0.0, np.maximum(_down(np.minimum(a, b)), 0.0))
+        return _make(lo, _up(np.maximum(a, b)))
+
+    def sqrt(self):
+        """``sqrt(x)`` of the non-negative part, and where ``lo < 0``.
+
+        Returns
+        -------
+        root : Interval
+            ``[sqrt(max(lo, 0)), sqrt(max(hi, 0))]``, outward rounded (lower end >= 0).
+        negative : ndarray of bool
+            Where the argument may be negative (``lo < 0``): the root encloses only its
+            non-negative part there.
+        """
+        neg = self.lo < 0.0
+        lo = np.maximum(_down(np.sqrt(np.maximum(self.lo, 0.0))), 0.0)
+        return _make(lo, _up(np.sqrt(np.maximum(self.hi, 0.0)))), neg
+
+    def __abs__(self):
+        straddle = (self.lo <= 0.0) & (self.hi >= 0.0)
+        alo, ahi = np.abs(self.lo), np.abs(self.hi)
+        return _make(np.where(straddle, 0.0, np.minimum(alo, ahi)), np.maximum(alo, ahi))
+
+
+def as_interval(v) -> Interval:
+    """``v`` as an :class:`Interval` (a number or array: degenerate intervals).
+
+    Parameters
+    ----------
+    v : Interval, Gradient or array_like
+        An interval (with derivatives), or exact values.
+
+    Returns
+    -------
+    Interval or Gradient
+        ``v`` itself, or ``[v, v]``.
+    """
+    if isinstance(v, (Interval, Gradient)):
+        return v
+    v = np.asarray(v, dtype=float)
+    return _make(v, v)
+
+
+def hypot(a, b) -> Interval:
+    """``sqrt(a^2 + b^2)`` (the sum of squares is non-negative: no flag).
+
+    Parameters
+    ----------
+    a, b : Interval or array_like
+        The legs.
+
+    Returns
+    -------
+    Interval
+        The enclosure of the norm.
+    """
+    return (as_interval(a).sqr() + as_interval(b).sqr()).nonneg().sqrt()[0]
+
+
+def minimum(a, b) -> Interval:
+    """Elementwise ``min(a, b)`` (exact: no rounding).
+
+    Parameters
+    ----------
+    a, b : Interval or array_like
+        The operands.
+
+    Returns
+    -------
+    Interval
+        ``[min(a.lo, b.lo), min(a.hi, b.hi)]``.
+    """
+    a, b = as_interval(a), as_interval(b)
+    return _make(np.minimum(a.lo, b.lo), np.minimum(a.hi, b.hi))
+
+
+def maximum(a, b) -> Interval:
+    """Elementwise ``max(a, b)`` (exact: no rounding).
+
+    Parameters
+    ----------
+    a, b : Interval or array_like
+        The operands.
+
+    Returns
+    -------
+    Interval
+        ``[max(a.lo, b.lo), max(a.hi, b.hi)]``.
+    """
+    a, b = as_interval(a), as_interval(b)
+    return _make(np.maximum(a.lo, b.lo), np.maximum(a.hi, b.hi))
+
+
+def _parts(o):
+    """``(value, gradient or None)`` of a :class:`Gradient` or a constant."""
+    if isinstance(o, Gradient):
+        return o.v, o.g
+    return as_interval(o), None
+
+
+class Gradient:
+    """An interval value with interval partial derivatives: forward-mode automatic
+    differentiation in interval arithmetic (each derivative by the chain rule, every
+    operation outward rounded as :class:`Interval`'s). Over a box, ``v`` encloses the
+    function's range and ``g[k]`` its ``k``-th partial derivative's range, so the mean
+    value form ``f(C) in f(c) + sum_k g_k (C_k - c_k)`` (``c`` a point of the box ``C``)
+    encloses the range with an overestimate of second order in the box's width
+    (Moore, Kearfott, Cloud 2009, sec. 6.4). ``abs`` is Lipschitz, not differentiable at
+    0: its derivative is enclosed by ``[-1, 1]`` times the argument's there (Clarke's
+    generalised gradient; Lebourg's mean value theorem keeps the mean value form valid).
+    Operations mirror :class:`Interval`'s (``lo``, ``hi``, ``sqr``, ``sqrt``, ``nonneg``,
+    ``abs``), so one expression evaluates either way.
+
+    Parameters
+    ----------
+    v : Interval
+        The value.
+    g : tuple of Interval
+        The partial derivatives.
+    """
+
+    __slots__ = ("v", "g")
+    __array_priority__ = 1001
+
+    def __init__(self, v, g):
+        self.v, self.g = as_interval(v), tuple(as_interval(d) for d in g)
+
+    @classmethod
+    def variables(cls, *boxes):
+        """The independent variables ``boxes`` (intervals), each with a unit derivative.
+
+        Parameters
+        ----------
+        *boxes : Interval
+            The variables' ranges.
+
+        Returns
+        -------
+        tuple of Gradient
+            One per variable.
+        """
+        n = len(boxes)
+        return tuple(cls(b, tuple(Interval(np.full(b.shape, float(i == k))) for k in range(n)))
+                     for i, b in enumerate(boxes))
+
+    @property
+    def lo(self):
+        return self.v.lo
+
+    @property
+    def hi(self):
+        return self.v.hi
+
+    @property
+    def shape(self):
+        return self.v.shape
+
+    def _new(self, v, g):
+        out = object.__new__(Gradient)
+        out.v, out.g = v, g
+        return out
+
+    def __neg__(self):
+        return self._new(-self.v, tuple(-d for d in self.g))
+
+    def __add__(self, other):
+        v, g = _parts(other)
+        return self._new(self.v + v, self.g if g is None else tuple(a + b for a, b in zip(self.g, g)))
+
+    __radd__ = __add__
+
+    def __sub__(self, other):
+        v, g = _parts(other)
+        return self._new(self.v - v, self.g if g is None else tuple(a - b for a, b in zip(self.g, g)))
+
+    def __rsub__(self, other):
+        return (-self) + other
+
+    def __mul__(self, other):
+        v, g = _parts(other)
+        if g is None:
+            return self._new(self.v * v, tuple(d * v for d in self.g))
+        return self._new(self.v * v, tuple(a * v + self.v * b for a, b in zip(self.g, g)))
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, other):
+        v, g = _parts(other)
+        q = self.v / v
+        if g is None:
+            return self._new(q, tuple(d / v for d in self.g))
+        return self._new(q, tuple((a - q * b) / v for a, b in zip(self.g, g)))
+
+    def __rtruediv__(self, other):
+        v, _ = _parts(other)
+        q = v / self.v
+        return self._new(q, tuple(-(q * d) / self.v for d in self.g))
+
+    def sqr(self):
+        """``x^2``.
+
+        Returns
+        -------
+        Gradient
+            Value and derivatives ``2 x dx``.
+        """
+        return self._new(self.v.sqr(), tuple(2.0 * (self.v * d) for d in self.g))
+
+    def sqrt(self):
+        """``sqrt(x)`` of the non-negative part, and where ``lo < 0`` (:meth:`Interval.sqrt`).
+
+        Returns
+        -------
+        root : Gradient
+            Value and derivatives ``dx / (2 sqrt(x))`` (unbounded where the root may vanish).
+        negative : ndarray of bool
+            Where the argument may be negative.
+        """
+        r, neg = self.v.sqrt()
+        return self._new(r, tuple(d / (2.0 * r) for d in self.g)), neg
+
+    def nonneg(self):
+        """The value's lower end raised to 0 (:meth:`Interval.nonneg`), derivatives kept.
+
+        Returns
+        -------
+        Gradient
+            The same function, known non-negative.
+        """
+        return self._new(self.v.nonneg(), self.g)
+
+    def __abs__(self):
+        s = _make(np.where(self.v.lo >= 0.0, 1.0, -1.0), np.where(self.v.hi <= 0.0, -1.0, 1.0))
+        return self._new(abs(self.v), tuple(d * s for d in self.g))
+
+    def mean_value_lower(self, centre, box):
+        """Lower ends of the mean value form ``f(c) + sum_k g_k (C_k - c_k)``.
+
+        Parameters
+        ----------
+        centre : Interval or Gradient
+            ``f`` enclosed at the point ``c`` (of each box).
+        box : tuple
+            Per variable ``(C_k, c_k)``: the box's interval and the point's coordinate.
+
+        Returns
+        -------
+        ndarray
+            The lower ends (-inf where a derivative is unbounded).
+        """
+        fc = centre.v if isinstance(centre, Gradient) else centre
+        acc = fc
+        for d, (C, c) in zip(self.g, box):
+            acc = acc + d * (as_interval(C) - c)
+        return acc.lo
