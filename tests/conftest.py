@@ -13,11 +13,16 @@ function (this session fixture, or a module-scoped one) go to one worker as a gr
 the modules of :data:`SPREAD`, whose tests are long beside their fixture, and those of
 :data:`SPLIT`, one group per fixture), and so do the tests of :data:`TOGETHER`, which
 share a session fixture across modules (``default_run``); every other test is
-distributed on its own, the largest groups first.
+distributed on its own. The work units start longest first (longest processing time
+first: the long tests do not end the run alone on one worker while the other waits),
+by the seconds :data:`DURATIONS_FILE` records of their tests (a test it does not list
+counts as :data:`UNLISTED_SECONDS`); ``pytest --store-durations`` (with ``-n 2`` or
+without) writes that file anew from the run's own test times.
 """
 from __future__ import annotations
 
 import importlib
+import json
 import re
 import time
 from pathlib import Path
@@ -44,6 +49,12 @@ TOGETHER = {
                             "tests/test_problems.py::test_le_relaxed_is_at_least_as_good",
                             "tests/test_convergence.py::test_le_relaxed_default_optimum_is_at_least_the_tied_one"),
 }
+
+#: seconds (setup, call and teardown) of the tests of a measured run that took at least
+#: :data:`LISTED_SECONDS`, by node id: the order in which the work units start
+DURATIONS_FILE = Path(__file__).with_name("durations.json")
+LISTED_SECONDS = 0.5
+UNLISTED_SECONDS = 0.1
 
 
 @pytest.fixture(scope="session")
@@ -131,6 +142,39 @@ def pytest_configure(config):
     marker.touch()
 
 
+def pytest_addoption(parser):
+    parser.addoption("--store-durations", action="store_true", default=False,
+                     help=f"write the seconds of every test of this run that took at least {LISTED_SECONDS} s "
+                          f"to tests/{DURATIONS_FILE.name} (the order in which pytest -n N starts them)")
+
+
+_measured: dict = {}
+
+
+def pytest_runtest_logreport(report):
+    """Sum each test's setup, call and teardown seconds (for ``--store-durations``)."""
+    _measured[report.nodeid] = _measured.get(report.nodeid, 0.0) + report.duration
+
+
+def pytest_sessionfinish(session):
+    """``--store-durations``: write :data:`DURATIONS_FILE` (in the main process)."""
+    config = session.config
+    if hasattr(config, "workerinput") or not config.getoption("store_durations"):
+        return
+    kept = {k: round(v, 2) for k, v in sorted(_measured.items(), key=lambda kv: -kv[1]) if v >= LISTED_SECONDS}
+    tmp = DURATIONS_FILE.with_suffix(".tmp")
+    tmp.write_text(json.dumps(kept, indent=0) + "\n")
+    tmp.replace(DURATIONS_FILE)
+
+
+def durations() -> dict:
+    """``{node id: seconds}`` of :data:`DURATIONS_FILE` (empty if it is missing or unreadable)."""
+    try:
+        return {str(k): float(v) for k, v in json.loads(DURATIONS_FILE.read_text()).items()}
+    except (OSError, ValueError, AttributeError):
+        return {}
+
+
 def _groups():
     """``{module: scope}`` of the test modules whose tests go to one worker together:
     those that use the quick reproduction (one scope for all of them) and those with a
@@ -176,10 +220,24 @@ else:
         from xdist.scheduler import LoadScopeScheduling
 
         groups = _groups()
+        seconds = durations()
 
         class GroupScheduling(LoadScopeScheduling):
+            _ordered = False
+
             def _split_scope(self, nodeid):
                 return scope_of(nodeid, groups)
+
+            def _assign_work_unit(self, node):
+                # the first assignment comes after the whole queue is built: order it
+                # once, longest unit first (a stable sort: equal units keep their order)
+                if not self._ordered:
+                    self._ordered = True
+                    cost = {scope: sum(seconds.get(n, UNLISTED_SECONDS) for n in unit)
+                            for scope, unit in self.workqueue.items()}
+                    for scope in sorted(self.workqueue, key=lambda s: -cost[s]):
+                        self.workqueue.move_to_end(scope)
+                super()._assign_work_unit(node)
 
         return GroupScheduling(config, log)
 
