@@ -298,6 +298,9 @@ CERTIFICATE_DESIGN = {
     "feasible": ("every requirement holds", ""),
     "requirements": ("`{requirement: {...}}` with the keys below", ""),
     "tolerance": ("what the margins rest on, as in `design.json`", ""),
+    "tolerance_box": ("with `mechopt design --tolerance T`: the box the design was certified over, the keys of "
+                      "`mechopt check --json`'s `box` below (the 2^n corners evaluated, no random draws; every "
+                      "requirement with an interval bound proven over the whole box)", ""),
 }
 CERTIFICATE_REQUIREMENT = {
     "margin": ("the requirement's margin (> 0 satisfied), as `margin_<name>` of `front.csv`", "its `unit`"),
@@ -402,6 +405,9 @@ DESIGN_RUN = {
                "mirrored search below the base line); the same under `settings`", ""),
     "polished": ("objectives whose best design the local polish improved", ""),
     "dropped_by_certification": ("front designs that failed the fine certification", "-"),
+    "tolerance": ("with `--tolerance`: the tolerance T of every length", "unit"),
+    "dropped_by_tolerance": ("with `--tolerance`: certified designs dropped because they do not hold over "
+                             "their +-T box", "-"),
     "front_size": ("rows of `front.csv`", "-"),
     "other_designs": ("with a free placement searched on both sides of the base line (a five-bar of one "
                       "mode) or `--place free`: the certified designs of the other searches (below the line; "

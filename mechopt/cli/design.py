@@ -66,6 +66,11 @@ def add_parser(subparsers):
                          "farthest box coordinate from the base midpoint, |x| or |y|)")
     ds.add_argument("--min-length", type=float, default=None,
                     help="shortest link [unit] (default --max-length / 1000)")
+    ds.add_argument("--tolerance", type=float, default=None, metavar="T",
+                    help="every front design must also hold for every mechanism whose lengths lie within +-T "
+                         "[unit] of its own: the box's corners evaluated and, for the five-bars, interval "
+                         "bounds over the whole box proving LCI, type-II, speed, force and reach; the polish "
+                         "keeps designs inside, designs that fail are dropped; each box in certificate.json")
     ds.add_argument("--shape", default=None, metavar="R1,R2,R3",
                     help="fix the link ratios (non-dimensional, one per length of the mechanism); the "
                          "design variable is the scale D [unit] (Liu 2006 sec. 3.2.3)")
@@ -133,7 +138,7 @@ def run(args) -> int:
                          min_length=args.min_length, max_length=args.max_length, shape=shape,
                          algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
                          n_jobs=args.n_jobs, client=client, out=args.out, progress=True, pick=args.pick,
-                         polish=not args.no_polish, overwrite=args.overwrite)
+                         polish=not args.no_polish, overwrite=args.overwrite, tolerance=args.tolerance)
     except NoFeasibleDesign as exc:  # an empty result is a result: its files are written
         print(f"{exc}; wrote {args.out}/run.json, population.csv (least violating first), history.csv, "
               f"front.png ({time.perf_counter() - started:.1f} s)")
@@ -144,7 +149,9 @@ def run(args) -> int:
     place = chosen["task_placement"]
     stages = ", ".join(f"{k} {v:.1f}" for k, v in res.info["stage_times_s"].items())
     print(_front_ends(res, chosen["objective_units"]))
-    print(f"{len(res.front)} certified designs on the front; chosen ({res.info['chosen']['by']}): "
+    box = (f" (each over its +-{args.tolerance:g} {chosen['unit']} tolerance box; "
+           f"{res.info['dropped_by_tolerance']} dropped that do not hold over theirs)" if args.tolerance else "")
+    print(f"{len(res.front)} certified designs on the front{box}; chosen ({res.info['chosen']['by']}): "
           f"{chosen['repr']}; {obj}; task centre at ({place['task_x']:.6g}, {place['task_y']:.6g}) "
           f"{chosen['unit']}; wrote {args.out}/front.csv, design.json, run.json, design.png "
           f"({time.perf_counter() - started:.1f} s: {stages})")
@@ -215,7 +222,8 @@ def _run_any(args, task, req, objectives, shape, started) -> int:
                              overwrite=args.overwrite, progress=True, mode=args.mode, place=args.place,
                              min_length=args.min_length, max_length=args.max_length, shape=shape,
                              algorithm=args.algorithm, pop=args.pop, gen=args.gen, seed=args.seed,
-                             n_jobs=args.n_jobs, client=client, polish=not args.no_polish)
+                             n_jobs=args.n_jobs, client=client, polish=not args.no_polish,
+                             tolerance=args.tolerance)
     except NoFeasibleDesign as exc:  # a result: no mechanism has a feasible design (no file written)
         print(f"{exc} ({time.perf_counter() - started:.1f} s)")
         return 0

@@ -28,7 +28,7 @@ import numpy as np
 from mechopt.analysis.design_eval import DesignEvaluator, certify
 from mechopt.analysis.sampling import Sampling
 
-__all__ = ["certificate", "check", "tolerance_box", "requirement_entries", "proven_bounds", "format_check",
+__all__ = ["certificate", "check", "tolerance_box", "box_certified", "box_failures", "requirement_entries", "proven_bounds", "format_check",
            "BOX_SAMPLES", "CERTIFICATE_VERSION", "CLAIM_RTOL", "BOUNDED"]
 
 #: the format of certificate.json (a new key keeps it; a changed meaning raises it)
@@ -197,6 +197,8 @@ def certificate(result) -> dict:
         designs.append({"index": i, "digest": digest, "variables": rec["variables"],
                         "task_placement": rec["task_placement"], "feasible": bool(rec["feasible"]),
                         "requirements": requirement_entries(ev, res, bounds), "tolerance": rec["tolerance"]})
+        if i in result.boxes:  # a run with --tolerance: the box it certified the design over
+            designs[-1]["tolerance_box"] = result.boxes[i]
     return {"certificate_version": CERTIFICATE_VERSION, "mechopt_version": __version__,
             "settings": ev.settings(), "sampling": asdict(Sampling.fine()),
             "chosen": int(result.chosen_index), "designs": designs,
@@ -351,6 +353,42 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
     if all(m == "proven" for m in out["methods"].values()):
         out["method"] = "proven"
     return out
+
+
+def box_failures(box: dict) -> list:
+    """The requirements a tolerance box (:func:`tolerance_box`) does not certify: those
+    that fail at an evaluated mechanism, and those whose interval bound over the box does
+    not prove them (a bounded requirement must be proven; the others rest on the
+    evaluated mechanisms).
+
+    Parameters
+    ----------
+    box : dict
+        A :func:`tolerance_box` result.
+
+    Returns
+    -------
+    list of str
+        The names, in the box's order.
+    """
+    return [n for n, ok in box["holds"].items()
+            if not ok or (n in box["proven"] and box["methods"][n] != "proven")]
+
+
+def box_certified(box: dict) -> bool:
+    """Whether a tolerance box certifies its design: no :func:`box_failures`.
+
+    Parameters
+    ----------
+    box : dict
+        A :func:`tolerance_box` result.
+
+    Returns
+    -------
+    bool
+        True when every requirement holds over the box as :func:`box_failures` asks.
+    """
+    return not box_failures(box)
 
 
 #: a margin a certificate claims agrees with the re-check when within this relative

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 import weakref
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 import pandas as pd
@@ -49,6 +49,9 @@ class DesignResult:
         The row of ``front`` written as design.json.
     error : mechopt.analysis.design_eval.NoFeasibleDesign, optional
         The error of a run without a feasible design (``front`` empty).
+    boxes : dict
+        With a tolerance, ``{row of front: its tolerance box}``
+        (:func:`mechopt.workflows.certificate.tolerance_box`); empty without.
     """
 
     front: pd.DataFrame
@@ -58,6 +61,9 @@ class DesignResult:
     chosen_index: int = 0
     #: the :class:`NoFeasibleDesign` of a run without a feasible design (``front`` empty)
     error: object = None
+    #: with a tolerance, each front design's tolerance box
+    #: (:func:`mechopt.workflows.certificate.tolerance_box`) by its row in ``front``
+    boxes: dict = field(default_factory=dict)
 
     def _F(self):
         ev = self.evaluator
@@ -205,9 +211,29 @@ def _evaluated(problem, x, sampling):
     return seen[key]
 
 
-def _certified(problem, x) -> bool:
-    """:func:`certify`'s verdict on the row ``x``: every ``g <= 0`` with its sampling."""
-    return feasible(_evaluated(problem, x, Sampling.fine())[1])
+def _certified(problem, x, tolerance=None) -> bool:
+    """:func:`certify`'s verdict on the row ``x``: every ``g <= 0`` with its sampling;
+    with ``tolerance`` [L] also over its tolerance box (:func:`_box_of`)."""
+    if not feasible(_evaluated(problem, x, Sampling.fine())[1]):
+        return False
+    return tolerance is None or _box_of(problem.evaluator, problem.evaluator.decode(x), tolerance)[0]
+
+
+def _design_key(ev, v) -> tuple:
+    """A design's identity (a decoded design's or a front row's): ``(lengths..., mode,
+    task_x, task_y)``, the lengths in the spec's order [L]."""
+    return (*(float(v[n]) for n in ev.spec.lengths), str(v["mode"]), float(v["task_x"]), float(v["task_y"]))
+
+
+def _box_of(ev, v, tolerance):
+    """``(holds, box)``: the tolerance box of the decoded design ``v``
+    (:func:`mechopt.workflows.certificate.tolerance_box`, its corners and the interval
+    bounds, no random draws) and whether the design is certified over it
+    (:func:`mechopt.workflows.certificate.box_certified`)."""
+    from mechopt.workflows.certificate import box_certified, tolerance_box
+
+    box = tolerance_box(ev, v, tolerance, n_samples=0)
+    return box_certified(box), box
 
 
 def _rows_eval(problem, X, j, sampling):
@@ -475,7 +501,7 @@ def _polish_lengths(problem, x0, j, sampling, seed=0, iters=100, step_min=1e-4, 
     return x, f
 
 
-def _polish(problem, x0, j, iters=40, seed=0, sampling=None):
+def _polish(problem, x0, j, iters=40, seed=0, sampling=None, tolerance=None):
     """Local improvement of objective ``j`` from the feasible design ``x0``: SLSQP
     (finite-difference gradients, a quadratic model: it walks along a smooth active
     constraint), COBYLA (linear models of the constraints: it walks along an active
@@ -485,8 +511,9 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None):
     halved on failure, from 1 % of each variable's range down to 1e-7). Active
     constraints make the optimum a corner the genetic search only approaches; this
     walks into it. Evaluations use ``sampling`` (default the certification's,
-    :meth:`Sampling.fine`); the result is re-checked by :func:`certify` and pulled back
-    toward ``x0`` until it passes. Returns the new X row or None."""
+    :meth:`Sampling.fine`); the result is re-checked by :func:`certify` (with
+    ``tolerance``, over its tolerance box too) and pulled back toward ``x0`` until it
+    passes. Returns the new X row or None."""
     sampling = sampling or Sampling.fine()
     span = np.where(problem.xu > problem.xl, problem.xu - problem.xl, 1.0)
     cont = np.array([i for i, n in enumerate(problem.var_names) if n != "mode"])
@@ -582,7 +609,7 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None):
         return None
     for _ in range(40):  # the fine check; pull back toward x0 until it passes
         x = full(z)
-        if _certified(problem, x):
+        if _certified(problem, x, tolerance):
             return x
         z = z0 + 0.5 * (z - z0) if _ % 2 else z0 + 0.9 * (z - z0)
     return None
@@ -596,7 +623,7 @@ def _polish_start(item):
     :func:`_place` and :func:`_polish`, until a round gains less than 0.1 %.
     Every evaluation uses the certification's sampling. Returns ``(x, f)`` of a
     certified design better than the start, or None."""
-    problem, x, j, seed, rounds = item
+    problem, x, j, seed, rounds, tolerance = item
     fine = Sampling.fine()
     x = np.asarray(x, float)
     f, G = _rows_eval(problem, x[None, :], j, fine)
@@ -614,7 +641,7 @@ def _polish_start(item):
             fp, Gp = _rows_eval(problem, placed[None, :], j, fine)
             if not np.all(Gp <= 0):
                 break
-            new = _polish(problem, placed, j, seed=seed + 1000 * r, sampling=fine)
+            new = _polish(problem, placed, j, seed=seed + 1000 * r, sampling=fine, tolerance=tolerance)
             new = placed if new is None else new
             fn = float(_rows_eval(problem, new[None, :], j, fine)[0][0])
             gain = (f_cur - fn) / max(abs(f_cur), 1e-300) if math.isfinite(f_cur) else math.inf
@@ -622,12 +649,13 @@ def _polish_start(item):
                 cur, f_cur = new, fn
             if not gain > 1e-3:
                 break
-    if not f_cur < f0 or not _certified(problem, cur):
+    if not f_cur < f0 or not _certified(problem, cur, tolerance):
         return None
     return cur, float(f_cur)
 
 
-def _polish_front(problem, X, objectives=None, n_starts=None, rounds=3, seed=0, n_jobs=1, client=None):
+def _polish_front(problem, X, objectives=None, n_starts=None, rounds=3, seed=0, n_jobs=1, client=None,
+                  tolerance=None):
     """Multi-start polish of each objective ``j`` in ``objectives`` (default all): from
     the front's best design for ``j`` and ``n_starts - 1`` more front designs, evenly
     spaced in rank over the better half for ``j`` (the genetic search leaves each on
@@ -652,7 +680,7 @@ def _polish_front(problem, X, objectives=None, n_starts=None, rounds=3, seed=0, 
         ranks = np.unique(np.round(np.linspace(0, (len(X) - 1) / 2.0, m)).astype(int))
         for k, r in enumerate(ranks):
             items.append((problem, X[order[r]], j, seed + 7919 * k + 104729 * j,
-                          rounds if _placement_index(problem) else 1))
+                          rounds if _placement_index(problem) else 1, tolerance))
             owner.append(j)
     # the long starts (placement-dependent objectives) first: the workers end together
     first = sorted(range(len(items)), key=lambda i: _placement_free(problem, owner[i]))
@@ -671,7 +699,7 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
            *, mode=None, place="fixed", min_length=None, max_length=None, shape=None,
            algorithm=None, pop=None, gen=None, seed=1, n_jobs=1, client=None, out=None,
            progress=False, polish=True, pick=None, checkpoint_every=None, plot=True,
-           overwrite=False) -> DesignResult:
+           overwrite=False, tolerance=None) -> DesignResult:
     """Size ``mechanism`` (one of :func:`mechopt.analysis.design_eval.mechanisms`) for ``task``.
 
     Builds :class:`mechopt.problems.design.DesignProblem`, runs it with
@@ -743,6 +771,14 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
         Draw front.png and design.png (with ``out``).
     overwrite : bool
         Replace another run that ``out`` holds (only the files that run wrote).
+    tolerance : float, optional
+        ``T`` [L]: every front design must also hold for every mechanism whose lengths
+        lie within ``+- T`` of its own (:func:`mechopt.workflows.certificate.tolerance_box`
+        without random draws: the box's corners evaluated, and for the five-bars interval
+        bounds over the whole box, which must prove each requirement they bound); the
+        polish pulls a design back until it does, and a front design that does not is
+        dropped (``info["dropped_by_tolerance"]``). Each front design's box is in
+        certificate.json.
 
     Returns
     -------
@@ -772,6 +808,8 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     if checkpoint_every is not None:
         raise ValueError("design runs are not checkpointed; run mechopt.run.runner.optimize on the "
                          "registered 'design' problem to checkpoint one")
+    if tolerance is not None:
+        tolerance = _v.positive_length("tolerance", tolerance)
     def sub_front(place_, side, extra):
         """The certified front of the same run with ``place_`` and ``side`` (the same
         budget and seed), ``extra`` designs added, as decoded designs."""
@@ -779,7 +817,7 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
                        objectives=objectives, mode=mode, place=place_, min_length=min_length,
                        max_length=max_length, shape=shape, side=side)
         res = _design(sub, sub.evaluator, None, algorithm, pop, gen, seed, n_jobs, client, None, progress,
-                      polish, None, extra)
+                      polish, None, extra, tolerance=tolerance)
         names = (*ev.spec.lengths, *(("D",) if ev.shape is not None else ()), "mode", "task_x", "task_y")
         return [{k: (str(r[k]) if k == "mode" else float(r[k])) for k in names}
                 for r in res.front.to_dict("records")]
@@ -804,27 +842,28 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
         key = {"mechanism": mechanism, "task": _task_digest(task), "requirements": repr(requirements),
                "objectives": list(objectives), "mode": mode, "place": place, "min_length": min_length,
                "max_length": max_length, "shape": shape, "algorithm": repr(algorithm), "pop": pop, "gen": gen,
-               "seed": seed, "polish": polish, "pick": pick}
+               "seed": seed, "polish": polish, "pick": pick, "tolerance": tolerance}
         with _io.run_in(out, "design", key, DESIGN_OUTPUTS, overwrite) as manifest:
             result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress,
-                             polish, manifest, *other_designs())
+                             polish, manifest, *other_designs(), tolerance=tolerance)
     else:
         result = _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, None, progress, polish,
-                         None, *other_designs())
+                         None, *other_designs(), tolerance=tolerance)
     if result.error is not None:  # the files are written: the empty result is reported
         raise result.error
     return result
 
 
 def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, progress, polish, manifest,
-            extra=(), before=None):
+            extra=(), before=None, tolerance=None):
     """The run, polish and certification of :func:`design`, and its files with ``out``.
     ``extra`` are decoded designs (the front of the search below the base line, the
     ``free-y`` front of a ``free`` run) certified with the front and, those inside this
     search's bounds, added to the polish's starts; ``before`` the stage times [s] of
     the searches that found them. ``info["stage_times_s"]`` gives the wall time [s] of
     each stage (those searches, optimisation, polish, certification, files) and
-    ``info["wall_time_s"]`` their sum, the whole call."""
+    ``info["wall_time_s"]`` their sum, the whole call. With ``tolerance`` a front
+    design must also hold over its tolerance box (:func:`_box_of`)."""
     import time
 
     from mechopt.run import io as _io
@@ -847,21 +886,32 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
     polished = []
     t0 = time.perf_counter()
     if polish:
-        new = _polish_front(problem, X, seed=seed, n_jobs=info.get("n_jobs") or n_jobs or 1, client=client)
+        new = _polish_front(problem, X, seed=seed, n_jobs=info.get("n_jobs") or n_jobs or 1, client=client,
+                            tolerance=tolerance)
         for j, rows_j in new.items():
             if rows_j:
                 X = np.vstack([X, *rows_j])
                 polished.append(ev.objectives[j])
     stages["polish"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    rows, kept, dropped = [], [], 0
+    rows, kept, dropped, dropped_box, boxes = [], [], 0, 0, {}
     for v in [ev.decode(x) for x in X] + extra:  # the extra designs as given (exactly their placement)
         res = certify(ev, v)
         if not res["feasible"]:
             dropped += 1
             continue
+        if tolerance is not None:
+            key = _design_key(ev, v)
+            if key not in boxes:
+                boxes[key] = _box_of(ev, v, tolerance)
+            if not boxes[key][0]:
+                dropped_box += 1
+                continue
         rows.append(ev.row(v, res))
         kept.append(ev.objective_values(res))
+    if not rows and dropped_box:
+        return _empty_result(problem, ev, run, info, stages, out, manifest,
+                             _no_box(ev, tolerance, [box for _, box in boxes.values()]))
     if not rows:
         return _empty_result(problem, ev, run, info, stages, out, manifest, _no_design(problem, run, certified=True))
     F = np.array(kept) * np.array(list(ev.senses().values()))
@@ -873,7 +923,11 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
     ).reset_index(drop=True)
     info.update(design=ev.settings(), polished=polished, dropped_by_certification=dropped,
                 front_size=int(len(front)), problem="design", certification=asdict(Sampling.fine()))
+    if tolerance is not None:
+        info.update(tolerance=tolerance, dropped_by_tolerance=dropped_box)
     result = DesignResult(front, info, ev, run)
+    if tolerance is not None:
+        result.boxes = {i: boxes[_design_key(ev, row)][1] for i, row in front.iterrows()}
     chosen = result.pick(pick)
     result.chosen_index = chosen["index"]
     info["chosen"] = {"index": chosen["index"], "by": "knee" if pick is None else f"weights {pick}"}
@@ -964,6 +1018,25 @@ def _non_dominated(F):
         if not dom.any():
             keep.append(i)
     return keep
+
+
+def _no_box(ev, tolerance, boxes) -> NoFeasibleDesign:
+    """``no design holds over its +-T box``: every certified design failed its tolerance
+    box; names the requirement that fails in most boxes and the smallest margin found."""
+    from mechopt.workflows.certificate import box_failures
+
+    counts = {}
+    for box in boxes:
+        for name in box_failures(box):
+            counts[name] = counts.get(name, 0) + 1
+    worst = max(counts, key=counts.get)
+    low = min(box["min_margin"][worst] for box in boxes)
+    req = next(r for r in ev.active if r.name == worst)
+    unit = req.margin_unit.format(L=ev.unit)
+    msg = (f"no design holds over its tolerance box +-{tolerance:g} {ev.unit}: {ev.req.describe(worst, ev.unit)} "
+           f"fails in {counts[worst]} of the {len(boxes)} certified designs' boxes (smallest margin found "
+           f"{low:.4g} {unit}".rstrip(" -") + "); a smaller --tolerance, or looser requirements")
+    return NoFeasibleDesign(msg, {"violations": {}, "fails": counts, "miss": -low, "unit": unit})
 
 
 def _no_design(problem, run, certified=False) -> NoFeasibleDesign:
