@@ -143,12 +143,12 @@ def _det(m):
 
 def _two_smax_squared(m):
     """``2 s_max^2 = S + sqrt(P Q)`` (:func:`mechopt.core.indices.two_smax_squared`) of an
-    interval 2x2 matrix, with ``P = (a - d)^2 + (b + c)^2``, ``Q = (a + d)^2 + (b - c)^2``."""
+    interval 2x2 matrix, with ``P = (a - d)^2 + (b + c)^2``, ``Q = (a + d)^2 + (b - c)^2``,
+    as ``sqrt(P) sqrt(Q)``, each a norm (:func:`~mechopt.core.interval.hypot`: Lipschitz,
+    so the mean value form holds at isotropic poses, ``P = 0``)."""
     (a, b), (c, d) = m
     S = a.sqr() + b.sqr() + c.sqr() + d.sqr()
-    P = ((a - d).sqr() + (b + c).sqr()).nonneg()
-    Q = ((a + d).sqr() + (b - c).sqr()).nonneg()
-    return S + (P * Q).nonneg().sqrt()[0]
+    return S + hypot(a - d, b + c) * hypot(a + d, b - c)
 
 
 def _jacobian(A, b, w=(1.0, 1.0)):
