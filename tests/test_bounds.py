@@ -346,3 +346,41 @@ def test_length_boxes_only_where_supported():
     from mechopt.mechanisms.five_bar.model import FiveBar
     with pytest.raises(ValueError, match="no length"):
         FiveBar(1.0, 1.2, 0.5).closure_enclosure(Interval([0.0]), Interval([1.0]), lengths={"a1": Interval(1.0)})
+
+
+# ------------------------------------------------------------------ the mean value form
+def _mean_value_misses(mech, q, rng, n=1000):
+    """Points of random boxes where ``q`` (point evaluator) is below the mean value form's
+    lower end of its first term about the box's centre (LCI, type-II: one term)."""
+    x0, x1, y0, y1 = mech.bounding_box()
+    cx, cy = rng.uniform(x0, x1, n), rng.uniform(y0, y1, n)
+    hw = mech.length_scale * 0.03 * rng.random((2, n))
+    X, Y = Interval(cx - hw[0], cx + hw[0]), Interval(cy - hw[1], cy + hw[1])
+    gx, gy = iv.Gradient.variables(X, Y)
+    with np.errstate(all="ignore"):
+        A, b, certain = mech.closure_enclosure(gx, gy)
+        Ac, bc, _ = mech.closure_enclosure(Interval(X.mid), Interval(Y.mid))
+        low = q.terms(A, b)[0].mean_value_lower(q.terms(Ac, bc)[0], ((X, X.mid), (Y, Y.mid)))
+    misses = 0
+    for _ in range(4):
+        f = rng.random((2, n))
+        v = q.point(mech, X.lo + f[0] * (X.hi - X.lo), Y.lo + f[1] * (Y.hi - Y.lo))
+        misses += int(np.sum(certain & (v < low - 1e-9)))
+    return misses, int(certain.sum())
+
+
+@pytest.mark.parametrize("kind", list(KINDS))
+def test_mean_value_form_encloses_and_fails_with_a_wrong_derivative(kind, monkeypatch):
+    """The mean value form's lower end lies below every point value of its box (LCI and
+    the type-II function); with the quotient rule's second term dropped it does not."""
+    mech = KINDS[kind][0][1]()
+    rng = np.random.default_rng(23)
+    for q in (B.lci_quantity(), B.type2_quantity(1.0)):
+        misses, n = _mean_value_misses(mech, q, rng)
+        assert n > 100 and misses == 0
+    def quotient_without_its_second_term(self, other):  # d(a/b) = da / b: wrong
+        v, g = iv._parts(other)
+        return self._new(self.v / v, tuple(d / v for d in self.g))
+    monkeypatch.setattr(iv.Gradient, "__truediv__", quotient_without_its_second_term)
+    assert sum(_mean_value_misses(mech, q, np.random.default_rng(23))[0]
+               for q in (B.lci_quantity(), B.type2_quantity(1.0), B.type2_quantity(-1.0))) > 0

@@ -9,9 +9,12 @@ its points. Over a cell ``C``, each mechanism's
 contain the exact closure matrices ``A``, ``diag B`` at every point of ``C`` (outward
 rounding, :mod:`mechopt.core.interval`), or says that some point of ``C`` may be out of
 reach. A :class:`Quantity` turns those intervals into a lower bound of the quantity over
-``C`` (the natural interval extension of its formula), or, for a cell that may be out
-of reach, into the quantity's floor (its value at unreachable and singular poses in
-the point evaluators: LCI, speed and force 0, the type-II function -1; the floor is
+``C``: the larger of the natural interval extension of its formula and its mean value
+form ``q(c) + grad q(C) . (C - c)`` about the cell's centre ``c``, the gradient enclosed
+by interval forward differentiation (:class:`mechopt.core.interval.Gradient`; an error
+of second order in the cell's width, where the natural extension's is of first order);
+or, for a cell that may be out of reach, the quantity's floor (its value at
+unreachable and singular poses in the point evaluators: LCI, speed and force 0, the type-II function -1; the floor is
 a lower bound of every value, so the bound stays sound). The minimum over the cells'
 lower bounds is a lower bound of ``min_T q``.
 
@@ -26,8 +29,14 @@ stops). A child's bound is at least its parent's (both bound it; interval evalua
 is inclusion isotone), so the bound never falls as cells split, and a smaller budget
 runs a prefix of the same search: the bound does not rise when the budget shrinks.
 
-Assumptions, stated: the region's signed distance (:meth:`~mechopt.analysis.task.Task.signed_distance`)
-is the exact distance to its boundary up to rounding, absorbed by a margin of
+Tolerance boxes (``lengths``): the enclosures take the mechanism's lengths as intervals
+too, so the bound covers the task and every mechanism of the box at once; the lengths
+are variables of the mean value form but are not split, so the bound's excess over the
+box's minimum does not vanish with the cells (it grows like the square of the
+tolerance).
+
+Assumptions, stated: the region's signed distance
+(:meth:`~mechopt.analysis.task.Task.signed_distance`) is the exact distance to its boundary up to rounding, absorbed by a margin of
 ``1e-9 * diameter`` in the test ``sd(centre) >= -half diagonal`` that keeps a cell; the
 design spec's ``to_mech`` is a translation (checked; every spec's is); a path is the
 polyline through its float points, each piece enclosed by ``v + [t0, t1] e`` in
@@ -143,12 +152,12 @@ def _det(m):
 
 def _two_smax_squared(m):
     """``2 s_max^2 = S + sqrt(P Q)`` (:func:`mechopt.core.indices.two_smax_squared`) of an
-    interval 2x2 matrix, with ``P = (a - d)^2 + (b + c)^2``, ``Q = (a + d)^2 + (b - c)^2``."""
+    interval 2x2 matrix, with ``P = (a - d)^2 + (b + c)^2``, ``Q = (a + d)^2 + (b - c)^2``,
+    as ``sqrt(P) sqrt(Q)``, each a norm (:func:`~mechopt.core.interval.hypot`: Lipschitz,
+    so the mean value form holds at isotropic poses, ``P = 0``)."""
     (a, b), (c, d) = m
     S = a.sqr() + b.sqr() + c.sqr() + d.sqr()
-    P = ((a - d).sqr() + (b + c).sqr()).nonneg()
-    Q = ((a + d).sqr() + (b - c).sqr()).nonneg()
-    return S + (P * Q).nonneg().sqrt()[0]
+    return S + hypot(a - d, b + c) * hypot(a + d, b - c)
 
 
 def _jacobian(A, b, w=(1.0, 1.0)):

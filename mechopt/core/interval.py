@@ -240,20 +240,39 @@ def as_interval(v) -> Interval:
     return _make(v, v)
 
 
-def hypot(a, b) -> Interval:
-    """``sqrt(a^2 + b^2)`` (the sum of squares is non-negative: no flag).
+def hypot(a, b):
+    """``sqrt(a^2 + b^2)`` (the sum of squares is non-negative: no flag). Of
+    :class:`Gradient` arguments, the derivative ``(a da + b db) / r`` with each of
+    ``a / r``, ``b / r`` enclosed and intersected with ``[-1, 1]``: the norm is
+    1-Lipschitz, so its derivatives stay bounded where ``r`` may vanish (where the
+    square root's would not) and the mean value form keeps working near ``r = 0``.
 
     Parameters
     ----------
-    a, b : Interval or array_like
+    a, b : Interval, Gradient or array_like
         The legs.
 
     Returns
     -------
-    Interval
+    Interval or Gradient
         The enclosure of the norm.
     """
-    return (as_interval(a).sqr() + as_interval(b).sqr()).nonneg().sqrt()[0]
+    a, b = as_interval(a), as_interval(b)
+    if not (isinstance(a, Gradient) or isinstance(b, Gradient)):
+        return (a.sqr() + b.sqr()).nonneg().sqrt()[0]
+    (va, ga), (vb, gb) = _parts(a), _parts(b)
+    r = (va.sqr() + vb.sqr()).nonneg().sqrt()[0]
+
+    def unit(v):  # v / r within [-1, 1]
+        u = v / r
+        return _make(np.maximum(u.lo, -1.0), np.minimum(u.hi, 1.0))
+    ua, ub = unit(va), unit(vb)
+    n = len(ga if ga is not None else gb)
+    zero = tuple(_make(np.zeros(1), np.zeros(1)) for _ in range(n))
+    ga, gb = ga or zero, gb or zero
+    out = object.__new__(Gradient)
+    out.v, out.g = r, tuple(ua * da + ub * db for da, db in zip(ga, gb))
+    return out
 
 
 def minimum(a, b) -> Interval:

@@ -158,7 +158,8 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
         up = est if tolerance is not None and math.isfinite(est) else math.inf
         b = _b.lower_bound(ctx.check, ctx.task, q, to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y),
                            budget=budget or _b.BUDGET, lengths=lengths, upper=up)
-        out[name] = {"quantity": q.name, "lower_bound": b.lower, "estimate": est, "gap": est - b.lower, "upper": b.upper, "proven_margin": b.lower - float(need),
+        out[name] = {"quantity": q.name, "lower_bound": b.lower, "estimate": est, "gap": est - b.lower,
+                     "upper": b.upper, "proven_margin": b.lower - float(need),
                      "method": _b.METHOD, "cells": b.cells, "smallest_cell": b.smallest_cell,
                      "largest_cell": b.largest_cell, "converged": b.converged, "may_unreachable": b.may_unreachable}
     return out

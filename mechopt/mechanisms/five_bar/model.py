@@ -30,7 +30,8 @@ from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, Kinem
 from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
 __all__ = ["FiveBar", "FiveBarDesignSpec", "FiveBarErrorSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows",
-           "legs_closure", "legs_closure_enclosure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box", "legs_ik", "legs_fk",
+           "legs_closure", "legs_closure_enclosure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box",
+           "legs_ik", "legs_fk",
            "legs_assembly_of", "legs_tree", "legs_tree_configuration",
            "legs_bodies", "legs_body_frames"]
 
