@@ -894,24 +894,33 @@ def _design(problem, ev, pick, algorithm, pop, gen, seed, n_jobs, client, out, p
                 polished.append(ev.objectives[j])
     stages["polish"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    rows, kept, dropped, dropped_box, boxes = [], [], 0, 0, {}
+    certified = []
     for v in [ev.decode(x) for x in X] + extra:  # the extra designs as given (exactly their placement)
         res = certify(ev, v)
-        if not res["feasible"]:
-            dropped += 1
-            continue
+        if res["feasible"]:
+            certified.append((v, res))
+    dropped, dropped_box, boxes = len(X) + len(extra) - len(certified), 0, {}
+    if tolerance is not None:  # each design's boxes, the designs spread over the workers
+        from mechopt.run.parallel import parallel_map
+
+        todo = list({_design_key(ev, v): v for v, _ in certified}.items())
+        found = parallel_map(_boxes_of, [(ev, v, tolerance) for _, v in todo], info.get("n_jobs") or n_jobs or 1,
+                             client) if todo else []
+        boxes = {key: b for (key, _), b in zip(todo, found)}
+    rows, kept = [], []
+    for v, res in certified:
+        row = ev.row(v, res)
         if tolerance is not None:
-            key = _design_key(ev, v)
-            if key not in boxes:
-                boxes[key] = _box_of(ev, v, tolerance)
-            if not boxes[key][0]:
+            ok, box, largest = boxes[_design_key(ev, v)]
+            if not ok:
                 dropped_box += 1
                 continue
-        rows.append(ev.row(v, res))
+            row["tolerance_max"] = largest
+        rows.append(row)
         kept.append(ev.objective_values(res))
     if not rows and dropped_box:
         return _empty_result(problem, ev, run, info, stages, out, manifest,
-                             _no_box(ev, tolerance, [box for _, box in boxes.values()]))
+                             _no_box(ev, tolerance, [box for _, box, _ in boxes.values()]))
     if not rows:
         return _empty_result(problem, ev, run, info, stages, out, manifest, _no_design(problem, run, certified=True))
     F = np.array(kept) * np.array(list(ev.senses().values()))
@@ -1018,6 +1027,29 @@ def _non_dominated(F):
         if not dom.any():
             keep.append(i)
     return keep
+
+
+#: the tolerances tried beyond a design's own (multiples of it) for ``tolerance_max``
+TOLERANCE_LADDER = (2.0, 4.0, 8.0)
+
+
+def _boxes_of(item):
+    """``(holds, box, largest)`` of one certified design (module level: it runs in
+    workers): its box at the run's tolerance (:func:`_box_of`) and, when that holds,
+    the largest tolerance of ``T x`` :data:`TOLERANCE_LADDER` whose box holds too, each
+    tried in turn up to the first that fails (the bounds' excess grows like the square
+    of the tolerance, so a larger box is not extrapolated, it is certified), else ``T``:
+    a proven lower bound of the largest tolerance the design survives, within a factor
+    2 of it up to ``8 T``."""
+    ev, v, tolerance = item
+    ok, box = _box_of(ev, v, tolerance)
+    largest = tolerance
+    if ok:
+        for k in TOLERANCE_LADDER:
+            if not _box_of(ev, v, k * tolerance)[0]:
+                break
+            largest = k * tolerance
+    return ok, box, largest
 
 
 def _no_box(ev, tolerance, boxes) -> NoFeasibleDesign:
