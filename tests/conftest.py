@@ -3,8 +3,8 @@
 ``quick_reproduction`` runs ``mechopt reproduce all --quick`` once per test session
 (the command line, in this process, the papers one after another so that every
 figure saved can be inspected and every script's table is kept as it returned it):
-``tests/test_reproduce.py`` checks the command's files, ``tests/test_experiment_*.py``
-and ``tests/test_stan2008_readings.py`` each script's run inside it (the same
+``tests/test_reproduce.py`` checks the command's files, ``tests/test_experiment_*.py``,
+``tests/test_stan2008_readings.py`` and ``tests/test_liu2006.py`` each script's run inside it (the same
 ``run(folder, quick=True)`` call as on its own, into the paper's folder).
 
 Under ``pytest -n 2`` (pytest-xdist) the tests that share a fixture broader than a
