@@ -299,7 +299,7 @@ CERTIFICATE_DESIGN = {
     "requirements": ("`{requirement: {...}}` with the keys below", ""),
     "tolerance": ("what the margins rest on, as in `design.json`", ""),
     "tolerance_box": ("with `mechopt design --tolerance T`: the box the design was certified over, the keys of "
-                      "`mechopt check --json`'s `box` below (the 2^n corners evaluated, no random draws; every "
+                      "`mechopt check --json`'s `box` below (its corners evaluated, no random draws; every "
                       "requirement with an interval bound proven over the whole box)", ""),
 }
 CERTIFICATE_REQUIREMENT = {
@@ -343,10 +343,11 @@ CHECK_JSON = {
     "variables": ("the lengths checked (after `--lengths`), `mode`, `task_x`, `task_y`", "unit"),
     "requirements": ("per requirement, the keys of certificate.json's requirements above", ""),
     "sampling": ("the certification's sampling", ""),
-    "box": ("with `--tolerance`: `tolerance` [unit], `evaluated` (mechanisms: the 2^n corners and 32 seeded "
-            "points inside the box), `min_margin` and `worst` (the lengths where it is) per requirement, "
+    "box": ("with `--tolerance`: `tolerance` [unit], `evaluated` (mechanisms: the lengths' 2^n corners, the "
+            "placement's 4 and 32 seeded points inside the box of lengths and placement), `min_margin` and "
+            "`worst` (the lengths and placement where it is) per requirement, "
             "`holds` per requirement, `methods` per requirement (`proven`: over the whole box, by the interval "
-            "bound over the task and every length of the box, five-bars only; reach proven when every cell is "
+            "bound over the task, every length of the box and every placement, five-bars only; reach proven when every cell is "
             "certainly reachable; else `sampled`: nothing is proven between the points), `method` (`proven` "
             "when every requirement is, else `sampled`), `proven` (per bounded requirement over the box: "
             "`lower_bound`, `proven_margin`, `cells`, `converged`, `may_unreachable`)", ""),
@@ -868,6 +869,8 @@ def _design() -> str:
                 "gantry, biglide with `--link-angle`: link angle ranges from the slider axis", "deg"),
                ("`size`", "sum of the link lengths", "unit"),
                ("`lci_min`", "minimum LCI over the task", "-"),
+               ("`tolerance_max`", "with `--tolerance T`: the largest of T, 2T, 4T, 8T whose box the design "
+                "holds over (certified as for T): a lower bound of the largest tolerance it survives", "unit"),
            ]),
            "Objectives (`--objectives`, each a column of its name):\n",
            _table(["objective", "sense", "meaning", "unit"],

@@ -26,19 +26,21 @@ TASK, GAMMA, T = "rect:100,60@0,180", 0.4, 0.05
 
 
 def _violations(row, n_builds, n_grid, n_boundary, seed, tol=T):
-    """Builds inside the +-``tol`` box of the front row ``row`` (its 8 corners among them)
-    that fail somewhere on the dense check, and the smallest LCI met."""
-    placed = parse_task(TASK).moved_to(row["task_x"], row["task_y"])
-    x0, x1, y0, y1 = placed.bbox
+    """Builds inside the +-``tol`` box of the front row ``row`` (three lengths and the
+    task's placement in x and y; the 32 corners among them) that fail somewhere on the
+    dense check, and the smallest LCI met."""
+    task = parse_task(TASK)
+    x0, x1, y0, y1 = task.moved_to(0.0, 0.0).bbox
     gx, gy = np.meshgrid(np.linspace(x0, x1, n_grid), np.linspace(y0, y1, n_grid))
-    tb, _ = placed.boundary_params(n_boundary)
-    bx, by = placed.boundary_at(tb)
-    x, y = np.r_[gx.ravel(), bx], np.r_[gy.ravel(), by]
+    tb, _ = task.boundary_params(n_boundary)
+    bx, by = task.moved_to(0.0, 0.0).boundary_at(tb)
+    x0, y0 = np.r_[gx.ravel(), bx], np.r_[gy.ravel(), by]  # about the task's centre
     rng = np.random.default_rng(seed)
-    corners = np.array(np.meshgrid(*[[-1.0, 1.0]] * 3)).reshape(3, -1).T
-    offsets = np.vstack([corners, rng.uniform(-1.0, 1.0, size=(n_builds - len(corners), 3))]) * tol
+    corners = np.array(np.meshgrid(*[[-1.0, 1.0]] * 5)).reshape(5, -1).T
+    offsets = np.vstack([corners, rng.uniform(-1.0, 1.0, size=(n_builds - len(corners), 5))]) * tol
     bad, low = [], np.inf
     for off in offsets:
+        x, y = x0 + row["task_x"] + off[3], y0 + row["task_y"] + off[4]
         mech = mechopt.FiveBar(row["r1"] + off[0], row["r2"] + off[1], max(row["r3"] + off[2], 0.0),
                                mode=row["mode"])
         f = mech.type2_function(x, y)
@@ -87,7 +89,7 @@ def test_certificate_json_records_each_design_s_box(small_run):
     assert len(cert["designs"]) == len(small_run.front)
     for d in cert["designs"]:
         box = d["tolerance_box"]
-        assert box["tolerance"] == T and box["evaluated"] == 8 and box["holds"] == {
+        assert box["tolerance"] == T and box["evaluated"] == 8 + 4 and box["holds"] == {
             "reach": True, "singular": True, "lci": True}
 
 

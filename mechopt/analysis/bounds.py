@@ -399,13 +399,16 @@ class _Cells:
         return rows, parent
 
 
-def _evaluate(mech, q, cells, rows, dx, dy, lengths=None):
-    """Lower bounds over the cells ``rows`` (and every length in ``lengths``: ``{name:
+def _evaluate(mech, q, cells, rows, dx, dy, lengths=None, shift=0.0):
+    """Lower bounds over the cells ``rows`` (each widened by ``shift`` on every side: the
+    task moved by up to ``shift`` in x and y; and every length in ``lengths``: ``{name:
     (lo, hi)}``) and where they may be out of reach: per term the larger of the natural
     interval bound and the mean value form's about the cell's centre and the lengths'
     midpoints (both enclose the term's range), the smallest over the terms, within
     ``[floor, cap]``; the floor where the cell may be out of reach."""
     X, Y = cells.boxes(rows, dx, dy)
+    if shift:  # outward-rounded sums: every point of the cell moved by up to +-shift
+        X, Y = X + Interval(-shift, shift), Y + Interval(-shift, shift)
     names = list(lengths or {})
     boxes = [X, Y] + [Interval(*lengths[n]) for n in names]
     centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
@@ -434,7 +437,7 @@ def _upper(mech, q, cells, rows, dx, dy):
 
 
 def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rtol: float = RTOL,
-                upper: float = math.inf, lengths: dict | None = None) -> Bound:
+                upper: float = math.inf, lengths: dict | None = None, shift: float = 0.0) -> Bound:
     """A proven lower bound of ``min_T q`` by interval branch-and-bound (module docstring).
 
     Parameters
@@ -458,6 +461,10 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
         ``{parameter: (lo, hi)}`` [L]: bound over every mechanism whose lengths lie in
         these ranges (a tolerance box about ``mech``'s, which must lie inside them), not
         split (:meth:`~mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
+    shift : float
+        ``>= 0`` [L]: bound over every placement of the task moved by up to ``shift`` in
+        x and y (each cell's box widened by it; a tolerance on the task's placement).
+        ``upper`` and the values found stay those of the task as placed (one of them).
 
     Returns
     -------
@@ -475,12 +482,14 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
         raise ValueError(f"budget must be >= 1, got {budget!r}")
     if not (rtol > 0 and math.isfinite(rtol)):
         raise ValueError(f"rtol must be a number > 0, got {rtol!r}")
+    if not (shift >= 0 and math.isfinite(shift)):
+        raise ValueError(f"shift must be a length >= 0, got {shift!r}")
     if mech.closure_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
         raise ValueError(f"{type(mech).__name__} has no closure enclosure")
     dx, dy = _translation(to_mech)
     cells = _Cells(task)
     rows = cells.rows
-    lb, unk = _evaluate(mech, q, cells, rows, dx, dy, lengths)
+    lb, unk = _evaluate(mech, q, cells, rows, dx, dy, lengths, shift)
     used = len(rows)
     ub = min(float(upper), _upper(mech, q, cells, rows, dx, dy))
     if task.is_region:  # boundary samples: the minimum is often on the boundary
@@ -509,7 +518,7 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
                 break
             pick = pick[np.argsort(lb[pick], kind="stable")[:room]]
         kids, parent = cells.split(rows[pick], levels)
-        klb, kunk = _evaluate(mech, q, cells, kids, dx, dy, lengths)
+        klb, kunk = _evaluate(mech, q, cells, kids, dx, dy, lengths, shift)
         klb = np.maximum(klb, lb[pick][parent])  # both bound the child
         used += len(kids)
         ub = min(ub, _upper(mech, q, cells, kids, dx, dy))

@@ -109,8 +109,9 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
         Cells per quantity (default :data:`mechopt.analysis.bounds.BUDGET`).
     tolerance : float, optional
         ``T`` [L]: bound over every mechanism whose design lengths lie within ``+- T`` of
-        ``v``'s (clipped at 0; the placement and mode stay ``v``'s), for mechanisms whose
-        enclosure takes length intervals (the five-bars); ValueError for the others.
+        ``v``'s (clipped at 0) and every placement of the task within ``+- T`` of ``v``'s
+        in x and y (the mode stays ``v``'s), for mechanisms whose enclosure takes length
+        intervals (the five-bars); ValueError for the others.
 
     Returns
     -------
@@ -157,7 +158,7 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
         # the sampled box minimum (a value of a mechanism of the box) stops the search
         up = est if tolerance is not None and math.isfinite(est) else math.inf
         b = _b.lower_bound(ctx.check, ctx.task, q, to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y),
-                           budget=budget or _b.BUDGET, lengths=lengths, upper=up)
+                           budget=budget or _b.BUDGET, lengths=lengths, upper=up, shift=tolerance or 0.0)
         out[name] = {"quantity": q.name, "lower_bound": b.lower, "estimate": est, "gap": est - b.lower,
                      "upper": b.upper, "proven_margin": b.lower - float(need),
                      "method": _b.METHOD, "cells": b.cells, "smallest_cell": b.smallest_cell,
@@ -272,19 +273,21 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
                   sampling: Sampling | None = None) -> dict:
     """The smallest margin of each requirement over the mechanisms whose lengths lie
     within ``+- tol`` [L] of those of ``v`` (a length the box would make negative is
-    clipped at 0).
+    clipped at 0), with the task placed within ``+- tol`` of ``v``'s placement in x and
+    y (the base placement is a length: the five-bar's ``r3``, ...).
 
-    What is evaluated: the ``2^n`` corners of the box (``n`` lengths) and ``n_samples``
-    points drawn uniformly inside it (seeded), each by
+    What is evaluated: the ``2^n`` corners of the lengths' box (``n`` lengths) at the
+    design's placement, the 4 corners of the placement's at its lengths, and
+    ``n_samples`` points drawn uniformly inside the whole box (seeded), each by
     :func:`~mechopt.analysis.design_eval.certify` with ``sampling`` (default the
-    certification's); the placement and working mode stay the design's. What is
+    certification's); the working mode stays the design's. What is
     proven: nothing beyond those mechanisms. The margins are not monotone in the
     lengths in general (LCI has interior maxima along a length, the polish leaves
     designs at such peaks), so a minimum inside the box between the evaluated points
     can be lower: the sampled result is never called proven. What is proven, for the
     mechanisms whose enclosure takes length intervals (the five-bars): the lower bound
     of each minimum of :func:`proven_bounds` over the task and every length of the
-    box at once (:func:`proven_bounds` with ``tolerance``); where it meets the
+    box and every placement at once (:func:`proven_bounds` with ``tolerance``); where it meets the
     requirement, the requirement is ``"proven"`` over the box; reach is proven over
     the box when every cell of those searches is certainly reachable for every
     mechanism of the box (both legs assemble). Returns ``{"tolerance", "evaluated",
@@ -320,20 +323,28 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
     """
     names = list(ev.spec.lengths)
     nominal = np.array([v[n] for n in names])
-    corners = np.array(list(itertools.product(*[(-1.0, 1.0)] * len(names))))
+    n = len(names)
+    # the lengths' 2^n corners at the design's placement, the placement's 4 corners at its
+    # lengths, then random points of the whole box (lengths and placement)
+    corners = np.array(list(itertools.product(*[(-1.0, 1.0)] * n)))
+    moves = np.array(list(itertools.product((-1.0, 1.0), (-1.0, 1.0))))
     rng = np.random.default_rng(seed)
-    offsets = np.vstack([corners, rng.uniform(-1.0, 1.0, size=(n_samples, len(names)))])
+    offsets = np.vstack([np.hstack([corners, np.zeros((len(corners), 2))]),
+                         np.hstack([np.zeros((len(moves), n)), moves]),
+                         rng.uniform(-1.0, 1.0, size=(n_samples, n + 2))])
     worst_m = {r.name: math.inf for r in ev.active}
     worst_at, holds = {}, {r.name: True for r in ev.active}
     for off in offsets:
-        L = np.maximum(nominal + tol * off, 0.0)
-        res = certify(ev, {**v, **dict(zip(names, map(float, L)))}, sampling)
+        L = np.maximum(nominal + tol * off[:n], 0.0)
+        at = {**dict(zip(names, map(float, L))), "task_x": float(v["task_x"] + tol * off[n]),
+              "task_y": float(v["task_y"] + tol * off[n + 1])}
+        res = certify(ev, {**v, **at}, sampling)
         for r in ev.active:
             m, g = float(res["margin"][r.name]), float(res["g"][r.name])
             if not g <= 0:
                 holds[r.name] = False
             if not m >= worst_m[r.name]:  # NaN counts as the worst
-                worst_m[r.name], worst_at[r.name] = m, dict(zip(names, map(float, L)))
+                worst_m[r.name], worst_at[r.name] = m, at
     out = {"tolerance": float(tol), "evaluated": int(len(offsets)), "min_margin": worst_m, "worst": worst_at,
            "holds": holds, "method": "sampled", "methods": {r.name: "sampled" for r in ev.active}, "proven": {}}
     try:
@@ -445,7 +456,8 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
         Another task (:func:`~mechopt.analysis.task.parse_task` text in the design's
         unit), placed as it is given; default run.json's task at the design's placement.
     tolerance : float, optional
-        ``T`` [L]: also check every length within ``+- T`` (:func:`tolerance_box`).
+        ``T`` [L]: also check every length and the task's placement within ``+- T``
+        (:func:`tolerance_box`).
     lengths : dict or str, optional
         Lengths [L] that replace the design's (``"r1=85,r2=160"``), e.g. rounded ones.
     n_samples : int
