@@ -166,6 +166,13 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
     return out
 
 
+def _bounds_of(item) -> dict:
+    """:func:`proven_bounds` of one front design record ``(ev, rec)`` (module level: it
+    runs in workers)."""
+    ev, rec = item
+    return proven_bounds(ev, _variables(rec, ev.spec, None), rec["margins"])
+
+
 def certificate(result) -> dict:
     """certificate.json's content for a :class:`~mechopt.workflows.design.DesignResult`:
     the mechopt version, the mechanism, unit, task and requirements (run.json's
@@ -188,12 +195,15 @@ def certificate(result) -> dict:
     from mechopt.export.source import design_digest
     from mechopt.run.io import plain_json
 
+    from mechopt.run.parallel import parallel_map
+
     ev = result.evaluator
     designs = []
-    for i in range(len(result.front)):
-        rec = result.design_at(i)
+    recs = [result.design_at(i) for i in range(len(result.front))]
+    # the bounds of the front designs, spread over the run's workers
+    every = parallel_map(_bounds_of, [(ev, rec) for rec in recs], int(result.info.get("n_jobs") or 1))
+    for i, (rec, bounds) in enumerate(zip(recs, every)):
         res = {"margin": rec["margins"], "g": rec["constraints_g"]}
-        bounds = proven_bounds(ev, _variables(rec, ev.spec, None), rec["margins"])
         # the digest of the record as design.json holds it (without the mechanism object)
         digest = design_digest(plain_json({k: val for k, val in rec.items() if k != "mechanism"}))
         designs.append({"index": i, "digest": digest, "variables": rec["variables"],
