@@ -109,3 +109,13 @@ def test_issue_28_thousand_builds_per_front_design(tmp_path):
     for i, row in res.front.iterrows():
         bad, _ = _violations(row, 1000, 401, 4000, seed=i)
         assert not bad, (i, len(bad))
+
+
+@pytest.mark.parametrize("value", ["-1", "0", "nan", "inf"])
+def test_a_bad_tolerance_is_one_line_exit_2_and_writes_nothing(value, tmp_path, capsys):
+    from mechopt.cli import main
+
+    out = tmp_path / "run"
+    assert main(["design", "five-bar", "--task", TASK, "--tolerance", value, "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "tolerance must be" in err[0] and not out.exists()
