@@ -28,8 +28,8 @@ import numpy as np
 from mechopt.analysis.design_eval import DesignEvaluator, certify
 from mechopt.analysis.sampling import Sampling
 
-__all__ = ["certificate", "check", "tolerance_box", "box_certified", "box_failures", "requirement_entries", "proven_bounds", "format_check",
-           "BOX_SAMPLES", "CERTIFICATE_VERSION", "CLAIM_RTOL", "BOUNDED"]
+__all__ = ["certificate", "check", "tolerance_box", "box_certified", "box_failures", "requirement_entries",
+           "proven_bounds", "format_check", "BOX_SAMPLES", "CERTIFICATE_VERSION", "CLAIM_RTOL", "BOUNDED"]
 
 #: the format of certificate.json (a new key keeps it; a changed meaning raises it)
 CERTIFICATE_VERSION = 1
@@ -138,6 +138,8 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
         return {}
     ctx = ev.context(v, Sampling.fine())
     req, out = ctx.req, {}
+    lengths = None if tolerance is None else {
+        n: (max(float(v[n]) - tolerance, 0.0), float(v[n]) + tolerance) for n in ev.spec.lengths}
     for name, r in active.items():
         if name == "lci":
             q, need = _b.lci_quantity(), req.min_lci
@@ -152,8 +154,6 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
             q = _b.force_quantity(limits(req.actuator_torque), reading(ctx), effort_factor(ctx))
             need, est = req.min_force, (lambda: force(ctx))
         est = float(margins[name]) + float(need) if margins is not None and name in margins else float(est())
-        lengths = None if tolerance is None else {
-            n: (max(float(v[n]) - tolerance, 0.0), float(v[n]) + tolerance) for n in ev.spec.lengths}
         # over a tolerance box the nominal design's values need not reach the box's minimum:
         # the sampled box minimum (a value of a mechanism of the box) stops the search
         up = est if tolerance is not None and math.isfinite(est) else math.inf

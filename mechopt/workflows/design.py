@@ -286,6 +286,13 @@ class _Evals:
         return _rows_eval(self.problem, X, self.j, self.sampling)
 
 
+def _size_of(problem, x) -> float:
+    """The size of the row ``x`` from its lengths alone, no evaluation (an objective the
+    placement does not change, :func:`_placement_free`: bit for bit the evaluation's)."""
+    ev = problem.evaluator
+    return ev.spec.size_of(ev.decode(x))
+
+
 def _placement_index(problem):
     return [i for i, name in enumerate(problem.var_names) if name in _PLACEMENT_VARS]
 
@@ -455,11 +462,6 @@ def _polish_lengths(problem, x0, j, sampling, seed=0, iters=100, step_min=1e-4, 
     span = np.where(problem.xu > problem.xl, problem.xu - problem.xl, 1.0)
     rng = np.random.default_rng(seed)
     evals = _Evals(problem, j, sampling)
-    ev = problem.evaluator
-
-    def size_of(xx):  # the objective without an evaluation (it is the size from the lengths)
-        return ev.spec.size_of(ev.decode(xx))
-
     x, phi, f = _peak(problem, evals, x0)
     if cont.size == 0 or phi < 0:
         return x, f
@@ -478,7 +480,7 @@ def _polish_lengths(problem, x0, j, sampling, seed=0, iters=100, step_min=1e-4, 
                 continue
             xc = x.copy()
             xc[cont] = problem.xl[cont] + zc * span[cont]
-            if not size_of(xc) < f - _v.RESOLUTION * max(abs(f), 1.0):
+            if not _size_of(problem, xc) < f - _v.RESOLUTION * max(abs(f), 1.0):
                 continue  # no better whatever the placement
             fc, Gc = evals(xc[None, :])
             if not fc[0] < f - _v.ROUNDING * max(abs(f), 1.0):
@@ -520,7 +522,6 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None, tolerance=None):
     if cont.size == 0:
         return None
     rng = np.random.default_rng(seed)
-    ev = problem.evaluator
     size_only = _placement_free(problem, j)  # the objective is the size of the lengths
 
     def full(z):
@@ -536,8 +537,8 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None, tolerance=None):
         f, ok = np.full(len(X), np.inf), np.zeros(len(X), bool)
         if below is None:
             keep = np.arange(len(X))
-        else:  # the size of the evaluation is this same sum of the lengths, bit for bit
-            keep = np.flatnonzero([ev.spec.size_of(ev.decode(x)) < below for x in X])
+        else:
+            keep = np.flatnonzero([_size_of(problem, x) < below for x in X])
         if keep.size:
             fk, G = _rows_eval(problem, X[keep], j, sampling)
             f[keep], ok[keep] = fk, np.all(G <= 0, axis=1)
