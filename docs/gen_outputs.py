@@ -879,7 +879,9 @@ def _design() -> str:
            "Requirements: `margin_<name>` in `front.csv` and `margins` in `design.json` (natural units, "
            "> 0 satisfied), `g_<name>` of the search and `constraints_g` (normalised: lengths by the "
            "task diameter, angles by pi, LCI by its level, speed and force by their required values; "
-           "<= 0 satisfied):\n",
+           "<= 0 satisfied). The search's `g_<name>` (population.csv) of a requirement its "
+           "samples show comfortably met is the samples' value, not refined (LCI, singular and joints; "
+           "front.csv and design.json hold the certification's refined values):\n",
            _table(["requirement", "margin", "unit of the margin"],
                   [(f"`{n}` (`margin_{n}`, `g_{n}`)", requirements[n].margin_text,
                     requirements[n].margin_unit.format(L="unit")) for n in names]),

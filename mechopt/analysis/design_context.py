@@ -5,7 +5,8 @@ A :class:`DesignContext` holds the design's mechanism, the task's samples
 (:func:`mechopt.analysis.sampling.samples`), the values several members need
 (Jacobians, LCI, type-II function and serial clearance at the samples, each computed
 once, on first use), whether minima are refined (:attr:`DesignContext.refine`, set
-by the evaluator from the requirements' screens), the searches of
+by the evaluator from the requirements' screens) and which requirements the samples
+settle (:attr:`DesignContext.settled`: their minima stay unrefined), the searches of
 :mod:`mechopt.analysis.sampling` bound to this design, and a memo through which two
 members share a refined value.
 """
@@ -49,14 +50,18 @@ class DesignContext:
     refine : bool
         Whether minima are refined by zooming (the sampling asks it and every active
         requirement's screen passes).
+    settled : frozenset
+        Names of the requirements the samples settle
+        (:meth:`mechopt.requirements.base.Requirement.settled`, with a sampling that
+        settles): their minima are not refined.
     """
 
     def __init__(self, spec, mech, check, samples, req, objectives, unit, diameter, max_length, derived,
-                 refine=True):
+                 refine=True, settled=frozenset()):
         self.spec, self.mech, self.check, self.samples = spec, mech, check, samples
         self.req, self.objectives, self.unit = req, objectives, unit
         self.diameter, self.max_length, self.derived = diameter, max_length, derived
-        self.refine = refine
+        self.refine, self.settled = refine, settled
         self._memo = {}
 
     # --- the samples ------------------------------------------------------------------
@@ -115,9 +120,25 @@ class DesignContext:
         return _s.bad_to(_ix.lci(self.jacobian), 0.0)
 
     # --- searches over the task ------------------------------------------------------------
-    def region_min(self, f, vals) -> float:
+    def refines(self, name) -> bool:
+        """Whether the minima of requirement ``name`` are refined: :attr:`refine`, unless
+        the samples settle it (:attr:`settled`).
+
+        Parameters
+        ----------
+        name : str
+            A requirement's name.
+
+        Returns
+        -------
+        bool
+            True when its searches zoom.
+        """
+        return self.refine and name not in self.settled
+
+    def region_min(self, f, vals, refine=None) -> float:
         """Minimum over the task of ``f(x, y)`` (values ``vals`` at the samples), refined
-        when :attr:`refine` (:func:`mechopt.analysis.sampling.region_mins`).
+        when ``refine`` (default :attr:`refine`; :func:`mechopt.analysis.sampling.region_mins`).
 
         Parameters
         ----------
@@ -125,15 +146,17 @@ class DesignContext:
             ``f(x, y)`` -> values at task points.
         vals : ndarray
             ``f`` at the samples.
+        refine : bool, optional
+            Refine by zooming (default :attr:`refine`).
 
         Returns
         -------
         float
             The minimum.
         """
-        return self.region_mins(lambda x, y: f(x, y)[None], vals[None])[0]
+        return self.region_mins(lambda x, y: f(x, y)[None], vals[None], refine)[0]
 
-    def region_mins(self, F, vals) -> list:
+    def region_mins(self, F, vals, refine=None) -> list:
         """Minima over the task of the rows of ``F(x, y)`` (values ``vals`` at the samples).
 
         Parameters
@@ -142,15 +165,17 @@ class DesignContext:
             ``F(x, y)`` -> shape ``(m, N)``.
         vals : ndarray
             ``F`` at the samples.
+        refine : bool, optional
+            Refine by zooming (default :attr:`refine`).
 
         Returns
         -------
         list of float
             The minimum of each row.
         """
-        return _s.region_mins(self.samples, F, self.refine, vals)
+        return _s.region_mins(self.samples, F, self.refine if refine is None else refine, vals)
 
-    def leg_ranges(self, legs, bad=(np.inf, np.inf)) -> list:
+    def leg_ranges(self, legs, bad=(np.inf, np.inf), refine=None) -> list:
         """Ranges over the task's boundary of the two values of ``legs(x, y)``
         (:func:`mechopt.analysis.sampling.leg_ranges`).
 
@@ -160,13 +185,36 @@ class DesignContext:
             ``legs(x, y) -> (v1, v2)``: one value per leg (actuator or link angle).
         bad : tuple of float
             Replacements of NaN for the minimum and the maximum.
+        refine : bool, optional
+            Refine by zooming (default :attr:`refine`).
 
         Returns
         -------
         list of tuple
             ``[(lo1, hi1), (lo2, hi2)]``.
         """
-        return _s.leg_ranges(self.samples, legs, self.refine, bad)
+        return _s.leg_ranges(self.samples, legs, self.refine if refine is None else refine, bad)
+
+    def joint_ranges(self, refine=None) -> list:
+        """The crank ranges over the task's boundary (:meth:`leg_ranges` of
+        :meth:`~mechopt.core.protocol.PlanarMechanism.ik`); unrefined ones are computed once.
+
+        Parameters
+        ----------
+        refine : bool, optional
+            Refine by zooming (default :attr:`refine`).
+
+        Returns
+        -------
+        list of tuple
+            ``[(lo1, hi1), (lo2, hi2)]`` [rad].
+        """
+        def angles(x, y):
+            return self.mech.ik(*self.to_mech(x, y))
+
+        if self.refine if refine is None else refine:
+            return self.leg_ranges(angles, refine=True)
+        return self.memo("joint_ranges_sampled", lambda: self.leg_ranges(angles, refine=False))
 
     # --- sharing between members -----------------------------------------------------------
     def memo(self, key, compute):

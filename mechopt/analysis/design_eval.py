@@ -41,7 +41,9 @@ that range is attained on the task's boundary (:mod:`mechopt.requirements.stroke
 One evaluation (:meth:`DesignEvaluator.evaluate`): the design's mechanism and the
 task's samples (:mod:`mechopt.analysis.sampling`) make a
 :class:`~mechopt.analysis.design_context.DesignContext`; every active requirement
-screens the design on the samples (a design far from feasible is not refined),
+screens the design on the samples (a design far from feasible is not refined;
+with the search's sampling, a requirement the samples show comfortably met is not
+refined either: :meth:`~mechopt.requirements.base.Requirement.settled`),
 then gives its margin and ``g``; every chosen objective its value; every member
 the values it reports. Constraints are ``G <= 0`` and normalised (lengths by the task
 diameter, angles by pi, LCI by gamma, speed and force by their required values); an
@@ -414,7 +416,10 @@ class DesignEvaluator:
     def context(self, v: dict, sampling: Sampling | None = None) -> DesignContext:
         """The sample context of the decoded design ``v`` (:class:`DesignContext`): its
         mechanism, the task's samples, its derived strokes; ``refine`` from the sampling
-        and the active requirements' screens; the crank ranges of a design with cranks.
+        and the active requirements' screens; ``settled`` (with a sampling that settles,
+        :attr:`Sampling.settle <mechopt.analysis.sampling.Sampling.settle>`) from their
+        :meth:`~mechopt.requirements.base.Requirement.settled`; the crank ranges of a
+        design with cranks.
 
         Parameters
         ----------
@@ -434,8 +439,13 @@ class DesignEvaluator:
                             self.task.diameter, self.max_length, derived)
         # refine only designs that are feasible or nearly so on the samples
         ctx.refine = s.refine and all(r.screen(ctx) for r in self.active)
+        if s.settle and ctx.refine:
+            ctx.settled = frozenset(r.name for r in self.active if r.settled(ctx))
         if self.spec.angular:
-            derived["joint_ranges"] = ctx.leg_ranges(lambda x, y: mech.ik(*ctx.to_mech(x, y)))
+            # the search's sampling refines the crank ranges only for the joints requirement
+            # (they are reported from the certification's, which always refines them)
+            need = not s.settle or any(r.name == "joints" for r in self.active)
+            derived["joint_ranges"] = ctx.joint_ranges(need and ctx.refines("joints"))
         return ctx
 
     def evaluate(self, v: dict, sampling: Sampling | None = None) -> dict:

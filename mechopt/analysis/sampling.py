@@ -41,11 +41,18 @@ class Sampling:
         Interior grid nodes per side.
     refine : bool
         Refine minima by zooming.
+    settle : bool
+        Leave unrefined the minima of the requirements the samples show comfortably
+        met (:meth:`mechopt.requirements.base.Requirement.settled`): the search's
+        sampling (:class:`mechopt.problems.design.DesignProblem`), where only the sign
+        of such a requirement's ``g`` reaches the search (pymoo's constraint violation
+        counts ``max(0, g)``); never the certification's.
     """
 
     n_boundary: int = 192
     n_interior: int = 13
     refine: bool = True
+    settle: bool = False
 
     @classmethod
     def fine(cls):

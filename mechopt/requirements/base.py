@@ -302,6 +302,30 @@ class Requirement(Member):
         """
         return True
 
+    def settled(self, ctx) -> bool:
+        """Whether the samples alone show the requirement comfortably met, so that the
+        search need not refine its minimum (:attr:`Sampling.settle
+        <mechopt.analysis.sampling.Sampling.settle>`; the certification always refines).
+
+        A requirement says True only when its sampled margin exceeds many times the
+        largest change refinement made on the examples, and when no chosen objective
+        reads the same minimum. Soundness does not rest on it: only the sign of ``g``
+        reaches the search, and every front design is certified afterwards with the
+        refined minima (a wrongly settled design would be dropped there, not
+        claimed).
+
+        Parameters
+        ----------
+        ctx : mechopt.analysis.design_context.DesignContext
+            The design's sample context.
+
+        Returns
+        -------
+        bool
+            True when the minimum may stay unrefined (default: False).
+        """
+        return False
+
     def evaluate(self, ctx) -> tuple:
         """The requirement's margin and constraint for one design over the task.
 

@@ -18,6 +18,11 @@ from mechopt.requirements.base import Option, Requirement
 
 __all__ = ["Joints", "MEMBERS"]
 
+#: the search leaves the crank ranges unrefined when the samples' ranges lie at least
+#: ``SETTLE`` [rad] inside the limits (:meth:`Joints.settled`): refinement widened them
+#: by at most 6e-5 rad on 800 random five-bar designs of a rectangle and a star polygon
+SETTLE = 0.01
+
 
 def _check(value, spec):
     jl = np.asarray(value, float)
@@ -54,11 +59,18 @@ class Joints(Requirement):
         return "the joint limits " + ", ".join(f"[{math.degrees(a):g}, {math.degrees(b):g}] deg"
                                                for a, b in req.joint_limits)
 
+    def settled(self, ctx) -> bool:
+        return _margin(ctx.joint_ranges(refine=False), ctx.req.joint_limits) >= SETTLE
+
     def evaluate(self, ctx):
-        m = min(min(q_lo - lim_lo, lim_hi - q_hi)
-                for (q_lo, q_hi), (lim_lo, lim_hi) in zip(ctx.derived["joint_ranges"], ctx.req.joint_limits))
+        m = _margin(ctx.derived["joint_ranges"], ctx.req.joint_limits)
         m = m if math.isfinite(m) else -math.pi
         return m, -m / math.pi
+
+
+def _margin(ranges, limits) -> float:
+    """The smallest distance of the crank ranges to their limits [rad]."""
+    return min(min(q_lo - lim_lo, lim_hi - q_hi) for (q_lo, q_hi), (lim_lo, lim_hi) in zip(ranges, limits))
 
 
 MEMBERS = (Joints(),)

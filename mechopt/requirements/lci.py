@@ -17,6 +17,10 @@ __all__ = ["MinLCI", "MinLCIObjective", "MeanLCIObjective", "lci_min", "lci_mean
 
 #: a design whose sampled LCI minimum is below ``SCREEN * gamma`` is not refined
 SCREEN = 0.9
+#: the search leaves the LCI minimum unrefined when the samples' minimum is at least
+#: ``gamma + SETTLE`` (:meth:`MinLCI.settled`): refinement lowered it by at most 0.0036
+#: on 800 random five-bar designs of a rectangle and a star polygon
+SETTLE = 0.05
 
 
 def lci_min(ctx) -> float:
@@ -69,8 +73,13 @@ class MinLCI(Requirement):
     def screen(self, ctx) -> bool:
         return float(ctx.lci.min()) >= SCREEN * ctx.req.min_lci
 
+    def settled(self, ctx) -> bool:
+        # the min-lci objective reads the refined minimum: never settled with it
+        return "min-lci" not in ctx.objectives and float(ctx.lci.min()) >= ctx.req.min_lci + SETTLE
+
     def evaluate(self, ctx):
-        gamma, m = ctx.req.min_lci, lci_min(ctx)
+        gamma = ctx.req.min_lci
+        m = lci_min(ctx) if self.name not in ctx.settled else float(ctx.lci.min())
         return m - gamma, (gamma - m) / gamma
 
     def report(self, ctx) -> dict:

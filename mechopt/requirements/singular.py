@@ -23,6 +23,10 @@ __all__ = ["Singular", "MEMBERS"]
 
 #: a design whose sampled type-II minimum is below ``-SCREEN`` is not refined
 SCREEN = 0.05
+#: the search leaves the type-II minimum unrefined when the samples' minimum is at
+#: least ``singularity_margin + SETTLE`` (:meth:`Singular.settled`): refinement lowered
+#: it by at most 0.0008 on 800 random five-bar designs of a rectangle and a star polygon
+SETTLE = 0.05
 
 
 def _margin_check(value, spec):
@@ -106,11 +110,14 @@ class Singular(Requirement):
         def compute():
             s0 = self.sign(ctx)
             return ctx.region_min(lambda x, y: bad_to(s0 * ctx.mech.type2_function(*ctx.to_mech(x, y)), -1.0),
-                                  self.samples(ctx))
+                                  self.samples(ctx), ctx.refines(self.name))
         return ctx.memo("type2_min", compute)
 
     def screen(self, ctx) -> bool:
         return float(self.samples(ctx).min()) > -SCREEN
+
+    def settled(self, ctx) -> bool:
+        return float(self.samples(ctx).min()) >= ctx.req.singularity_margin + SETTLE
 
     def evaluate(self, ctx):
         t2, m = self.minimum(ctx), ctx.req.singularity_margin

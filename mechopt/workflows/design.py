@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 import weakref
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 import pandas as pd
@@ -1087,7 +1087,8 @@ def _no_design(problem, run, certified=False) -> NoFeasibleDesign:
     fails = {n: int((pop[f"g_{n}"] > 0).sum()) for n in names}
     # the least-violating design's margin in natural units
     v = ev.decode(pop[list(problem.var_names)].to_numpy(float)[k])
-    res = ev.evaluate(v, problem.sampling)
+    searched = replace(problem.sampling, settle=False)  # every margin refined, as it is reported
+    res = ev.evaluate(v, searched)
     req = next(r for r in ev.active if r.name == worst)
     unit = req.margin_unit.format(L=ev.unit)
     miss = -float(res["margin"][worst])
@@ -1096,7 +1097,7 @@ def _no_design(problem, run, certified=False) -> NoFeasibleDesign:
     reached = res["values"].get(getattr(req, "reached_key", ""))
     if reached is not None:
         by += f", reaching {reached:.4g} {unit}".rstrip(" -")
-    sens = sensitivity(ev, v, worst, problem.sampling)
+    sens = sensitivity(ev, v, worst, searched)
     msg = (f"no design satisfies {ev.req.describe(worst, ev.unit)} (of {len(pop)} designs in the final "
            f"population, {fails[worst]} fail it; the least-violating design misses it by {by})"
            f"{' after certification' if certified else ''}; {_what_helps(sens, -miss, unit)}")
