@@ -513,7 +513,8 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None, tolerance=None):
     halved on failure, from 1 % of each variable's range down to 1e-7). Active
     constraints make the optimum a corner the genetic search only approaches; this
     walks into it. Evaluations use ``sampling`` (default the certification's,
-    :meth:`Sampling.fine`); the result is re-checked by :func:`certify` (with
+    :meth:`Sampling.fine`; the direct search, which reads only feasibility and the
+    objective, settles the comfortably met requirements: :attr:`Sampling.settle`); the result is re-checked by :func:`certify` (with
     ``tolerance``, over its tolerance box too) and pulled back toward ``x0`` until it
     passes. Returns the new X row or None."""
     sampling = sampling or Sampling.fine()
@@ -523,6 +524,9 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None, tolerance=None):
         return None
     rng = np.random.default_rng(seed)
     size_only = _placement_free(problem, j)  # the objective is the size of the lengths
+    # the direct search reads only the objective and whether every g <= 0: the requirements
+    # the samples show comfortably met need no refinement (Sampling.settle)
+    verdicts = replace(sampling, settle=True)
 
     def full(z):
         x = np.array(x0, float)
@@ -540,7 +544,7 @@ def _polish(problem, x0, j, iters=40, seed=0, sampling=None, tolerance=None):
         else:
             keep = np.flatnonzero([_size_of(problem, x) < below for x in X])
         if keep.size:
-            fk, G = _rows_eval(problem, X[keep], j, sampling)
+            fk, G = _rows_eval(problem, X[keep], j, verdicts)
             f[keep], ok[keep] = fk, np.all(G <= 0, axis=1)
         return f, ok
 
