@@ -329,6 +329,11 @@ def range_quantity(i: int, sign: float, scale: float) -> Quantity:
     -------
     Quantity
         The quantity.
+
+    Raises
+    ------
+    ValueError
+        For an actuator other than 0 or 1.
     """
     if i not in (0, 1):
         raise ValueError(f"the actuator must be 0 or 1, got {i!r}")
