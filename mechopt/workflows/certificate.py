@@ -264,7 +264,8 @@ def certificate(result) -> dict:
             "chosen": int(result.chosen_index), "designs": designs,
             "note": "proven: the requirement's argument holds over the whole task (for LCI, the type-II "
                     "function, speed and force: the proven lower bound of the minimum by interval "
-                    "branch-and-bound, 'bound', meets it); refined-sampled: the minimum located on the samples "
+                    "branch-and-bound, 'bound', meets it; for joints and stroke: the margin from the proven "
+                    "outer ranges of the actuator coordinates, 'bound', is >= 0); refined-sampled: the minimum located on the samples "
                     "and refined by zooming (an estimate, not a bound)"}
 
 
