@@ -309,18 +309,22 @@ CERTIFICATE_REQUIREMENT = {
     "holds": ("`g <= 0`", ""),
     "method": ("`proven` (the requirement's own argument over the whole task, `certificate`; for `lci`, "
                "`singular`, `speed` and `force`: the proven lower bound of the minimum, `bound`, meets the "
-               "requirement) or `refined-sampled` (the minimum located on the samples and refined by zooming: "
+               "requirement; for `joints` and `stroke`: the margin from the proven outer ranges of the actuator "
+               "coordinates is >= 0) or `refined-sampled` (the minimum located on the samples and refined by zooming: "
                "an estimate, not a bound)", ""),
     "certificate": ("the requirement's argument, in words (empty for a sampled one)", ""),
     "describe": ("the requirement in words, with its values", ""),
     "bound": ("`lci`, `singular`, `speed`, `force`: the minimum bounded by interval branch-and-bound over the "
-              "task (mechopt.analysis.bounds), keys below", ""),
+              "task (mechopt.analysis.bounds), keys below; `joints`, `stroke`: the margin bounded from the "
+              "actuator coordinates' proven outer ranges (the same search for `min q_i` and `-max q_i`)", ""),
 }
 #: the keys of a requirement's `bound` (mechopt.workflows.certificate.proven_bounds)
 CERTIFICATE_BOUND = {
-    "quantity": ("`lci`, `type2` (the type-II function times the design's sign), `speed` or `force`", ""),
+    "quantity": ("`lci`, `type2` (the type-II function times the design's sign), `speed`, `force`, "
+                 "`joint_ranges` (`joints`: the quantity is its margin, rad) or `strokes` (`stroke`: its margin, "
+                 "`max_stroke` minus the longest stroke, unit)", ""),
     "lower_bound": ("proven lower bound of the quantity's minimum over the task (the quantity's floor, 0 or -1, "
-                    "where a cell may be out of reach)", "the quantity's unit"),
+                    "where a cell may be out of reach; -inf for `joints`, `stroke`)", "the quantity's unit"),
     "estimate": ("the sampled-and-zoomed minimum (the margin's value plus the required level)",
                  "the quantity's unit"),
     "gap": ("`estimate - lower_bound`", "the quantity's unit"),
@@ -332,8 +336,17 @@ CERTIFICATE_BOUND = {
     "smallest_cell": ("the smallest cell of the final cover (side of a square, length of a piece of path; 0 for "
                       "points)", "unit"),
     "largest_cell": ("the largest cell of the final cover", "unit"),
-    "converged": ("the search reached its stopping gap (2e-3 relative) within its budget (30000 cells)", ""),
+    "converged": ("the search reached its stopping gap (2e-3 relative; `joints`, `stroke`: each of the four "
+                  "searches within 2e-3 rad or 2e-3 of the task's diameter) within its budget (30000 cells each)",
+                  ""),
     "may_unreachable": ("some cell of the final cover may be out of reach (its bound is the floor)", ""),
+    "ranges": ("`joints`, `stroke`: `[[lo1, hi1], [lo2, hi2]]`, proven outer ranges of the two actuator "
+               "coordinates over the task (each contains the exact range; infinite where a cell may be out of "
+               "reach or across a crank angle's branch cut)", "rad or unit"),
+    "estimate_ranges": ("`joints`, `stroke`: the sampled-and-zoomed ranges (design.json's `joint_ranges_deg` "
+                        "in rad, `strokes`)", "rad or unit"),
+    "inner_ranges": ("`joints`, `stroke`: the extremes the search met at task points (inside the exact range)",
+                     "rad or unit"),
 }
 #: `mechopt check --json`
 CHECK_JSON = {

@@ -29,6 +29,18 @@ stops). A child's bound is at least its parent's (both bound it; interval evalua
 is inclusion isotone), so the bound never falls as cells split, and a smaller budget
 runs a prefix of the same search: the bound does not rise when the budget shrinks.
 
+Ranges (:func:`range_quantity`): ``max_T q_i = -min_T (-q_i)``, so the same search
+bounds an actuator coordinate's range from outside (the joints' and strokes' proofs).
+Over a cell the mechanism's
+:meth:`~mechopt.core.protocol.PlanarMechanism.actuator_enclosure` encloses ``q_i`` (the
+natural extension) and the mean value form ``q_i(c) + grad q_i(C) . (C - c)`` uses the
+gradient ``a_i / b_i`` (a row of ``J = B^-1 A``, from the closure enclosure over the
+cell), valid where ``q_i`` is continuous and differentiable over the cell (the closure
+certain: ``b_i`` does not vanish); with a tolerance box the value at the centre is
+enclosed over all the box's lengths, so the form needs no derivative in them. A cell
+that may be out of reach bounds nothing: its bound is ``-inf`` (the range quantities'
+floor), so is the task's.
+
 Tolerance boxes (``lengths``): the enclosures take the mechanism's lengths as intervals
 too, so the bound covers the task and every mechanism of the box at once; the lengths
 are variables of the mean value form but are not split, so the bound's excess over the
@@ -56,7 +68,7 @@ from mechopt.core.interval import Gradient, Interval, hypot
 from mechopt.analysis.sampling import bad_to
 
 __all__ = ["Quantity", "Bound", "lci_quantity", "type2_quantity", "speed_quantity", "force_quantity",
-           "lower_bound", "BUDGET", "RTOL", "METHOD"]
+           "range_quantity", "lower_bound", "outer_range", "Ranges", "BUDGET", "RTOL", "METHOD"]
 
 #: default budget of evaluated cells per quantity
 BUDGET = 30000
@@ -94,6 +106,14 @@ class Quantity:
     point : callable
         ``point(mech, x, y)``: the quantity at points of the mechanism's frame, the
         floor where unreachable (the requirements' formula).
+    actuator : int or None
+        A range quantity (:func:`range_quantity`): ``sign * q_actuator`` (``terms``
+        unused); None for a quantity of the closure.
+    sign : float
+        +1 or -1 (a range quantity).
+    relative : bool
+        The stopping gap is relative to ``max(|upper|, scale)`` (True) or to ``scale``
+        alone (a coordinate whose offset says nothing of its precision).
     """
 
     name: str
@@ -102,6 +122,9 @@ class Quantity:
     cap: float
     terms: object = field(repr=False)
     point: object = field(repr=False)
+    actuator: int | None = None
+    sign: float = 1.0
+    relative: bool = True
 
 
 @dataclass
@@ -287,6 +310,41 @@ def force_quantity(t, norm="box", factor=1.0) -> Quantity:
     return Quantity("force", 0.0, 0.0, math.inf, terms, point)
 
 
+def range_quantity(i: int, sign: float, scale: float) -> Quantity:
+    """``sign * q_i``, the actuator coordinate ``i`` of :meth:`ik` (a crank angle [rad],
+    a slider position or strut length [L]): its minimum bounds ``min q_i`` (``sign``
+    +1) or ``-max q_i`` (-1) from below; floor ``-inf`` (out of reach: no bound), no cap;
+    the stopping gap ``rtol * scale``.
+
+    Parameters
+    ----------
+    i : int
+        0 or 1.
+    sign : float
+        +1 or -1.
+    scale : float
+        The stopping gap's reference [rad or L], > 0.
+
+    Returns
+    -------
+    Quantity
+        The quantity.
+
+    Raises
+    ------
+    ValueError
+        For an actuator other than 0 or 1.
+    """
+    if i not in (0, 1):
+        raise ValueError(f"the actuator must be 0 or 1, got {i!r}")
+    s = 1.0 if sign >= 0 else -1.0
+
+    def point(mech, x, y):
+        return bad_to(s * mech.ik(x, y)[i], -math.inf)
+    return Quantity(f"{'' if s > 0 else '-'}q{i + 1}", -math.inf, float(scale), math.inf, None, point,
+                    actuator=i, sign=s, relative=False)
+
+
 # ------------------------------------------------------------------ cells
 def _translation(to_mech):
     """``(dx, dy)`` of ``to_mech`` (a translation; ValueError otherwise)."""
@@ -409,6 +467,8 @@ def _evaluate(mech, q, cells, rows, dx, dy, lengths=None, shift=0.0):
     X, Y = cells.boxes(rows, dx, dy)
     if shift:  # outward-rounded sums: every point of the cell moved by up to +-shift
         X, Y = X + Interval(-shift, shift), Y + Interval(-shift, shift)
+    if q.actuator is not None:
+        return _evaluate_range(mech, q, X, Y, lengths)
     names = list(lengths or {})
     boxes = [X, Y] + [Interval(*lengths[n]) for n in names]
     centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
@@ -426,6 +486,28 @@ def _evaluate(mech, q, cells, rows, dx, dy, lengths=None, shift=0.0):
     return lb, ~np.broadcast_to(certain, lb.shape)
 
 
+def _evaluate_range(mech, q, X, Y, lengths):
+    """Lower bounds of ``sign * q_i`` over the boxes ``X, Y`` (and the lengths' box): the
+    larger of the natural enclosure and the mean value form ``q(c) + g . (C - c)`` with
+    ``g = sign a_i / b_i`` over the box (where the closure is certain: ``q_i`` is
+    differentiable there) and ``q(c)`` enclosed at the centre over the lengths' box;
+    ``-inf`` where the box may be out of reach."""
+    i, s = q.actuator, q.sign
+    L = {n: Interval(*lh) for n, lh in lengths.items()} if lengths else None
+    kw = {"lengths": L} if L else {}
+    cx, cy = X.mid, Y.mid
+    with np.errstate(all="ignore"):
+        (qs, certain) = mech.actuator_enclosure(X, Y, **kw)
+        (qc, _) = mech.actuator_enclosure(Interval(cx), Interval(cy), **kw)
+        A, b, smooth = mech.closure_enclosure(X, Y, **kw)
+        val, at_c = (qs[i], qc[i]) if s > 0 else (-qs[i], -qc[i])
+        mv = at_c + (s * A[i][0] / b[i]) * (X - cx) + (s * A[i][1] / b[i]) * (Y - cy)
+        low = np.where(np.broadcast_to(smooth, val.lo.shape), np.maximum(val.lo, mv.lo), val.lo)
+    certain = np.broadcast_to(certain, low.shape)
+    low = np.where(certain & ~np.isnan(low), low, -math.inf)
+    return low, ~certain
+
+
 def _upper(mech, q, cells, rows, dx, dy):
     """The smallest value of ``q`` at the cells' task points (inf when none)."""
     cx, cy, inside = cells.centres(rows)
@@ -434,6 +516,12 @@ def _upper(mech, q, cells, rows, dx, dy):
     with np.errstate(all="ignore"):
         v = q.point(mech, cx[inside] + dx, cy[inside] + dy)
     return float(np.min(v))
+
+
+def _tol(q, ub, rtol):
+    """The stopping gap: ``rtol * max(|upper|, scale)`` (``scale`` alone for a quantity
+    not ``relative``)."""
+    return rtol * max(abs(ub) if q.relative and math.isfinite(ub) else 0.0, q.scale, 1e-300)
 
 
 def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rtol: float = RTOL,
@@ -486,6 +574,8 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
         raise ValueError(f"shift must be a length >= 0, got {shift!r}")
     if mech.closure_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
         raise ValueError(f"{type(mech).__name__} has no closure enclosure")
+    if q.actuator is not None and mech.actuator_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
+        raise ValueError(f"{type(mech).__name__} has no actuator enclosure")
     dx, dy = _translation(to_mech)
     cells = _Cells(task)
     rows = cells.rows
@@ -499,7 +589,7 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
             ub = min(ub, float(np.min(q.point(mech, bx + dx, by + dy))))
     converged = False
     while True:
-        tol = rtol * max(abs(ub) if math.isfinite(ub) else 0.0, q.scale, 1e-300)
+        tol = _tol(q, ub, rtol)
         low = float(lb.min()) if len(lb) else math.inf
         if ub - low <= tol:
             converged = True
@@ -530,10 +620,85 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
         if truncated:
             break
     low = float(lb.min()) if len(lb) else math.inf
-    tol = rtol * max(abs(ub) if math.isfinite(ub) else 0.0, q.scale, 1e-300)
+    tol = _tol(q, ub, rtol)
     sizes = cells.sizes(rows)
     return Bound(lower=low, upper=ub, cells=int(used), leaves=int(len(rows)),
                  smallest_cell=float(sizes.min()) if len(sizes) else 0.0,
                  largest_cell=float(sizes.max()) if len(sizes) else 0.0,
                  may_unreachable=bool(np.any(unk & (lb <= q.floor))), converged=converged or ub - low <= tol,
                  tol=float(tol))
+
+
+@dataclass
+class Ranges:
+    """The result of :func:`outer_range`.
+
+    Parameters
+    ----------
+    outer : list of tuple
+        ``[(lo1, hi1), (lo2, hi2)]``: proven outer ranges of the actuator coordinates over
+        the task (each contains the exact range) [rad or L]; infinite ends where a cell
+        may be out of reach.
+    inner : list of tuple
+        The extremes of the values found at task points (inside the exact range).
+    bounds : list of Bound
+        The four searches: ``q1``, ``-q1``, ``q2``, ``-q2``.
+    """
+
+    outer: list
+    inner: list
+    bounds: list
+
+    @property
+    def cells(self) -> int:
+        """Cells evaluated by the four searches."""
+        return int(sum(b.cells for b in self.bounds))
+
+    @property
+    def converged(self) -> bool:
+        """Every search converged."""
+        return all(b.converged for b in self.bounds)
+
+    @property
+    def may_unreachable(self) -> bool:
+        """Some cell of a final cover may be out of reach."""
+        return any(b.may_unreachable for b in self.bounds)
+
+    @property
+    def gap(self) -> float:
+        """The largest excess of an outer end over the inner one [rad or L]."""
+        return float(max(max(ilo - olo, ohi - ihi) for (olo, ohi), (ilo, ihi) in zip(self.outer, self.inner)))
+
+
+def outer_range(mech, task, scale: float, to_mech=None, budget: int = BUDGET, rtol: float = RTOL,
+                lengths: dict | None = None, shift: float = 0.0) -> Ranges:
+    """Proven outer ranges of both actuator coordinates over the task: ``min q_i`` and
+    ``max q_i = -min(-q_i)`` bounded by :func:`lower_bound` with :func:`range_quantity`
+    (four searches, each of ``budget`` cells at most).
+
+    Parameters
+    ----------
+    mech : PlanarMechanism
+        The mechanism (with :meth:`~mechopt.core.protocol.PlanarMechanism.actuator_enclosure`).
+    task : mechopt.analysis.task.Task
+        The task, as placed (task frame).
+    scale : float
+        The stopping gap's reference [rad or L] (each end within ``rtol * scale``).
+    to_mech, budget, rtol, lengths, shift
+        As :func:`lower_bound`'s.
+
+    Returns
+    -------
+    Ranges
+        The outer and inner ranges and the searches.
+
+    Raises
+    ------
+    ValueError
+        As :func:`lower_bound`, and for a mechanism without actuator enclosure.
+    """
+    bounds = [lower_bound(mech, task, range_quantity(i, s, scale), to_mech=to_mech, budget=budget, rtol=rtol,
+                          lengths=lengths, shift=shift) for i in (0, 1) for s in (1.0, -1.0)]
+    outer = [(bounds[k].lower, -bounds[k + 1].lower) for k in (0, 2)]
+    inner = [(bounds[k].upper, -bounds[k + 1].upper) for k in (0, 2)]
+    return Ranges(outer, inner, bounds)

@@ -33,7 +33,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["Interval", "Gradient", "as_interval", "hypot", "minimum", "maximum"]
+__all__ = ["Interval", "Gradient", "as_interval", "hypot", "minimum", "maximum", "atan2", "acos", "PI",
+           "LIBM_ULPS"]
 
 _NINF, _PINF = -np.inf, np.inf
 
@@ -275,6 +276,81 @@ def hypot(a, b):
     return out
 
 
+#: ulps by which a libm result (``np.arctan2``, ``np.arccos``) is moved outward: the
+#: assumption is that the platform's libm computes them within 1 ulp of the exact value
+#: (glibc documents at most 1 ulp for ``atan2`` and ``acos`` on x86-64; the tests check
+#: it against mpmath at random arguments); two ulps leave a margin of one.
+LIBM_ULPS = 2
+
+
+def _libm_widen(lo, hi):
+    """``lo``, ``hi`` moved :data:`LIBM_ULPS` ulps outward."""
+    for _ in range(LIBM_ULPS):
+        lo, hi = _down(lo), _up(hi)
+    return lo, hi
+
+
+def atan2(y, x):
+    """The range of ``atan2(y, x)`` (in ``(-pi, pi]``, the branch cut on the negative x
+    axis, as ``np.arctan2``) over boxes ``x`` times ``y``, and where it is continuous.
+
+    The argument: on a box that contains neither the origin nor a point of the cut
+    (``x < 0, y = 0``), the angle is continuous, and monotone along every segment of the
+    box (its derivative along ``p0 + t e`` is ``(p0 x e) / |p|^2``, of constant sign), so
+    through any point a horizontal segment to the box's sides and then a side to its
+    corners: the extremes are at the 4 corners (floats, the boxes' endpoints). Each
+    corner's angle by ``np.arctan2`` is moved :data:`LIBM_ULPS` ulps outward (the libm
+    assumption). Elsewhere (the box may meet the cut or the origin) the angle is only
+    known to lie in ``[-pi, pi]`` (outward rounded) and is flagged discontinuous.
+
+    Parameters
+    ----------
+    y, x : Interval or array_like
+        Ordinates and abscissae of the boxes (the order of ``np.arctan2``).
+
+    Returns
+    -------
+    angle : Interval
+        The enclosure [rad].
+    continuous : ndarray of bool
+        Where the box meets neither the cut nor the origin (the angle is continuous on it).
+    """
+    y, x = as_interval(y), as_interval(x)
+    with np.errstate(invalid="ignore"):
+        c = [np.arctan2(yy, xx) for yy in (y.lo, y.hi) for xx in (x.lo, x.hi)]
+    lo, hi = _libm_widen(np.minimum.reduce(c), np.maximum.reduce(c))
+    cut = (x.lo <= 0.0) & (y.lo <= 0.0) & (y.hi >= 0.0)  # the origin or the negative x axis
+    cont = ~cut & np.isfinite(x.lo) & np.isfinite(x.hi) & np.isfinite(y.lo) & np.isfinite(y.hi)
+    return _make(np.where(cont, lo, -PI.hi),
+                 np.where(cont, hi, PI.hi)), cont
+
+
+def acos(u):
+    """The range of ``arccos`` over intervals ``u`` clipped to ``[-1, 1]`` (as the point
+    evaluators clip a cosine that rounding moved past 1): decreasing, so
+    ``[acos(min(hi, 1)), acos(max(lo, -1))]``, each moved :data:`LIBM_ULPS` ulps outward
+    (the libm assumption), within ``[0, PI.hi]``.
+
+    Parameters
+    ----------
+    u : Interval or array_like
+        The cosines.
+
+    Returns
+    -------
+    Interval
+        The enclosure [rad].
+    """
+    u = as_interval(u)
+    with np.errstate(invalid="ignore"):
+        lo = np.arccos(np.clip(u.hi, -1.0, 1.0))
+        hi = np.arccos(np.clip(u.lo, -1.0, 1.0))
+    lo, hi = _libm_widen(lo, hi)
+    lo = np.where(np.isnan(lo), 0.0, lo)
+    hi = np.where(np.isnan(hi), PI.hi, hi)
+    return _make(np.maximum(lo, 0.0), np.minimum(hi, PI.hi))
+
+
 def minimum(a, b) -> Interval:
     """Elementwise ``min(a, b)`` (exact: no rounding).
 
@@ -307,6 +383,10 @@ def maximum(a, b) -> Interval:
     """
     a, b = as_interval(a), as_interval(b)
     return _make(np.maximum(a.lo, b.lo), np.maximum(a.hi, b.hi))
+
+
+#: an interval that contains the real number pi (``np.pi`` is below it by less than an ulp)
+PI = _make(np.asarray(np.pi), np.nextafter(np.asarray(np.pi), _PINF))
 
 
 def _parts(o):

@@ -456,6 +456,33 @@ class PlanarMechanism(ABC):
         """
         return None
 
+    def actuator_enclosure(self, x, y, lengths=None):
+        """Interval enclosure of the actuator coordinates of :meth:`ik` over boxes of
+        platform points (for the proven ranges of :mod:`mechopt.analysis.bounds`):
+        ``(q, certain)`` with ``q = (q1, q2)`` :class:`~mechopt.core.interval.Interval`
+        arrays that contain the exact (real-number) values of the formulas of :meth:`ik`
+        (same working mode) at every point of each box where ``certain``; ``certain`` False
+        where some point of the box may be out of reach or a coordinate may jump inside it
+        (an angle's branch cut), there ``q`` encloses nothing. Each mechanism's argument
+        and rounding in its implementation's docstring. ``lengths`` as for
+        :meth:`closure_enclosure`. Default None: no enclosure (no proven ranges).
+
+        Parameters
+        ----------
+        x : mechopt.core.interval.Interval
+            Abscissae of the boxes [L] (base frame).
+        y : mechopt.core.interval.Interval
+            Ordinates [L]; same shape.
+        lengths : dict, optional
+            Declared length parameters as intervals [L] replacing the instance's.
+
+        Returns
+        -------
+        tuple or None
+            ``((q1, q2), certain)`` [rad or L], or None.
+        """
+        return None
+
     def _no_length_intervals(self, lengths):
         """ValueError when a :meth:`closure_enclosure` that takes no length intervals is
         given some."""

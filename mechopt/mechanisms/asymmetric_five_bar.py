@@ -252,6 +252,27 @@ class AsymmetricFiveBar(PlanarMechanism):
         legs = ((L["a1"], L["c1"], self._s[0]), (L["a2"], L["c2"], self._s[1]))
         return _fb.legs_closure_enclosure(x, y, L["r3"], legs)
 
+    def actuator_enclosure(self, x, y, lengths=None):
+        """Interval enclosure of the crank angles of :meth:`ik` over boxes
+        (:func:`mechopt.mechanisms.five_bar.model.legs_actuator_enclosure`), for every
+        mechanism with its lengths in ``lengths`` (intervals) where given.
+
+        Parameters
+        ----------
+        x, y : mechopt.core.interval.Interval
+            The boxes [L].
+        lengths : dict, optional
+            ``{"a1" | "c1" | "a2" | "c2" | "r3": interval}`` [L].
+
+        Returns
+        -------
+        tuple
+            ``(theta, certain)``.
+        """
+        L = _fb._length_intervals(self, ("a1", "c1", "a2", "c2", "r3"), lengths)
+        legs = ((L["a1"], L["c1"], self._s[0]), (L["a2"], L["c2"], self._s[1]))
+        return _fb.legs_actuator_enclosure(x, y, L["r3"], legs)
+
     def reachable(self, x, y):
         return _fb.legs_reachable(x, y, self.r3, self._legs())
 

@@ -725,6 +725,26 @@ class Bipod(PlanarMechanism):
             certain &= y.hi <= 0.0
         return rows, q, certain
 
+    def actuator_enclosure(self, x, y, lengths=None):
+        """Interval enclosure of the strut lengths of :meth:`ik` over boxes: ``b`` of
+        :meth:`closure_enclosure`, ``(|P - A_1|, |P - A_2|)`` (each a norm of variables
+        appearing once: the exact range up to the outward rounding), and its ``certain``.
+
+        Parameters
+        ----------
+        x, y : mechopt.core.interval.Interval
+            The boxes [L].
+        lengths : dict, optional
+            As :meth:`closure_enclosure` takes them.
+
+        Returns
+        -------
+        tuple
+            ``((q1, q2), certain)`` (:meth:`mechopt.core.protocol.PlanarMechanism.actuator_enclosure`).
+        """
+        _, q, certain = self.closure_enclosure(x, y, lengths)
+        return q, certain
+
     # --- the kinematic tree (mechopt.core.kinematic_tree; mechopt export) -----------------
     def kinematic_tree(self):
         """Per strut ``i`` the passive ``base<i>`` on the base at ``A_i`` (body

@@ -552,6 +552,28 @@ class TwoSliderMechanism(PlanarMechanism):
             certain = ok if certain is None else certain & ok
         return tuple(rows), tuple(bs), certain
 
+    def actuator_enclosure(self, x, y, lengths=None):
+        """Interval enclosure of the slider positions of :meth:`ik` over boxes: ``q_i =
+        (y - e) - c_i`` with ``c_i`` of :meth:`closure_enclosure` (``-s_i sqrt(L^2 - (x -
+        g_i)^2)``; ``y`` and ``x`` each once, so the natural extension is the exact range
+        up to the outward rounding), ``certain`` its (the link reaches its guide, not
+        horizontal, the position inside the widened stroke).
+
+        Parameters
+        ----------
+        x, y : mechopt.core.interval.Interval
+            The boxes [L].
+        lengths : dict, optional
+            As :meth:`closure_enclosure` takes them.
+
+        Returns
+        -------
+        tuple
+            ``((q1, q2), certain)`` (:meth:`mechopt.core.protocol.PlanarMechanism.actuator_enclosure`).
+        """
+        _, c, certain = self.closure_enclosure(x, y, lengths)
+        return tuple((y - self._e) - ci for ci in c), certain
+
     # --- the kinematic tree (mechopt.core.kinematic_tree; mechopt export) -----------------
     def kinematic_tree(self):
         """Per leg ``i`` the actuated prismatic joint ``q<i>`` on the base at ``(g_i, 0)``

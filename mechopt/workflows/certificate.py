@@ -29,7 +29,8 @@ from mechopt.analysis.design_eval import DesignEvaluator, certify
 from mechopt.analysis.sampling import Sampling
 
 __all__ = ["certificate", "check", "tolerance_box", "box_certified", "box_failures", "requirement_entries",
-           "proven_bounds", "format_check", "BOX_SAMPLES", "CERTIFICATE_VERSION", "CLAIM_RTOL", "BOUNDED"]
+           "proven_bounds", "format_check", "BOX_SAMPLES", "CERTIFICATE_VERSION", "CLAIM_RTOL", "BOUNDED",
+           "RANGED"]
 
 #: the format of certificate.json (a new key keeps it; a changed meaning raises it)
 CERTIFICATE_VERSION = 1
@@ -37,8 +38,11 @@ CERTIFICATE_VERSION = 1
 BOX_SAMPLES = 32
 
 
-#: the requirements whose minimum :func:`proven_bounds` bounds from below
-BOUNDED = ("lci", "singular", "speed", "force")
+#: the requirements whose minimum :func:`proven_bounds` bounds from below (joints and
+#: stroke: their margins, from the proven outer ranges of the actuator coordinates)
+BOUNDED = ("lci", "singular", "speed", "force", "joints", "stroke")
+#: the requirements bounded through the actuator coordinates' ranges
+RANGED = ("joints", "stroke")
 
 
 def _method(member) -> str:
@@ -78,10 +82,12 @@ def requirement_entries(ev: DesignEvaluator, res: dict, bounds: dict | None = No
             out[r.name]["bound"] = b
             if b["proven_margin"] >= 0:
                 out[r.name]["method"] = "proven"
-                out[r.name]["certificate"] = (f"proven lower bound {b['lower_bound']:.6g} of the minimum by "
-                                              f"{b['method']} ({b['cells']} cells, smallest {b['smallest_cell']:.3g} "
-                                              f"{ev.unit}; mechopt.analysis.bounds); estimate "
-                                              f"{b['estimate']:.6g}: {r.certificate}")
+                what = (f"proven lower bound {b['lower_bound']:.6g} of the minimum" if "ranges" not in b else
+                        f"proven lower bound {b['lower_bound']:.6g} of the margin from the proven outer ranges "
+                        + ", ".join(f"[{lo:.6g}, {hi:.6g}]" for lo, hi in b["ranges"]))
+                out[r.name]["certificate"] = (f"{what} by {b['method']} ({b['cells']} cells, smallest "
+                                              f"{b['smallest_cell']:.3g} {ev.unit}; mechopt.analysis.bounds); "
+                                              f"estimate {b['estimate']:.6g}: {r.certificate}")
     return out
 
 
@@ -93,7 +99,11 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
     sign, the guaranteed speed and force in the requirements' reading of the actuator
     limits. The bound is over the mechanism whose strokes are padded (the evaluator's
     ``check``: the same Jacobian; a slider mechanism's strokes are sized to cover the
-    task, which the reach requirement proves).
+    task, which the reach requirement proves). For ``joints`` and ``stroke`` the
+    bounded quantity is the margin itself: from the proven outer ranges of both actuator
+    coordinates over the task (:func:`mechopt.analysis.bounds.outer_range`), the smallest
+    distance of the crank ranges to their limits [rad], or ``max_stroke`` minus the
+    longest outer range [L].
 
     Parameters
     ----------
@@ -121,7 +131,10 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
         (``estimate - lower_bound``), ``upper`` (the smallest value the search met at a
         task point), ``proven_margin`` (``lower_bound`` minus the required level [the
         margin's unit]), ``method``, ``cells``, ``smallest_cell``, ``largest_cell`` [L],
-        ``converged`` and ``may_unreachable``. Empty for an invalid design.
+        ``converged`` and ``may_unreachable``; for ``joints`` and ``stroke`` also ``ranges``
+        (the proven outer ranges [rad or L]), ``estimate_ranges`` (the sampled ones: the
+        derived ``joint_ranges`` or ``strokes``) and ``inner_ranges`` (the extremes the
+        search met at task points). Empty for an invalid design.
 
     Raises
     ------
@@ -141,6 +154,14 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
     lengths = None if tolerance is None else {
         n: (max(float(v[n]) - tolerance, 0.0), float(v[n]) + tolerance) for n in ev.spec.lengths}
     for name, r in active.items():
+        if name in RANGED:
+            est = float(margins[name]) if margins is not None and name in margins else float(r.evaluate(ctx)[0])
+            try:
+                out[name] = _ranges(ctx, name, est, budget or _b.BUDGET, lengths, tolerance)
+            except ValueError:  # with a tolerance: an actuator enclosure without length intervals
+                if tolerance is None:
+                    raise
+            continue
         if name == "lci":
             q, need = _b.lci_quantity(), req.min_lci
             est = (lambda: lci_min(ctx))
@@ -164,6 +185,33 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
                      "method": _b.METHOD, "cells": b.cells, "smallest_cell": b.smallest_cell,
                      "largest_cell": b.largest_cell, "converged": b.converged, "may_unreachable": b.may_unreachable}
     return out
+
+
+def _ranges(ctx, name, est, budget, lengths, tolerance) -> dict:
+    """:func:`proven_bounds`' entry of ``joints`` or ``stroke``: the margin's lower bound
+    from :func:`mechopt.analysis.bounds.outer_range` over the placed task."""
+    from mechopt.analysis import bounds as _b
+
+    joints = name == "joints"
+    rg = _b.outer_range(ctx.check, ctx.task, 1.0 if joints else ctx.task.diameter,
+                        to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y), budget=budget, lengths=lengths,
+                        shift=tolerance or 0.0)
+
+    def margin(ranges):
+        if joints:
+            return min(min(lo - a, b - hi) for (lo, hi), (a, b) in zip(ranges, ctx.req.joint_limits))
+        return ctx.req.max_stroke - max(hi - lo for lo, hi in ranges)
+    with np.errstate(invalid="ignore"):
+        lower, upper = float(margin(rg.outer)), float(margin(rg.inner))
+    lower = -math.inf if math.isnan(lower) else lower
+    ranges = ctx.derived["joint_ranges" if joints else "strokes"]
+    return {"quantity": "joint_ranges" if joints else "strokes", "lower_bound": lower, "estimate": est,
+            "gap": est - lower, "upper": upper, "proven_margin": lower, "method": _b.METHOD, "cells": rg.cells,
+            "smallest_cell": min(b.smallest_cell for b in rg.bounds),
+            "largest_cell": max(b.largest_cell for b in rg.bounds), "converged": rg.converged,
+            "may_unreachable": rg.may_unreachable, "ranges": [list(map(float, o)) for o in rg.outer],
+            "estimate_ranges": [list(map(float, o)) for o in ranges],
+            "inner_ranges": [list(map(float, o)) for o in rg.inner]}
 
 
 def _bounds_of(item) -> dict:
@@ -216,7 +264,8 @@ def certificate(result) -> dict:
             "chosen": int(result.chosen_index), "designs": designs,
             "note": "proven: the requirement's argument holds over the whole task (for LCI, the type-II "
                     "function, speed and force: the proven lower bound of the minimum by interval "
-                    "branch-and-bound, 'bound', meets it); refined-sampled: the minimum located on the samples "
+                    "branch-and-bound, 'bound', meets it; for joints and stroke: the margin from the proven "
+                    "outer ranges of the actuator coordinates, 'bound', is >= 0); refined-sampled: the minimum located on the samples "
                     "and refined by zooming (an estimate, not a bound)"}
 
 

@@ -30,7 +30,7 @@ from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, Kinem
 from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
 __all__ = ["FiveBar", "FiveBarDesignSpec", "FiveBarErrorSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows",
-           "legs_closure", "legs_closure_enclosure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box",
+           "legs_closure", "legs_closure_enclosure", "legs_actuator_enclosure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box",
            "legs_ik", "legs_fk",
            "legs_assembly_of", "legs_tree", "legs_tree_configuration",
            "legs_bodies", "legs_body_frames"]
@@ -212,6 +212,58 @@ def legs_closure_enclosure(x, y, r3, legs):
         bs.append(-(h * d2))
         certain = ok if certain is None else certain & ok
     return tuple(rows), tuple(bs), certain
+
+
+def legs_actuator_enclosure(x, y, r3, legs):
+    """Interval enclosure of :func:`legs_ik`'s crank angles over boxes ``x, y``
+    (intervals): ``(theta, certain)``
+    (:meth:`mechopt.core.protocol.PlanarMechanism.actuator_enclosure`).
+
+    The same formulas as :func:`legs_ik` (Le 2013 eq. 13-18), ``theta1 = beta1 + s1
+    alpha1``, ``theta2 = pi - beta2 + s2 alpha2``: ``beta_i`` the angle of ``P - A_i``
+    (leg 2 mirrored: of ``(r3 - x, y)``) by :func:`mechopt.core.interval.atan2` (its
+    exact range over the box from the corners), ``alpha_i = acos(k_i)`` with ``k_i =
+    (a_i^2 + d_i^2 - c_i^2) / (2 a_i d_i)`` by :func:`mechopt.core.interval.acos`,
+    ``d_i = |P - A_i|``, ``pi`` enclosed by :data:`mechopt.core.interval.PI`; outward
+    rounding throughout. ``certain`` is False where a leg may not assemble (``k_i`` not
+    certainly within ``[-1, 1]``, or ``d_i`` may vanish) or the box may meet ``beta_i``'s
+    branch cut (``y = 0`` beyond the base joint, where the point evaluator's angle jumps by
+    ``2 pi``). Lengths (``r3``, ``a_i``, ``c_i``) may be intervals too (a tolerance box).
+
+    Parameters
+    ----------
+    x, y : mechopt.core.interval.Interval
+        The boxes [L].
+    r3 : float or Interval
+        Half the base distance [L].
+    legs : tuple
+        Per leg ``(a_i, c_i, s_i)``: crank [L], distal link [L] (floats or intervals),
+        elbow sign (+1 or -1).
+
+    Returns
+    -------
+    theta : tuple
+        ``(theta1, theta2)`` intervals [rad].
+    certain : ndarray of bool
+        Where every point of the box assembles both legs and both angles are continuous.
+    """
+    from mechopt.core import interval as _iv
+
+    r3, y = _iv.as_interval(r3), _iv.as_interval(y)
+    out, certain = [], None
+    for i, (a, c, s) in enumerate(legs):
+        a = _iv.as_interval(a)
+        vx = x + r3 if i == 0 else r3 - x  # leg 2 mirrored: beta2 = atan2(y, r3 - x)
+        d2 = (vx.sqr() + y.sqr()).nonneg()
+        d = d2.sqrt()[0]
+        k = (a.sqr() + d2 - _iv.as_interval(c).sqr()) / (2.0 * (a * d))
+        beta, cont = _iv.atan2(y, vx)
+        alpha = _iv.acos(k)
+        ok = cont & (d.lo > 0.0) & (k.lo >= -1.0) & (k.hi <= 1.0)
+        th = beta + alpha if s > 0 else beta - alpha
+        out.append(th if i == 0 else (_iv.PI - beta) + (alpha if s > 0 else -alpha))
+        certain = ok if certain is None else certain & ok
+    return tuple(out), certain
 
 
 def _reach(x, y, r3, legs):
@@ -942,6 +994,27 @@ class FiveBar(PlanarMechanism):
         L = _length_intervals(self, ("r1", "r2", "r3"), lengths)
         legs = ((L["r1"], L["r2"], self._s1), (L["r1"], L["r2"], self._s2))
         return legs_closure_enclosure(x, y, L["r3"], legs)
+
+    def actuator_enclosure(self, x, y, lengths=None):
+        """Interval enclosure of the crank angles of :meth:`ik` over boxes
+        (:func:`legs_actuator_enclosure`), for every mechanism with ``r1, r2, r3`` in
+        ``lengths`` (intervals) where given.
+
+        Parameters
+        ----------
+        x, y : mechopt.core.interval.Interval
+            The boxes [L].
+        lengths : dict, optional
+            ``{"r1" | "r2" | "r3": interval}`` [L].
+
+        Returns
+        -------
+        tuple
+            ``(theta, certain)``.
+        """
+        L = _length_intervals(self, ("r1", "r2", "r3"), lengths)
+        legs = ((L["r1"], L["r2"], self._s1), (L["r1"], L["r2"], self._s2))
+        return legs_actuator_enclosure(x, y, L["r3"], legs)
 
     def reachable(self, x, y):
         return legs_reachable(x, y, self.r3, self._legs())
