@@ -446,7 +446,7 @@ DESIGN_RUN = {
 }
 DESIGN_SETTINGS = ("mechanism", "task", "requirements", "objectives", "mode", "place", "min_length",
                    "max_length", "shape", "unit", "side", "kind", "label", "vertices", "center", "radius", "points",
-                   "n_boundary", "n_interior", "refine", "sampling", "by", "optimisation", "polish", "certification", "files")
+                   "n_boundary", "n_interior", "refine", "settle", "sampling", "by", "optimisation", "polish", "certification", "files")
 EXPORT_FILES = {
     "robot.urdf": ("`urdf`: the mechanism as a tree (URDF, lengths in m), cut open at the platform joint; the "
                    "closure frames `closedloop1_A` (leg 1, the platform point) and `closedloop1_B` (leg 2) are "
@@ -918,7 +918,8 @@ def _design() -> str:
            "### `run.json`\n",
            "The keys of `optimize`'s `run.json` (`problem` is `design`) and:\n",
            _table(["key", "meaning", "unit"], [(f"`{k}`", m, _unit(u)) for k, (m, u) in DESIGN_RUN.items()]),
-           f"Keys inside `design`, `settings`, `certification` and `chosen`: {_codes(DESIGN_SETTINGS)}.\n",
+           f"Keys inside `design`, `settings`, `certification` and `chosen`: {_codes(DESIGN_SETTINGS)} "
+           "(`settle`: the search leaves unrefined the minima its samples show comfortably met).\n",
            "The registered problem `design` (`mechopt optimize design`, the five-bar example of "
            "`problems/design.py`) searches the lengths as `ln_<length> = ln(length + min_length)` "
            "(`ln_D` with a shape) and the placement as `task_x_rel`, `task_y_rel`; its `front.csv` is "
