@@ -121,8 +121,12 @@ def test_without_lengths_the_strokes_still_decide(kind):
                  else (1000.0, 1001.0))
     x, y = (Interval([25.0], [26.0]), Interval([40.0], [41.0])) if kind == "bipod" else \
         (Interval([1.0], [2.0]), Interval([0.0], [1.0]))
+    box = {names[0]: Interval(nominal[0] - 0.1, nominal[0] + 0.1)}
     assert not mech.closure_enclosure(x, y)[2][0]
-    assert mech.closure_enclosure(x, y, lengths={names[0]: Interval(nominal[0] - 0.1, nominal[0] + 0.1)})[2][0]
+    assert mech.closure_enclosure(x, y, lengths=box)[2][0]
+    if kind == "bipod":  # a cell on a base joint: a strut of length 0, out of every build's reach
+        assert not build(kind, nominal, "up").reachable(0.0, 0.0)
+        assert not mech.closure_enclosure(Interval([-1e-9], [1e-9]), Interval([0.0], [1e-9]), lengths=box)[2][0]
 
 
 # ------------------------------------------------------------------ (b) bounds over a box
