@@ -234,11 +234,16 @@ def _violations(kind, row, n_builds, n_grid, n_boundary, seed, tol=TOL):
 
 
 #: the gantry is the Biglide mirrored (the same front): its run is behind ``-m slow``
+#: the smallest runs with a front of several designs: ``(pop, gen)``
+BUDGETS = {"biglide": (10, 4), "gantry": (10, 4), "bipod": (6, 2)}
+
+
 @pytest.fixture(scope="module", params=["biglide", "bipod", pytest.param("gantry", marks=pytest.mark.slow)])
 def small_run(request, tmp_path_factory):
     kind = request.param
+    pop, gen = BUDGETS[kind]
     res = design(kind, parse_task(TASK), Requirements(min_lci=GAMMA), ("size", "min-lci"), max_length=400,
-                 seed=1, n_jobs=1, tolerance=TOL, out=tmp_path_factory.mktemp(kind) / "run", pop=10, gen=4,
+                 seed=1, n_jobs=1, tolerance=TOL, out=tmp_path_factory.mktemp(kind) / "run", pop=pop, gen=gen,
                  polish=False)
     return kind, res
 
