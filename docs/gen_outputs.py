@@ -360,7 +360,7 @@ CHECK_JSON = {
             "placement's 4 and 32 seeded points inside the box of lengths and placement), `min_margin` and "
             "`worst` (the lengths and placement where it is) per requirement, "
             "`holds` per requirement, `methods` per requirement (`proven`: over the whole box, by the interval "
-            "bound over the task, every length of the box and every placement, five-bars only; reach proven when every cell is "
+            "bound over the task, every length of the box and every placement; reach proven when every cell is "
             "certainly reachable; else `sampled`: nothing is proven between the points), `method` (`proven` "
             "when every requirement is, else `sampled`), `proven` (per bounded requirement over the box: "
             "`lower_bound`, `proven_margin`, `cells`, `converged`, `may_unreachable`)", ""),

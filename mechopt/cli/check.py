@@ -6,7 +6,7 @@ Runs :func:`mechopt.workflows.certificate.check`: the design of a ``design.json`
 ``--lengths``), re-evaluated with the full evaluator and the certification's sampling
 against the task and requirements of the ``run.json`` beside it (or ``--task``), and with
 ``--tolerance T`` every mechanism whose lengths lie within ``+- T``, the task placed within
-``+- T`` in x and y (the box's corners and a seeded sample inside it, sampled; for the five-bars also the interval bounds over the
+``+- T`` in x and y (the box's corners and a seeded sample inside it, sampled; also the interval bounds over the
 task and the whole box, which prove LCI, the type-II function, speed, force and reach
 where they meet them). Prints one line per requirement
 (its margin in its unit, holds or FAILS, proven or refined-sampled) and a last line;
@@ -37,7 +37,7 @@ def add_parser(subparsers):
     p.add_argument("--tolerance", default=None, metavar="T",
                    help="also check every length and the task's placement (x, y) within +-T [the design's "
                         "unit] of the nominal ones: the lengths' 2^n corners, the placement's 4 and 32 seeded "
-                        "points of the whole box (sampled); five-bars: also interval bounds over the whole box "
+                        "points of the whole box (sampled); also interval bounds over the whole box "
                         "(proven where they meet a requirement)")
     p.add_argument("--json", action="store_true", help="print the report as one JSON object (keys: "
                                                        "docs/outputs.md)")

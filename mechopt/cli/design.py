@@ -68,7 +68,7 @@ def add_parser(subparsers):
                     help="shortest link [unit] (default --max-length / 1000)")
     ds.add_argument("--tolerance", type=float, default=None, metavar="T",
                     help="every front design must also hold for every mechanism whose lengths lie within +-T "
-                         "[unit] of its own: the box's corners evaluated and, for the five-bars, interval "
+                         "[unit] of its own: the box's corners evaluated and interval "
                          "bounds over the whole box proving LCI, type-II, speed, force and reach; the polish "
                          "keeps designs inside, designs that fail are dropped; each box in certificate.json")
     ds.add_argument("--shape", default=None, metavar="R1,R2,R3",

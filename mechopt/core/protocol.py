@@ -483,11 +483,15 @@ class PlanarMechanism(ABC):
         """
         return None
 
-    def _no_length_intervals(self, lengths):
-        """ValueError when a :meth:`closure_enclosure` that takes no length intervals is
-        given some."""
-        if lengths:
-            raise ValueError(f"{type(self).__name__}'s enclosure takes no length intervals")
+    def _length_intervals(self, names, lengths):
+        """``{name: value}`` of this mechanism's lengths ``names`` (its attributes), those
+        in ``lengths`` (a :meth:`closure_enclosure`'s intervals) replacing them; ValueError
+        for a name not among them."""
+        lengths = dict(lengths or {})
+        unknown = set(lengths) - set(names)
+        if unknown:
+            raise ValueError(f"{type(self).__name__} has no length {sorted(unknown)[0]!r} (it has {', '.join(names)})")
+        return {n: lengths.get(n, getattr(self, n)) for n in names}
 
     @property
     def joint_limits(self):

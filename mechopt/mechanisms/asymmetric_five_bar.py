@@ -248,7 +248,7 @@ class AsymmetricFiveBar(PlanarMechanism):
         tuple
             ``(A, b, certain)``.
         """
-        L = _fb._length_intervals(self, ("a1", "c1", "a2", "c2", "r3"), lengths)
+        L = self._length_intervals(("a1", "c1", "a2", "c2", "r3"), lengths)
         legs = ((L["a1"], L["c1"], self._s[0]), (L["a2"], L["c2"], self._s[1]))
         return _fb.legs_closure_enclosure(x, y, L["r3"], legs)
 
@@ -269,7 +269,7 @@ class AsymmetricFiveBar(PlanarMechanism):
         tuple
             ``(theta, certain)``.
         """
-        L = _fb._length_intervals(self, ("a1", "c1", "a2", "c2", "r3"), lengths)
+        L = self._length_intervals(("a1", "c1", "a2", "c2", "r3"), lengths)
         legs = ((L["a1"], L["c1"], self._s[0]), (L["a2"], L["c2"], self._s[1]))
         return _fb.legs_actuator_enclosure(x, y, L["r3"], legs)
 

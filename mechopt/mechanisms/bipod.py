@@ -697,28 +697,54 @@ class Bipod(PlanarMechanism):
         tolerance (``LIMIT_RTOL * length_scale``), or the box may cross to the other side
         of the branch (``y >= 0`` for ``"up"``, ``y <= 0`` for ``"down"``).
 
+        With ``lengths`` (``{"b": interval}``, a tolerance box) the enclosure holds for
+        every bipod of base ``b'`` in the interval placed as the design spec places it,
+        about the base's midpoint (:meth:`BipodDesignSpec.to_mech`): the point ``(x, y)`` of
+        this frame is ``m = x - b/2`` from the midpoint, so ``P - A_1 = (m + b'/2, y)`` and
+        ``P - A_2 = (m - b'/2, y)``. ``certain`` then tests the branch's side and that
+        each strut is longer than the shortest stroke limit a design's build allows
+        (``RESOLUTION * b'``, :meth:`BipodDesignSpec.build`), not the strokes: each bipod
+        of a tolerance box is built with its own strokes, derived as the ranges of
+        ``q_i`` over the task (:attr:`BipodDesignSpec.derived_strokes`), which contain
+        every ``q_i`` of the task by construction; this bipod's strokes do not bound a
+        neighbour's ``q_i`` (whether the derived strokes meet ``max_length`` is the
+        length requirement's question).
+
         Parameters
         ----------
         x, y : mechopt.core.interval.Interval
             The boxes [L].
         lengths : dict, optional
-            Length intervals: none supported yet (the strokes are derived from the task).
+            ``{"b": interval}`` [L], the base distance (the design spec's length).
 
         Returns
         -------
         tuple
             ``(A, b, certain)``, as the protocol's.
+
+        Raises
+        ------
+        ValueError
+            For a name in ``lengths`` other than ``b``.
         """
-        self._no_length_intervals(lengths)
         from mechopt.core.interval import as_interval, hypot
 
         y = as_interval(y)
-        rows = ((x, y), (x - self.b, y))
+        if lengths:
+            half = 0.5 * as_interval(self._length_intervals(("b",), lengths)["b"])
+            m = x - 0.5 * self.b
+            rows = ((m + half, y), (m - half, y))
+        else:
+            rows = ((x, y), (x - self.b, y))
         q = (hypot(*rows[0]), hypot(*rows[1]))
-        t = LIMIT_RTOL * self.length_scale
-        (lo1, hi1), (lo2, hi2) = self.joint_limits
-        certain = ((q[0].lo >= lo1 - t) & (q[0].hi <= hi1 + t) & (q[1].lo >= lo2 - t) & (q[1].hi <= hi2 + t)
-                   & (q[0].lo > 0.0) & (q[1].lo > 0.0))
+        if lengths:
+            shortest = _v.RESOLUTION * (2.0 * half).hi
+            certain = (q[0].lo > shortest) & (q[1].lo > shortest)
+        else:
+            t = LIMIT_RTOL * self.length_scale
+            (lo1, hi1), (lo2, hi2) = self.joint_limits
+            certain = ((q[0].lo >= lo1 - t) & (q[0].hi <= hi1 + t) & (q[1].lo >= lo2 - t) & (q[1].hi <= hi2 + t)
+                       & (q[0].lo > 0.0) & (q[1].lo > 0.0))
         if self.branch == "up":
             certain &= y.lo >= 0.0
         elif self.branch == "down":

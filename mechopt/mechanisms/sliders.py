@@ -520,12 +520,28 @@ class TwoSliderMechanism(PlanarMechanism):
         guide, or lie horizontal: type I) or the enclosure of ``q_i = y - e - c_i`` is not
         inside the stroke widened by the point evaluator's tolerance (module docstring).
 
+        With ``lengths`` (a tolerance box: the design spec's half guide distance and link
+        length, :attr:`GuideDesignSpec.guide` and :attr:`GuideDesignSpec.link`, as
+        intervals) the guides are ``x = +-a`` (the legs in this mechanism's order) and the
+        link ``L`` for every ``a``, ``L`` of their intervals, so ``A`` and ``b`` enclose the
+        closure of every such mechanism (the guides stay symmetric about ``x = 0``, the
+        frame the design spec places the task in). ``certain`` then means only that both
+        links reach their guides and are not horizontal at every point of the box, for
+        every mechanism of it: the strokes are not tested. They are not lengths of the
+        box: each mechanism of a tolerance box is built with its own strokes, derived as
+        the ranges of ``q_i`` over the task (:attr:`GuideDesignSpec.derived_strokes`), which
+        contain every ``q_i`` of the task by construction wherever the link reaches its
+        guide; the nominal mechanism's strokes do not bound a neighbour's ``q_i`` (whether
+        the derived strokes meet ``max_stroke`` is the stroke requirement's question).
+
         Parameters
         ----------
         x, y : mechopt.core.interval.Interval
             The boxes [L].
         lengths : dict, optional
-            Not supported (a tolerance box of its lengths): must be None or empty.
+            ``{guide | link: interval}`` [L], the names of the design spec's lengths
+            (the Biglide's ``l1``, ``l2``; the gantry's ``d1``, ``l``); the others keep
+            this mechanism's values.
 
         Returns
         -------
@@ -535,18 +551,26 @@ class TwoSliderMechanism(PlanarMechanism):
         Raises
         ------
         ValueError
-            For ``lengths`` given (:meth:`~mechopt.core.protocol.PlanarMechanism._no_length_intervals`).
+            For a name in ``lengths`` that is not one of the design spec's lengths.
         """
-        self._no_length_intervals(lengths)
-        L2 = _iv.as_interval(self._L).sqr()
+        if lengths:
+            spec = self.design_spec
+            L = self._length_intervals((spec.guide, spec.link), lengths)
+            a, link = _iv.as_interval(L[spec.guide]), _iv.as_interval(L[spec.link])
+            guides = (a, -a) if self._g[0] > 0 else (-a, a)
+        else:
+            link, guides = self._L, self._g
+        L2 = _iv.as_interval(link).sqr()
         rows, bs, certain = [], [], None
-        for g, s, (lo, hi) in zip(self._g, self._s, self._lims):
+        for g, s, (lo, hi) in zip(guides, self._s, self._lims):
             u = x - g
             h, neg = (L2 - u.sqr()).sqrt()
             c = -h if s > 0 else h
-            q = (y - self._e) - c
-            t = self._stroke_tol
-            ok = ~neg & (h.lo > 0.0) & (q.lo >= lo - t) & (q.hi <= hi + t)
+            ok = ~neg & (h.lo > 0.0)
+            if not lengths:
+                q = (y - self._e) - c
+                t = self._stroke_tol
+                ok = ok & (q.lo >= lo - t) & (q.hi <= hi + t)
             rows.append((u, c))
             bs.append(c)
             certain = ok if certain is None else certain & ok

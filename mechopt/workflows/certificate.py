@@ -121,7 +121,7 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
         ``T`` [L]: bound over every mechanism whose design lengths lie within ``+- T`` of
         ``v``'s (clipped at 0) and every placement of the task within ``+- T`` of ``v``'s
         in x and y (the mode stays ``v``'s), for mechanisms whose enclosure takes length
-        intervals (the five-bars); ValueError for the others.
+        intervals (every mechanism of mechopt); ValueError for the others.
 
     Returns
     -------
@@ -344,7 +344,7 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
     lengths in general (LCI has interior maxima along a length, the polish leaves
     designs at such peaks), so a minimum inside the box between the evaluated points
     can be lower: the sampled result is never called proven. What is proven, for the
-    mechanisms whose enclosure takes length intervals (the five-bars): the lower bound
+    mechanisms whose enclosure takes length intervals (every mechanism of mechopt): the lower bound
     of each minimum of :func:`proven_bounds` over the task and every length of the
     box and every placement at once (:func:`proven_bounds` with ``tolerance``); where it meets the
     requirement, the requirement is ``"proven"`` over the box; reach is proven over

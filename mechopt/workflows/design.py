@@ -779,8 +779,8 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     tolerance : float, optional
         ``T`` [L]: every front design must also hold for every mechanism whose lengths
         lie within ``+- T`` of its own (:func:`mechopt.workflows.certificate.tolerance_box`
-        without random draws: the box's corners evaluated, and for the five-bars interval
-        bounds over the whole box, which must prove each requirement they bound); the
+        without random draws: the box's corners evaluated, and interval bounds over the
+        whole box, which must prove each requirement they bound); the
         polish pulls a design back until it does, and a front design that does not is
         dropped (``info["dropped_by_tolerance"]``). Each front design's box is in
         certificate.json.

@@ -147,16 +147,6 @@ def legs_closure(x, y, r3, legs):
     return A, np.stack([k1, k2], -1), ok
 
 
-def _length_intervals(mech, names, lengths):
-    """``{name: value}`` of ``mech``'s lengths ``names``, those in ``lengths`` replaced
-    (ValueError for a name not among them)."""
-    lengths = dict(lengths or {})
-    unknown = set(lengths) - set(names)
-    if unknown:
-        raise ValueError(f"{type(mech).__name__} has no length {sorted(unknown)[0]!r} (it has {', '.join(names)})")
-    return {n: lengths.get(n, getattr(mech, n)) for n in names}
-
-
 def legs_closure_enclosure(x, y, r3, legs):
     """Interval enclosure of :func:`legs_closure` over boxes ``x, y`` (intervals):
     ``(A, b, certain)`` (:meth:`mechopt.core.protocol.PlanarMechanism.closure_enclosure`).
@@ -991,7 +981,7 @@ class FiveBar(PlanarMechanism):
         tuple
             ``(A, b, certain)``.
         """
-        L = _length_intervals(self, ("r1", "r2", "r3"), lengths)
+        L = self._length_intervals(("r1", "r2", "r3"), lengths)
         legs = ((L["r1"], L["r2"], self._s1), (L["r1"], L["r2"], self._s2))
         return legs_closure_enclosure(x, y, L["r3"], legs)
 
@@ -1012,7 +1002,7 @@ class FiveBar(PlanarMechanism):
         tuple
             ``(theta, certain)``.
         """
-        L = _length_intervals(self, ("r1", "r2", "r3"), lengths)
+        L = self._length_intervals(("r1", "r2", "r3"), lengths)
         legs = ((L["r1"], L["r2"], self._s1), (L["r1"], L["r2"], self._s2))
         return legs_actuator_enclosure(x, y, L["r3"], legs)
 
