@@ -581,7 +581,7 @@ class TwoSliderMechanism(PlanarMechanism):
         (y - e) - c_i`` with ``c_i`` of :meth:`closure_enclosure` (``-s_i sqrt(L^2 - (x -
         g_i)^2)``; ``y`` and ``x`` each once, so the natural extension is the exact range
         up to the outward rounding), ``certain`` its (the link reaches its guide, not
-        horizontal, the position inside the widened stroke).
+        horizontal, and without ``lengths`` the position inside the widened stroke).
 
         Parameters
         ----------
