@@ -21,12 +21,14 @@ from mechopt.requirements import Requirements
 from mechopt.workflows.design import design
 
 STAR = "polygon:0,200;12,166;47,166;19,145;29,111;0,131;-29,111;-19,145;-47,166;-12,166"
-CASES = [  # mechanism, task, placement, objectives, longest link
-    ("five-bar", "rect:100,60@0,180", "fixed", ("size", "min-lci"), 250),
-    ("five-bar", STAR, "free-y", ("size",), 250),
-    ("five-bar", "circle:40@0,150", "free", ("size", "mean-lci"), 250),
-    ("asymmetric-five-bar", "rect:80,50@0,170", "fixed", ("size",), 400),
-    ("biglide", "rect:80,50@0,150", "fixed", ("size",), 400),
+SPEED_FORCE = dict(actuator_speed=10.0, actuator_torque=5.0, min_speed=2.0, min_force=1.0)
+CASES = [  # mechanism, task, placement, objectives, longest link, requirements besides LCI >= 0.3
+    ("five-bar", "rect:100,60@0,180", "fixed", ("size", "min-lci"), 250, {}),
+    ("five-bar", STAR, "free-y", ("size",), 250, {}),
+    ("five-bar", "circle:40@0,150", "free", ("size", "mean-lci"), 250, dict(SPEED_FORCE, actuator_norm="2")),
+    ("asymmetric-five-bar", "rect:80,50@0,170", "fixed", ("size",), 400, {}),
+    ("biglide", "rect:80,50@0,150", "fixed", ("size",), 400, {}),
+    ("gantry", "rect:500,400@0,500", "fixed", ("size", "speed"), 1500, SPEED_FORCE),
 ]
 LIMITS = tuple(map(np.radians, (-60.0, 240.0)))
 
@@ -53,13 +55,13 @@ def _designs(ev, n, seed):
     return out
 
 
-@pytest.mark.parametrize("mechanism, task, place, objectives, longest", CASES)
-def test_settling_keeps_every_objective_and_every_verdict(mechanism, task, place, objectives, longest):
+@pytest.mark.parametrize("mechanism, task, place, objectives, longest, extra", CASES)
+def test_settling_keeps_every_objective_and_every_verdict(mechanism, task, place, objectives, longest, extra):
     limits = {"joint_limits": LIMITS} if mechanism.endswith("five-bar") else {}
-    ev = DesignEvaluator(mechanism, parse_task(task), Requirements(min_lci=0.3, **limits),
+    ev = DesignEvaluator(mechanism, parse_task(task), Requirements(min_lci=0.3, **limits, **extra),
                          objectives, place=place, max_length=longest)
     full, settling = Sampling(), Sampling(settle=True)
-    n_settled = 0
+    n_settled, seen = 0, set()
     for v in _designs(ev, 30, 7):
         a, b = ev.evaluate(v, full), ev.evaluate(v, settling)
         assert ev.objective_values(a) == ev.objective_values(b)  # bit for bit
@@ -72,8 +74,12 @@ def test_settling_keeps_every_objective_and_every_verdict(mechanism, task, place
                 assert gb <= 0 and gb <= ga  # the samples' minimum is at or above the refined one
             else:
                 assert ga == gb or not (np.isfinite(ga) and np.isfinite(gb)) and str(ga) == str(gb)
-        if "min-lci" in objectives:
-            assert "lci" not in ctx.settled
+        # a minimum an objective reads is never settled
+        for objective, requirement in (("min-lci", "lci"), ("speed", "speed"), ("force", "force")):
+            if objective in objectives:
+                assert requirement not in ctx.settled
+        seen |= ctx.settled
+    assert seen >= {"singular"} | {r for r in ("speed", "force") if r in ev.req.names(ev.spec)} - set(objectives)
     assert n_settled > 0  # the property is exercised, not vacuous
 
 

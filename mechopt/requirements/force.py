@@ -24,7 +24,7 @@ import numpy as np
 
 from mechopt.analysis.task import UNITS
 from mechopt.requirements.base import Objective, Option, Requirement
-from mechopt.requirements.speed import box_extremes, extremes_known, limits, liu_extremes, reading
+from mechopt.requirements.speed import SETTLE, box_extremes, extremes_known, limits, liu_extremes, reading
 
 __all__ = ["MinForce", "ForceObjective", "effort_factor", "force", "MEMBERS"]
 
@@ -45,7 +45,7 @@ def effort_factor(ctx_or_ev) -> float:
     return 1.0 / UNITS[ctx_or_ev.unit] if ctx_or_ev.spec.angular else 1.0
 
 
-def force(ctx) -> float:
+def force(ctx, refine=None) -> float:
     """The guaranteed force over the task [N] under the reading
     :func:`~mechopt.requirements.speed.reading` (module docstring).
 
@@ -53,6 +53,8 @@ def force(ctx) -> float:
     ----------
     ctx : mechopt.analysis.design_context.DesignContext
         The design's sample context.
+    refine : bool, optional
+        Refine by zooming (default ``ctx.refine``); False: over the samples alone.
 
     Returns
     -------
@@ -61,9 +63,9 @@ def force(ctx) -> float:
     """
     t = limits(ctx.req.actuator_torque)
     if reading(ctx) == "box":
-        m = box_extremes(ctx)
+        m = box_extremes(ctx, refine)
         return float(min(t[1] * m[2], t[0] * m[3])) * effort_factor(ctx)
-    return float(liu_extremes(ctx, t=t)[1]) * effort_factor(ctx)
+    return float(liu_extremes(ctx, t=t, refine=refine)[1]) * effort_factor(ctx)
 
 
 class MinForce(Requirement):
@@ -130,8 +132,12 @@ class MinForce(Requirement):
                 f"{w_unit} x {t[i]:g} {t_unit} = {have:.4g} {p_unit} (for every geometry "
                 f"speed x force <= min_i w_i t_i); relax one or choose stronger or faster actuators")
 
+    def settled(self, ctx) -> bool:
+        # the force objective reads the refined value: never settled with it
+        return "force" not in ctx.objectives and force(ctx, False) >= (1.0 + SETTLE) * ctx.req.min_force
+
     def evaluate(self, ctx):
-        need, f = ctx.req.min_force, force(ctx)
+        need, f = ctx.req.min_force, force(ctx, False if self.name in ctx.settled else None)
         return f - need, (need - f) / need
 
     def report(self, ctx) -> dict:
