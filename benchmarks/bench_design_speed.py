@@ -13,7 +13,8 @@ front.csv files are byte-identical. The machine is shared
 and noisy: compare the ratios of one run, not figures across runs.
 
 Cases (the issue's: the tutorial's command, a star polygon with free-y placement, the
-same with ``--place free``, a gantry with speed and force):
+same with ``--place free``, a gantry with speed and force; and the gantry with speed and
+force as requirements of a size search):
 """
 from __future__ import annotations
 
@@ -36,6 +37,10 @@ CASES = {
                   "--max-length", "300", "--seed", "1"],
     "gantry-speed-force": ["gantry", "--task", "rect:500,400@0,500", "--actuator-speed", "500",
                            "--actuator-torque", "500", "--objectives", "size,speed,force", "--seed", "1"],
+    # speed and force as requirements, the size the objective (the settled requirements' case)
+    "gantry-speed-force-req": ["gantry", "--task", "rect:500,400@0,500", "--actuator-speed", "500",
+                               "--actuator-torque", "500", "--min-speed", "300", "--min-force", "200",
+                               "--objectives", "size", "--seed", "1"],
 }
 __doc__ += "".join(f"\n* ``{k}``: ``mechopt design {' '.join(v)}``" for k, v in CASES.items()) + "\n"
 

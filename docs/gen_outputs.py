@@ -893,7 +893,7 @@ def _design() -> str:
            "> 0 satisfied), `g_<name>` of the search and `constraints_g` (normalised: lengths by the "
            "task diameter, angles by pi, LCI by its level, speed and force by their required values; "
            "<= 0 satisfied). The search's `g_<name>` (population.csv) of a requirement its "
-           "samples show comfortably met is the samples' value, not refined (LCI, singular and joints; "
+           "samples show comfortably met is the samples' value, not refined (LCI, singular, joints, speed and force; "
            "front.csv and design.json hold the certification's refined values):\n",
            _table(["requirement", "margin", "unit of the margin"],
                   [(f"`{n}` (`margin_{n}`, `g_{n}`)", requirements[n].margin_text,
