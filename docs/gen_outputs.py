@@ -363,7 +363,9 @@ CHECK_JSON = {
             "bound over the task, every length of the box and every placement; reach proven when every cell is "
             "certainly reachable; else `sampled`: nothing is proven between the points), `method` (`proven` "
             "when every requirement is, else `sampled`), `proven` (per bounded requirement over the box: "
-            "`lower_bound`, `proven_margin`, `cells`, `converged`, `may_unreachable`)", ""),
+            "`lower_bound`, `proven_margin`, `cells`, `converged`, `may_unreachable`; for `joints` and `stroke` "
+            "also `ranges`, the proven outer ranges of the actuator coordinates over the task and the whole box "
+            "[rad or unit]: a slider machine built within the box needs strokes covering them)", ""),
     "certificate": ("with a certificate.json beside the design: `index` (the certified design with this "
                     "design.json's digest, null if none: edited or another run's), `chosen`, and `disagrees`: "
                     "for a recorded design, each requirement whose claimed margin or verdict the re-check does "

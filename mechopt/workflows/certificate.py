@@ -378,7 +378,8 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
         every evaluated mechanism), ``methods`` (per requirement ``"proven"`` over the
         whole box or ``"sampled"``), ``method`` (``"proven"`` when every requirement is,
         else ``"sampled"``) and ``proven`` (per bounded requirement: ``lower_bound``,
-        ``proven_margin``, ``cells``, ``converged``, ``may_unreachable``).
+        ``proven_margin``, ``cells``, ``converged``, ``may_unreachable``; for joints and
+        stroke also ``ranges``, the proven outer ranges over the task and the box [rad or L]).
     """
     names = list(ev.spec.lengths)
     nominal = np.array([v[n] for n in names])
@@ -412,8 +413,11 @@ def tolerance_box(ev: DesignEvaluator, v: dict, tol: float, n_samples: int = BOX
     except ValueError:  # no enclosure over length intervals: sampled only
         return out
     for name, b in bounds.items():
+        # joints and stroke also carry their proven outer ranges over the box: the strokes a
+        # slider machine must have for every build of the box (each build's own strokes
+        # are its range over the task)
         out["proven"][name] = {k: b[k] for k in ("lower_bound", "proven_margin", "cells", "converged",
-                                                 "may_unreachable")}
+                                                 "may_unreachable", "ranges") if k in b}
         if b["proven_margin"] >= 0:
             out["methods"][name] = "proven"
     # every cell of the task certain for every mechanism of the box: each reaches the whole
