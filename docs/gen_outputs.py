@@ -372,6 +372,12 @@ CHECK_JSON = {
                     "not find (a tampered or stale certificate: it fails the check)", ""),
     "holds": ("every requirement holds (and within the box)", ""),
     "fails": ("the requirements that fail, and `certificate.json: ...` for each claim it disagrees with", ""),
+    "file": ("`mechopt check certificate.json`: the certificate re-verified (its report has `file`, "
+             "`designs`, `holds`, `fails`)", ""),
+    "designs": ("`mechopt check certificate.json`: per recorded design `index`, `mechanism`, `requirements` "
+                "(the re-check's, keys as above), `fails` (what does not hold, and each claim not found again: "
+                "margin, verdict, `proven`) and with a tolerance box `box` (re-checked over the same box, its "
+                "corners and interval bounds)", ""),
 }
 DESIGN_VALUES = ("type2_min", "lci_min", "lci_mean", "size", "footprint", "speed", "force", "torque", "error_um",
                  "peak_torque", "rms_torque")

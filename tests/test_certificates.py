@@ -302,3 +302,49 @@ def test_check_fails_on_a_tampered_certificate(run_dir, tmp_path, capsys):
         code, out, _ = _main(["check", str(folder / "design.json")], capsys)
         assert code == (0 if all(m >= 0 for m in chosen["margins"].values()) else 1), out
         assert "certificate.json records this design.json" in out
+
+
+def test_check_reverifies_a_certificate(run_dir, tmp_path, capsys, monkeypatch):
+    """``mechopt check DIR/certificate.json``: every recorded design re-certified from the
+    certificate alone (exit 0, one line per design); a certificate with a raised claimed
+    margin, one claiming proven what the check does not prove, one whose design was moved
+    (r1 0.1 mm shorter): exit 1 naming the design and what fails; options of a
+    design.json, a broken file: one line, exit 2."""
+    cert = json.loads((run_dir / "certificate.json").read_text())
+    n = len(cert["designs"])
+    code, out, _ = _main(["check", str(run_dir / "certificate.json")], capsys)
+    assert code == 0 and f"{n} certified designs re-checked" in out and f"all {n} designs hold" in out, out
+    assert out.count("holds, every claim found again") == n
+    k = min(range(n), key=lambda i: cert["designs"][i]["requirements"]["lci"]["margin"])  # nearest the edge
+    cases = {name: json.loads(json.dumps(cert)) for name in ("raised", "moved")}
+    cases["raised"]["designs"][k]["requirements"]["singular"]["margin"] += 0.5
+    cases["moved"]["designs"][k]["variables"]["r1"] -= 0.1
+    expect = {"raised": (k, "certificate.json: singular (certificate.json claims margin"),
+              "moved": (k, "certificate.json: lci (certificate.json claims margin")}
+    for what, bad in cases.items():
+        path = tmp_path / f"{what}.json"
+        path.write_text(json.dumps(bad))
+        code, out, _ = _main(["check", str(path)], capsys)
+        idx, phrase = expect[what]
+        assert code == 1 and f"design {idx}: " in out.splitlines()[-1] and phrase in out, (what, out)
+    # a claim of "proven" the re-check cannot make (its bounds withheld): every such claim named
+    import mechopt.workflows.certificate as cert_module
+
+    proven = [(i, r) for i, d in enumerate(cert["designs"]) for r, e in d["requirements"].items()
+              if e["method"] == "proven" and r in cert_module.BOUNDED]
+    assert proven
+    monkeypatch.setattr(cert_module, "proven_bounds", lambda *a, **kw: {})
+    code, out, _ = _main(["check", str(run_dir / "certificate.json")], capsys)
+    assert code == 1, out
+    for i, r in proven:
+        assert f"design {i}: certificate.json: {r} (certificate.json claims it proven, the check does not prove it)" \
+            in out.splitlines()[-1], (i, r, out)
+    monkeypatch.undo()
+    for argv in (["check", str(run_dir / "certificate.json"), "--lengths", "r1=80"],
+                 ["check", str(run_dir / "certificate.json"), "--tolerance", "0.05"]):
+        code, out, err = _main(argv, capsys)
+        assert code == 2 and len(err.strip().splitlines()) == 1 and "applies to a design.json" in err, err
+    broken = tmp_path / "broken.json"
+    broken.write_text(json.dumps({"certificate_version": 1, "designs": "none"}))
+    code, out, err = _main(["check", str(broken)], capsys)
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "is not a certificate.json" in err, err

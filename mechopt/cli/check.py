@@ -11,6 +11,11 @@ task and the whole box, which prove LCI, the type-II function, speed, force and 
 where they meet them). Prints one line per requirement
 (its margin in its unit, holds or FAILS, proven or refined-sampled) and a last line;
 exit status 0 when every requirement holds, 1 naming those that fail, 2 on bad input.
+
+``mechopt check DIR/certificate.json`` re-verifies a certificate
+(:func:`mechopt.workflows.certificate.check_certificate`): every design it records,
+re-certified from the certificate alone (and over its tolerance box, if it has one),
+must hold and every claim must be found again; one line per design.
 """
 from __future__ import annotations
 
@@ -21,14 +26,15 @@ NAME = "check"
 
 def add_parser(subparsers):
     """Register ``check``."""
-    p = subparsers.add_parser(NAME, help="re-check a design.json (rounded lengths, a tolerance box): exit 0 "
+    p = subparsers.add_parser(NAME, help="re-check a design.json (rounded lengths, a tolerance box) or a certificate.json: exit 0 "
                                          "if every requirement holds, 1 if one fails",
                               description="Re-evaluate the design of a design.json with the full evaluator "
                                           "against the task and requirements of the run.json beside it; exit 0 "
                                           "when every requirement holds, 1 when one fails (named), 2 on bad "
                                           "input.")
     p.add_argument("design", metavar="DESIGN.json", help="a design.json written by mechopt design (a run.json "
-                                                         "must lie beside it)")
+                                                         "must lie beside it), or a certificate.json to re-verify "
+                                                         "every design it records")
     p.add_argument("--lengths", default=None, metavar="NAME=VALUE,...",
                    help="lengths [the design's unit] replacing the file's, e.g. rounded ones: r1=85,r3=12.5")
     p.add_argument("--task", default=None,
@@ -46,9 +52,16 @@ def add_parser(subparsers):
 def run(args) -> int:
     """Check the design, print the report, return 0 (holds) or 1 (fails)."""
     from mechopt.run.io import plain_json
-    from mechopt.workflows.certificate import check, format_check
+    from mechopt.workflows.certificate import check, check_certificate, format_check, is_certificate
 
-    report = check(args.design, task=args.task, tolerance=args.tolerance, lengths=args.lengths)
+    if is_certificate(args.design):
+        given = [o for o, val in (("--lengths", args.lengths), ("--task", args.task), ("--tolerance", args.tolerance))
+                 if val is not None]
+        if given:
+            raise ValueError(f"{given[0]} applies to a design.json; a certificate.json is re-verified as it stands")
+        report = check_certificate(args.design)
+    else:
+        report = check(args.design, task=args.task, tolerance=args.tolerance, lengths=args.lengths)
     if args.json:
         print(json.dumps(plain_json(report), sort_keys=True))
     else:

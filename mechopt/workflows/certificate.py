@@ -28,7 +28,7 @@ import numpy as np
 from mechopt.analysis.design_eval import DesignEvaluator, certify
 from mechopt.analysis.sampling import Sampling
 
-__all__ = ["certificate", "check", "tolerance_box", "box_certified", "box_failures", "requirement_entries",
+__all__ = ["certificate", "check", "check_certificate", "is_certificate", "tolerance_box", "box_certified", "box_failures", "requirement_entries",
            "proven_bounds", "format_check", "BOX_SAMPLES", "CERTIFICATE_VERSION", "CLAIM_RTOL", "BOUNDED",
            "RANGED"]
 
@@ -493,18 +493,38 @@ def _certificate_match(path: Path, rec: dict, entries: dict):
         index, claimed = entry["index"], dict(entry["requirements"])
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
-    disagrees = []
+    return {"index": index, "chosen": index == cert.get("chosen"), "disagrees": _disagreements(claimed, entries)}
+
+
+def _disagreements(claimed: dict, entries: dict) -> list:
+    """The requirements whose claimed margin (to :data:`CLAIM_RTOL`) or verdict a re-check's
+    ``entries`` (:func:`requirement_entries`) does not find, or whose claimed ``proven``
+    the re-check does not prove: one phrase each."""
+    out = []
     for name, e in entries.items():
         c = claimed.get(name)
         try:
             m, ok = float(c["margin"]), c["holds"]
         except (TypeError, KeyError, ValueError):
-            disagrees.append(f"{name} (not in certificate.json)")
+            out.append(f"{name} (not in certificate.json)")
             continue
         same = m == e["margin"] or abs(m - e["margin"]) <= CLAIM_RTOL * max(1.0, abs(e["margin"]))
         if not same or ok is not e["holds"]:
-            disagrees.append(f"{name} (certificate.json claims margin {m:.6g}, the check finds {e['margin']:.6g})")
-    return {"index": index, "chosen": index == cert.get("chosen"), "disagrees": disagrees}
+            out.append(f"{name} (certificate.json claims margin {m:.6g}, the check finds {e['margin']:.6g})")
+        elif c.get("method") == "proven" and e["method"] != "proven":
+            out.append(f"{name} (certificate.json claims it proven, the check does not prove it)")
+    return out
+
+
+def _evaluator(settings: dict, task, mode) -> DesignEvaluator:
+    """The evaluator of one design of a run (run.json's or certificate.json's ``settings``)
+    on ``task``, placed as given, in working mode ``mode``."""
+    from mechopt.requirements import Requirements
+
+    req = Requirements(**settings.get("requirements", {}))
+    return DesignEvaluator(settings["mechanism"], task, req, settings.get("objectives") or ("size",), mode=mode,
+                           place="fixed", min_length=settings.get("min_length"),
+                           max_length=settings.get("max_length"))
 
 
 def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int = BOX_SAMPLES) -> dict:
@@ -546,7 +566,6 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
     from mechopt.analysis.task import Task, parse_task
     from mechopt.core import validation as _v
     from mechopt.export.source import task_from_dict
-    from mechopt.requirements import Requirements
 
     rec, settings = _read_design(design_path)
     from mechopt.analysis.design_eval import get_spec
@@ -565,9 +584,7 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
         tolerance = _v.finite_number("--tolerance", tolerance)
         if not tolerance > 0:
             raise ValueError(f"--tolerance must be a length > 0, got {tolerance!r}")
-    req = Requirements(**settings.get("requirements", {}))
-    ev = DesignEvaluator(spec.name, the_task, req, settings.get("objectives") or ("size",), mode=v["mode"],
-                         place="fixed", min_length=settings.get("min_length"), max_length=settings.get("max_length"))
+    ev = _evaluator(settings, the_task, v["mode"])
     res = certify(ev, v)
     entries = requirement_entries(ev, res, proven_bounds(ev, v, res["margin"]))
     out = {"design": str(design_path), "mechanism": spec.name, "unit": unit, "variables": v,
@@ -585,20 +602,114 @@ def check(design_path, task=None, tolerance=None, lengths=None, n_samples: int =
     return out
 
 
+def is_certificate(path) -> bool:
+    """Whether ``path`` names a certificate.json (a JSON object with
+    ``certificate_version``), not a design.json.
+
+    Parameters
+    ----------
+    path : path
+        A file.
+
+    Returns
+    -------
+    bool
+        True for a certificate.json of ``mechopt design``.
+    """
+    from mechopt.run import io as _io
+
+    try:
+        data = _io.read_json(Path(path), f"the file {str(path)!r}")
+    except (OSError, ValueError):
+        return False
+    return isinstance(data, dict) and "certificate_version" in data
+
+
+def check_certificate(cert_path) -> dict:
+    """Re-verify a certificate.json of ``mechopt design`` (or ``design any``): every design
+    it records is re-certified from the certificate alone (its settings, variables and
+    placement) with the certification's sampling and the proven bounds; each must hold,
+    and each claim must be found again (:func:`_disagreements`: margin to
+    :data:`CLAIM_RTOL`, verdict, ``proven``); a design certified over a tolerance box is
+    re-checked over the same box (:func:`tolerance_box`, its corners and the interval
+    bounds, no random draws, as ``mechopt design --tolerance``), which must hold as claimed.
+
+    Parameters
+    ----------
+    cert_path : path
+        The certificate.json.
+
+    Returns
+    -------
+    dict
+        ``file`` (the certificate's path), ``designs`` (per recorded design: ``index``,
+        ``mechanism``, ``requirements`` (:func:`requirement_entries` of the re-check),
+        ``fails``, with a box ``box``), ``holds`` (every design holds and agrees) and
+        ``fails`` (``design <index>: <what>``, each).
+
+    Raises
+    ------
+    ValueError
+        One line, for a file that is not a readable certificate.json.
+    """
+    from mechopt.export.source import task_from_dict
+    from mechopt.run import io as _io
+
+    path = Path(cert_path)
+    try:
+        cert = _io.read_json(path, f"certificate {str(path)!r}")
+        designs, all_settings = cert["designs"], cert["settings"]
+        if not isinstance(designs, list) or not isinstance(all_settings, dict):
+            raise TypeError
+    except FileNotFoundError:
+        raise ValueError(f"certificate {str(path)!r} does not exist") from None
+    except (KeyError, TypeError):
+        raise ValueError(f"{str(path)!r} is not a certificate.json of mechopt design") from None
+    out, fails = [], []
+    for entry in designs:
+        try:
+            # design any: settings per mechanism, each entry naming its mechanism
+            settings = all_settings[entry["mechanism"]] if "mechanism" in entry else all_settings
+            ev = _evaluator(settings, task_from_dict(settings["task"]), str(entry["variables"]["mode"]))
+            v = _variables(entry, ev.spec, None)
+            claimed = dict(entry["requirements"])
+        except (KeyError, TypeError, AttributeError) as exc:
+            raise ValueError(f"{str(path)!r}: design {entry.get('index', '?') if isinstance(entry, dict) else '?'} "
+                             f"is not a certified design ({exc})") from None
+        res = certify(ev, v)
+        entries = requirement_entries(ev, res, proven_bounds(ev, v, res["margin"]))
+        own = [n for n, e in entries.items() if not e["holds"]]
+        own += [f"certificate.json: {d}" for d in _disagreements(claimed, entries)]
+        rec = {"index": entry.get("index"), "mechanism": ev.spec.name, "requirements": entries}
+        if "tolerance_box" in entry:
+            T = float(entry["tolerance_box"]["tolerance"])
+            rec["box"] = box = tolerance_box(ev, v, T, n_samples=0)
+            own += [f"{n} (within +-{T:g} {ev.unit})" for n in box_failures(box)]
+            if entry["tolerance_box"].get("method") == "proven" and box["method"] != "proven":
+                own.append(f"certificate.json: the +-{T:g} {ev.unit} box (claimed proven, the check does not prove it)")
+        rec["fails"] = own
+        out.append(rec)
+        fails += [f"design {rec['index']}: {f}" for f in own]
+    return {"file": str(path), "designs": out, "fails": fails, "holds": not fails}
+
+
 def format_check(report: dict) -> list:
     """The lines ``mechopt check`` prints for a :func:`check` report.
 
     Parameters
     ----------
     report : dict
-        A :func:`check` report.
+        A :func:`check` report, or a :func:`check_certificate` one.
 
     Returns
     -------
     list of str
         The lines: the design, one per requirement (with the tolerance box's smallest
-        margin when checked), whether certificate.json records it, and the verdict.
+        margin when checked), whether certificate.json records it, and the verdict; for a
+        certificate one line per recorded design and the verdict.
     """
+    if "designs" in report:
+        return _format_certificate_check(report)
     u = report["unit"]
     L = ", ".join(f"{k}={report['variables'][k]:.10g}" for k in report["variables"]
                   if k not in ("mode", "task_x", "task_y"))
@@ -625,4 +736,19 @@ def format_check(report: dict) -> list:
                      "certificate.json does not record this design.json (edited since, or another run's): "
                      "checked on its own numbers")
     lines.append("all requirements hold" if report["holds"] else f"fails: {', '.join(report['fails'])}")
+    return lines
+
+
+def _format_certificate_check(report: dict) -> list:
+    """:func:`format_check`'s lines for a :func:`check_certificate` report."""
+    lines = [f"{report['file']}: {len(report['designs'])} certified designs re-checked"]
+    for d in report["designs"]:
+        how = ", ".join(f"{n} {e['method']}" for n, e in d["requirements"].items())
+        box = d.get("box")
+        if box is not None:
+            how += f"; +-{box['tolerance']:g} box {box['method']}"
+        verdict = "holds, every claim found again" if not d["fails"] else f"FAILS: {', '.join(d['fails'])}"
+        lines.append(f"design {d['index']} ({d['mechanism']}): {verdict} ({how})")
+    lines.append(f"all {len(report['designs'])} designs hold" if report["holds"]
+                 else f"fails: {', '.join(report['fails'])}")
     return lines
