@@ -92,8 +92,7 @@ class DesignProblem(MechoptProblem):
             task = parse_task(task)
         self.evaluator = ev = DesignEvaluator(mechanism, task, requirements, objectives, mode, place,
                                               min_length, max_length, shape, side)
-        # the search settles what the samples show comfortably met (Sampling.settle)
-        self.sampling = sampling or Sampling(settle=True)
+        self.sampling = sampling or Sampling()
         self.var_names = ev.var_names
         self.objectives = tuple(Objective(name, sense, unit, bounds) for name, sense, unit, bounds in ev.objective_specs())
         self.constr_names = ev.req.names(ev.spec)

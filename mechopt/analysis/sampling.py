@@ -43,10 +43,10 @@ class Sampling:
         Refine minima by zooming.
     settle : bool
         Leave unrefined the minima of the requirements the samples show comfortably
-        met (:meth:`mechopt.requirements.base.Requirement.settled`): the search's
-        sampling (:class:`mechopt.problems.design.DesignProblem`), where only the sign
-        of such a requirement's ``g`` reaches the search (pymoo's constraint violation
-        counts ``max(0, g)``); never the certification's.
+        met (:meth:`mechopt.requirements.base.Requirement.settled`): the sampling of
+        ``mechopt design``'s search (:data:`mechopt.workflows.design.SEARCH`), where only
+        the sign of such a requirement's ``g`` reaches the search (pymoo's constraint
+        violation counts ``max(0, g)``); never the certification's.
     """
 
     n_boundary: int = 192

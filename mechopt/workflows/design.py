@@ -28,7 +28,13 @@ from mechopt.requirements import Requirements
 from mechopt.requirements import collisions as _collisions
 from mechopt.requirements.singular import Singular
 
-__all__ = ["design", "DesignResult", "plot_design", "json_record", "DESIGN_OUTPUTS"]
+__all__ = ["design", "DesignResult", "plot_design", "json_record", "DESIGN_OUTPUTS", "SEARCH"]
+
+#: the sampling of :func:`design`'s search: the default counts, settling the requirements its
+#: samples show comfortably met (:attr:`Sampling.settle`: only the sign of their ``g``
+#: reaches the search, and every front design is certified afterwards with every minimum
+#: refined); the registered problem alone (``mechopt optimize design``) refines everything
+SEARCH = Sampling(settle=True)
 
 
 @dataclass
@@ -806,7 +812,7 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
     # import each other
     problem = _problem("design", mechanism=mechanism, task=task, requirements=requirements,
                        objectives=objectives, mode=mode, place=place, min_length=min_length,
-                       max_length=max_length, shape=shape)
+                       max_length=max_length, shape=shape, sampling=SEARCH)
     ev = problem.evaluator
     if pick is not None:
         parse_pick(pick, ev.objectives)
@@ -820,7 +826,7 @@ def design(mechanism, task, requirements: Requirements | None = None, objectives
         budget and seed), ``extra`` designs added, as decoded designs."""
         sub = _problem("design", mechanism=mechanism, task=task, requirements=requirements,
                        objectives=objectives, mode=mode, place=place_, min_length=min_length,
-                       max_length=max_length, shape=shape, side=side)
+                       max_length=max_length, shape=shape, side=side, sampling=SEARCH)
         res = _design(sub, sub.evaluator, None, algorithm, pop, gen, seed, n_jobs, client, None, progress,
                       polish, None, extra, tolerance=tolerance)
         names = (*ev.spec.lengths, *(("D",) if ev.shape is not None else ()), "mode", "task_x", "task_y")
