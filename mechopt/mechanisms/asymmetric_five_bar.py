@@ -248,9 +248,13 @@ class AsymmetricFiveBar(PlanarMechanism):
         tuple
             ``(A, b, certain)``.
         """
+        return _fb.legs_closure_enclosure(x, y, *self._interval_legs(lengths))
+
+    def _interval_legs(self, lengths):
+        """``(r3, legs)`` of :meth:`_legs` with the lengths in ``lengths`` (intervals)
+        replacing the instance's, for the enclosures."""
         L = self._length_intervals(("a1", "c1", "a2", "c2", "r3"), lengths)
-        legs = ((L["a1"], L["c1"], self._s[0]), (L["a2"], L["c2"], self._s[1]))
-        return _fb.legs_closure_enclosure(x, y, L["r3"], legs)
+        return L["r3"], ((L["a1"], L["c1"], self._s[0]), (L["a2"], L["c2"], self._s[1]))
 
     def actuator_enclosure(self, x, y, lengths=None):
         """Interval enclosure of the crank angles of :meth:`ik` over boxes
@@ -269,9 +273,7 @@ class AsymmetricFiveBar(PlanarMechanism):
         tuple
             ``(theta, certain)``.
         """
-        L = self._length_intervals(("a1", "c1", "a2", "c2", "r3"), lengths)
-        legs = ((L["a1"], L["c1"], self._s[0]), (L["a2"], L["c2"], self._s[1]))
-        return _fb.legs_actuator_enclosure(x, y, L["r3"], legs)
+        return _fb.legs_actuator_enclosure(x, y, *self._interval_legs(lengths))
 
     def reachable(self, x, y):
         return _fb.legs_reachable(x, y, self.r3, self._legs())

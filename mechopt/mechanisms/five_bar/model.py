@@ -981,9 +981,13 @@ class FiveBar(PlanarMechanism):
         tuple
             ``(A, b, certain)``.
         """
+        return legs_closure_enclosure(x, y, *self._interval_legs(lengths))
+
+    def _interval_legs(self, lengths):
+        """``(r3, legs)`` of :meth:`_legs` with the lengths in ``lengths`` (intervals)
+        replacing the instance's, for the enclosures."""
         L = self._length_intervals(("r1", "r2", "r3"), lengths)
-        legs = ((L["r1"], L["r2"], self._s1), (L["r1"], L["r2"], self._s2))
-        return legs_closure_enclosure(x, y, L["r3"], legs)
+        return L["r3"], ((L["r1"], L["r2"], self._s1), (L["r1"], L["r2"], self._s2))
 
     def actuator_enclosure(self, x, y, lengths=None):
         """Interval enclosure of the crank angles of :meth:`ik` over boxes
@@ -1002,9 +1006,7 @@ class FiveBar(PlanarMechanism):
         tuple
             ``(theta, certain)``.
         """
-        L = self._length_intervals(("r1", "r2", "r3"), lengths)
-        legs = ((L["r1"], L["r2"], self._s1), (L["r1"], L["r2"], self._s2))
-        return legs_actuator_enclosure(x, y, L["r3"], legs)
+        return legs_actuator_enclosure(x, y, *self._interval_legs(lengths))
 
     def reachable(self, x, y):
         return legs_reachable(x, y, self.r3, self._legs())
