@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from mechopt.core import validation as _v
+from mechopt.core.jit import Twin
 
 __all__ = ["Task", "parse_task", "read_points", "UNITS", "PLACEMENTS"]
 
@@ -409,11 +410,17 @@ class Task:
         x, y : ndarray
             The boundary points [unit].
         """
-        t = np.clip(np.asarray(t, float), 0.0, 1.0) if self.is_path else np.mod(np.asarray(t, float), 1.0)
+        t = np.asarray(t, float)
+        vx, vy, _, ex, ey, _, L, cum = self._edges if self.kind != "circle" else (None,) * 8
+        if self.kind != "circle" and Twin.compiled():
+            tf = t.reshape(-1)
+            bx, by = np.empty(tf.size), np.empty(tf.size)
+            _BOUNDARY_TWIN(tf, self.is_path, vx, vy, ex, ey, L, cum, bx, by)
+            return bx.reshape(t.shape), by.reshape(t.shape)
+        t = np.clip(t, 0.0, 1.0) if self.is_path else np.mod(t, 1.0)
         if self.kind == "circle":
             a = 2 * np.pi * t
             return self.center[0] + self.radius * np.cos(a), self.center[1] + self.radius * np.sin(a)
-        vx, vy, _, ex, ey, _, L, cum = self._edges
         k = np.clip(np.searchsorted(cum, t, side="right") - 1, 0, len(vx) - 1)
         s = (t - cum[k]) / np.where(L[k] > 0, (cum[k + 1] - cum[k]), 1.0)
         return vx[k] + s * ex[k], vy[k] + s * ey[k]
@@ -474,6 +481,12 @@ class Task:
         # boundary; only the points outside need their distance (the same verdict as
         # computing signed_distance everywhere, for a fraction of the work)
         x, y = np.broadcast_arrays(x, y)
+        if Twin.compiled():
+            vx, vy, wy, ex, ey, L2, _, _ = self._edges
+            out = np.empty(x.shape, dtype=np.bool_)
+            _CONTAINS_TWIN(x.reshape(-1), y.reshape(-1), vx, vy, wy, ex, ey, L2, _v.ROUNDING * self.diameter,
+                           out.reshape(-1))
+            return out
         out = self._inside(x, y)
         rest = ~out
         if rest.any():
@@ -733,3 +746,45 @@ def parse_task(text: str, unit: str = "mm") -> Task:
         rows = read_points(Path(body.strip()), f"--task {kind}:")
         return Task.points(rows, unit) if kind == "points" else Task.path(rows, unit)
     raise ValueError(f"--task kind must be rect, circle, polygon, points or path, got {kind!r}")
+
+
+# --- compiled twins of the polygon's hot paths (mechopt.core.jit.Twin: the same
+# operations point by point, so the same values bit for bit) -----------------------------
+def _boundary_loop(t, is_path, vx, vy, ex, ey, L, cum, bx, by):
+    """:meth:`Task.boundary_at` of a polygon or path at each ``t`` into ``bx, by``."""
+    last = vx.size - 1
+    for i in range(t.size):
+        ti = min(max(t[i], 0.0), 1.0) if is_path else np.mod(t[i], 1.0)
+        k = min(max(np.searchsorted(cum, ti, side="right") - 1, 0), last)
+        s = (ti - cum[k]) / ((cum[k + 1] - cum[k]) if L[k] > 0 else 1.0)
+        bx[i] = vx[k] + s * ex[k]
+        by[i] = vy[k] + s * ey[k]
+
+
+def _contains_loop(x, y, vx, vy, wy, ex, ey, L2, tol, out):
+    """:meth:`Task.contains` of a polygon at each point into ``out``: the even-odd rule
+    of :meth:`Task._inside`, else the distance of :meth:`Task._distance` within ``tol``
+    (NaN propagating as in NumPy's clip, hypot and min)."""
+    for i in range(x.size):
+        px, py = x[i], y[i]
+        n = 0
+        for j in range(vx.size):
+            if ((vy[j] > py) != (wy[j] > py)) and (px < ex[j] * (py - vy[j]) / ey[j] + vx[j]):
+                n += 1
+        if n % 2 == 1:
+            out[i] = True
+            continue
+        best = np.inf
+        for j in range(vx.size):
+            dx, dy = px - vx[j], py - vy[j]
+            s = (dx * ex[j] + dy * ey[j]) / L2[j]
+            if s < 0.0:
+                s = 0.0
+            elif s > 1.0:
+                s = 1.0
+            best = np.minimum(best, np.hypot(dx - s * ex[j], dy - s * ey[j]))
+        out[i] = best <= tol
+
+
+_BOUNDARY_TWIN = Twin(_boundary_loop)
+_CONTAINS_TWIN = Twin(_contains_loop)

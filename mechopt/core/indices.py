@@ -20,9 +20,11 @@ count such points (``lci`` treats them as 0, see :func:`lci`).
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from mechopt.core.jit import jitable
+from mechopt.core.jit import Twin, jitable
 
 __all__ = [
     "two_smax_squared",
@@ -162,10 +164,37 @@ def lci(J):
     ndarray
         The LCI (dimensionless).
     """
-    a, b, c, d, _ = _scaled_entries(J)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        out = lci_of_entries(a, b, c, d)
-    return np.where(np.isfinite(out), out, 0.0)
+    J = np.asarray(J, dtype=float)
+    if Twin.compiled() and J.shape[-2:] == (2, 2):
+        flat = np.ascontiguousarray(J).reshape(-1, 2, 2)
+        out = np.empty(flat.shape[0])
+        _LCI_TWIN(flat, out)
+        return out.reshape(J.shape[:-2])
+    with Twin.numpy_timer():
+        a, b, c, d, _ = _scaled_entries(J)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            out = lci_of_entries(a, b, c, d)
+        return np.where(np.isfinite(out), out, 0.0)
+
+
+def _lci_loop(J, out):
+    """:func:`lci` of each matrix of ``J`` (shape ``(n, 2, 2)``) into ``out``, compiled
+    (:class:`mechopt.core.jit.Twin`): :func:`_scaled_entries` per matrix (NaN magnitudes
+    scale by ``2^-1`` as there, an infinite one by ``2^0``), then :func:`lci_of_entries`."""
+    for i in range(J.shape[0]):
+        a, b, c, d = J[i, 0, 0], J[i, 0, 1], J[i, 1, 0], J[i, 1, 1]
+        m = np.maximum(np.maximum(abs(a), abs(b)), np.maximum(abs(c), abs(d)))
+        if m > 0.0 and m < math.inf:
+            e = math.frexp(m)[1]
+        elif m > 0.0:
+            e = 0
+        else:  # 0 or NaN: np.frexp(1.0)
+            e = 1
+        v = lci_of_entries(math.ldexp(a, -e), math.ldexp(b, -e), math.ldexp(c, -e), math.ldexp(d, -e))
+        out[i] = v if math.isfinite(v) else 0.0
+
+
+_LCI_TWIN = Twin(_lci_loop)
 
 
 def velocity_extremes(J):

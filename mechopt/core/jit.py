@@ -28,11 +28,13 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import os
+import time
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["HAVE_NUMBA", "numba_wanted", "load_numba", "use_numba", "njit", "jitable", "select", "cache_dir"]
+__all__ = ["HAVE_NUMBA", "numba_wanted", "load_numba", "use_numba", "njit", "jitable", "select", "cache_dir",
+           "Twin", "TWIN_AFTER_SECONDS"]
 
 #: the environment variable that disables numba
 ENV_VAR = "MECHOPT_NO_NUMBA"
@@ -221,3 +223,70 @@ def njit(fn=None, *, signature=None):
             return nb.njit(*args, **OPTIONS)(f)
 
     return wrap if fn is None else wrap(fn)
+
+
+#: seconds of NumPy work in the paths that have a compiled :class:`Twin` after which a
+#: process switches them to their twins: loading numba (about 0.3 s) and the kernels
+#: from the cache (or compiling them once) pays only for a process that evaluates for
+#: longer than that (a command's single evaluation does not)
+TWIN_AFTER_SECONDS = 0.5
+_twin_numpy_seconds = 0.0
+
+
+class Twin:
+    """A NumPy path and the compiled loop that computes the same values bit for bit
+    (``+ - * /`` and ``sqrt`` are correctly rounded in both, and the loop performs each
+    point's operations in the NumPy path's order; tests compare the two), compiled on
+    first use (:func:`njit`).
+
+    :meth:`compiled` says which to run: the loop once numba is loaded in this process
+    (by any kernel) or once the twins' NumPy paths have spent :data:`TWIN_AFTER_SECONDS`
+    (timed by :meth:`numpy_timer`), the NumPy path before and without numba; results do
+    not depend on the choice.
+
+    Parameters
+    ----------
+    loop : callable
+        The loop, a plain Python function of arrays (it runs as Python only in tests).
+    """
+
+    def __init__(self, loop):
+        self.loop = loop
+        self._fn = None
+
+    @staticmethod
+    def compiled() -> bool:
+        """Whether the compiled loops run (the class docstring).
+
+        Returns
+        -------
+        bool
+            True to call the twin.
+        """
+        return HAVE_NUMBA and (_numba is not None or _twin_numpy_seconds >= TWIN_AFTER_SECONDS)
+
+    def __call__(self, *args):
+        if self._fn is None:
+            self._fn = njit(self.loop)
+        return self._fn(*args)
+
+    @staticmethod
+    def numpy_timer():
+        """A context that adds its duration to the twins' NumPy time.
+
+        Returns
+        -------
+        contextlib.AbstractContextManager
+            The timer.
+        """
+        return _NumpyTimer()
+
+
+class _NumpyTimer:
+    def __enter__(self):
+        self.t0 = time.perf_counter()
+
+    def __exit__(self, *exc):
+        global _twin_numpy_seconds
+        _twin_numpy_seconds += time.perf_counter() - self.t0
+        return False

@@ -26,6 +26,7 @@ from mechopt.core import validation as _v
 from mechopt.core.bodies import GROUND, Body, Shapes
 from mechopt.core.design_spec import DesignSpec
 from mechopt.core.error_spec import ErrorSpec
+from mechopt.core.jit import Twin, jitable
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
 
@@ -91,24 +92,96 @@ def legs_elbows(x, y, r3, legs):
         Where both legs assemble.
     """
     x, y = as_points(x, y)
-    out = []
-    ok = None
+    (a1, c1, s1), (a2, c2, s2) = legs
+    if Twin.compiled():
+        xf, yf = x.reshape(-1), y.reshape(-1)
+        out, ok = np.empty((4, xf.size)), np.empty(xf.size, dtype=np.bool_)
+        _ELBOWS_TWIN(xf, yf, np.array([r3, a1, c1, s1, a2, c2, s2], float), out, ok)
+        return (*(v.reshape(x.shape) for v in out), ok.reshape(x.shape))
     # P at A_i (0/0) and inf * 0 at a base joint: masked below by ``ok``
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for ax, (a, c, s) in zip((-r3, r3), legs):
-            dx = x - ax
-            dsq = dx * dx + y * y
-            # law of cosines at A_i (Le eq. 13-14), scaled by a/d
-            k = (a * a + dsq - c * c) / (2.0 * dsq)  # = a cos(alpha) / d
-            h2 = (a * a) / dsq - k * k  # = (a sin(alpha) / d)^2
-            # reachable <=> |a - c| <= d <= a + c (Le eq. 19); tiny negative h2 from
-            # rounding on the boundary is clipped to the boundary itself.
-            leg_ok = (h2 >= -_H2_TOL) & (dsq > 0)
-            h = np.sqrt(np.maximum(h2, 0.0)) * s
-            out += [ax + k * dx - h * y, k * y + h * dx]
-            ok = leg_ok if ok is None else ok & leg_ok
-    b1x, b1y, b2x, b2y = (np.where(ok, v, np.nan) for v in out)
+    with Twin.numpy_timer(), np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        b1x, b1y, ok1 = _leg_elbow(-r3, a1, c1, s1, x, y)
+        b2x, b2y, ok2 = _leg_elbow(r3, a2, c2, s2, x, y)
+        ok = ok1 & ok2
+        b1x, b1y, b2x, b2y = (np.where(ok, v, np.nan) for v in (b1x, b1y, b2x, b2y))
     return b1x, b1y, b2x, b2y, ok
+
+
+@jitable
+def _leg_elbow(ax, a, c, s, x, y):
+    """Elbow ``(bx, by, reachable)`` of the leg on ``A = (ax, 0)`` with crank ``a``, link
+    ``c`` and elbow sign ``s`` at the point ``(x, y)`` (:func:`legs_elbows`; arrays or, in
+    the compiled loop, floats)."""
+    dx = x - ax
+    dsq = dx * dx + y * y
+    # law of cosines at A_i (Le eq. 13-14), scaled by a/d
+    k = (a * a + dsq - c * c) / (2.0 * dsq)  # = a cos(alpha) / d
+    h2 = (a * a) / dsq - k * k  # = (a sin(alpha) / d)^2
+    # reachable <=> |a - c| <= d <= a + c (Le eq. 19); tiny negative h2 from
+    # rounding on the boundary is clipped to the boundary itself.
+    ok = (h2 >= -_H2_TOL) & (dsq > 0)
+    h = np.sqrt(np.maximum(h2, 0.0)) * s
+    return ax + k * dx - h * y, k * y + h * dx, ok
+
+
+@jitable
+def _elbows_at(x, y, legs):
+    """``(b1x, b1y, b2x, b2y, reachable)`` at one point, NaN where unreachable
+    (:func:`legs_elbows`; ``legs = [r3, a1, c1, s1, a2, c2, s2]``, compiled loops only)."""
+    r3 = legs[0]
+    b1x, b1y, ok1 = _leg_elbow(-r3, legs[1], legs[2], legs[3], x, y)
+    b2x, b2y, ok2 = _leg_elbow(r3, legs[4], legs[5], legs[6], x, y)
+    if ok1 and ok2:
+        return b1x, b1y, b2x, b2y, True
+    return np.nan, np.nan, np.nan, np.nan, False
+
+
+def _elbows_loop(x, y, legs, out, ok):
+    """:func:`legs_elbows` point by point (compiled, :class:`mechopt.core.jit.Twin`;
+    ``legs = [r3, a1, c1, s1, a2, c2, s2]``): the elbows into the rows of ``out``
+    (``b1x, b1y, b2x, b2y``), reachability into ``ok``."""
+    for i in range(x.size):
+        out[0, i], out[1, i], out[2, i], out[3, i], ok[i] = _elbows_at(x[i], y[i], legs)
+
+
+def _closure_loop(x, y, legs, A, b, ok):
+    """:func:`legs_closure` point by point (compiled, :class:`mechopt.core.jit.Twin`;
+    ``legs = [r3, a1, c1, s1, a2, c2, s2]``): its ``A`` (shape ``(n, 2, 2)``), ``b``
+    (``(n, 2)``) and reachability, each entry by the NumPy path's operations."""
+    r3 = legs[0]
+    for i in range(x.size):
+        px, py = x[i], y[i]
+        b1x, b1y, b2x, b2y, ok[i] = _elbows_at(px, py, legs)
+        a1x, a1y, a2x, a2y = px - b1x, py - b1y, px - b2x, py - b2y
+        A[i, 0, 0], A[i, 0, 1], A[i, 1, 0], A[i, 1, 1] = a1x, a1y, a2x, a2y
+        b[i, 0] = (b1x + r3) * a1y - b1y * a1x
+        b[i, 1] = (b2x - r3) * a2y - b2y * a2x
+
+
+def _ik_loop(x, y, legs, th1, th2, ok):
+    """:func:`legs_ik` point by point (compiled, :class:`mechopt.core.jit.Twin`;
+    ``legs = [r3, a1, c1, s1, a2, c2, s2]``): the crank angles into ``th1, th2`` (NaN
+    where a leg does not assemble), :func:`legs_reachable` into ``ok``."""
+    r3, a1, c1, s1, a2, c2, s2 = legs[0], legs[1], legs[2], legs[3], legs[4], legs[5], legs[6]
+    for i in range(x.size):
+        px, py = x[i], y[i]
+        d1, d2 = np.hypot(px + r3, py), np.hypot(px - r3, py)
+        ok[i] = ((d1 >= abs(a1 - c1)) and (d1 <= a1 + c1) and (d2 >= abs(a2 - c2)) and (d2 <= a2 + c2)
+                 and d1 > 0 and d2 > 0)
+        if not ok[i]:
+            th1[i], th2[i] = np.nan, np.nan
+            continue
+        k1 = (a1 * a1 + d1 * d1 - c1 * c1) / (2 * a1 * d1)
+        k2 = (a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2)
+        alpha1 = np.arccos(min(max(k1, -1.0), 1.0))
+        alpha2 = np.arccos(min(max(k2, -1.0), 1.0))
+        th1[i] = np.arctan2(py, px + r3) + s1 * alpha1
+        th2[i] = np.pi - np.arctan2(py, r3 - px) + s2 * alpha2
+
+
+_ELBOWS_TWIN = Twin(_elbows_loop)
+_IK_TWIN = Twin(_ik_loop)
+_CLOSURE_TWIN = Twin(_closure_loop)
 
 
 def legs_closure(x, y, r3, legs):
@@ -136,6 +209,12 @@ def legs_closure(x, y, r3, legs):
         Where both legs assemble.
     """
     x, y = as_points(x, y)
+    if Twin.compiled():
+        (a1, c1, s1), (a2, c2, s2) = legs
+        A, b, ok = np.empty(x.shape + (2, 2)), np.empty(x.shape + (2,)), np.empty(x.shape, dtype=np.bool_)
+        _CLOSURE_TWIN(x.reshape(-1), y.reshape(-1), np.array([r3, a1, c1, s1, a2, c2, s2], float),
+                      A.reshape(-1, 2, 2), b.reshape(-1, 2), ok.reshape(-1))
+        return A, b, ok
     b1x, b1y, b2x, b2y, ok = legs_elbows(x, y, r3, legs)
     a1x, a1y = x - b1x, y - b1y
     a2x, a2y = x - b2x, y - b2y
@@ -361,6 +440,11 @@ def legs_ik(x, y, r3, legs):
     """
     x, y = as_points(x, y)
     (a1, c1, s1), (a2, c2, s2) = legs
+    if Twin.compiled():
+        th1, th2, ok = np.empty(x.shape), np.empty(x.shape), np.empty(x.shape, dtype=np.bool_)
+        _IK_TWIN(x.reshape(-1), y.reshape(-1), np.array([r3, a1, c1, s1, a2, c2, s2], float),
+                 th1.reshape(-1), th2.reshape(-1), ok.reshape(-1))
+        return th1, th2, ok
     reach = _reach(x, y, r3, legs)
     ok = _assembles(reach)
     d1, d2 = reach[0][0], reach[1][0]  # |P - A_i|

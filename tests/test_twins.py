@@ -1,0 +1,147 @@
+"""The compiled twins (mechopt.core.jit.Twin) give the NumPy paths' values bit for bit.
+
+Each hot NumPy path of the design evaluation has a numba loop that repeats its
+operations point by point; the evaluation switches to the loops after its first
+half second of NumPy work, so any difference would make a design's results depend on
+how long the process had run. Every output array is compared byte for byte (NaN
+payloads, signed zeros and all), on random designs and points and on the special
+points (base joints, the annulus' rims, NaN, inf, far away, the task's boundary).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from mechopt.analysis.task import Task, parse_task
+from mechopt.core import indices as ix
+from mechopt.core import jit
+from mechopt.mechanisms.asymmetric_five_bar import AsymmetricFiveBar
+from mechopt.mechanisms.five_bar.model import MODES, FiveBar, legs_closure, legs_elbows, legs_ik
+
+pytestmark = pytest.mark.skipif(not jit.HAVE_NUMBA, reason="the twins are numba loops (the fast extra)")
+
+STAR = "polygon:0,200;12,166;47,166;19,145;29,111;0,131;-29,111;-19,145;-47,166;-12,166"
+
+
+def both(monkeypatch, f):
+    """``f()`` on the NumPy paths and on the compiled twins."""
+    monkeypatch.setattr(jit.Twin, "compiled", staticmethod(lambda: False))
+    ref = f()
+    monkeypatch.setattr(jit.Twin, "compiled", staticmethod(lambda: True))
+    return ref, f()
+
+
+def assert_same_bits(ref, got):
+    ref = ref if isinstance(ref, tuple) else (ref,)
+    got = got if isinstance(got, tuple) else (got,)
+    assert len(ref) == len(got)
+    for u, v in zip(ref, got):
+        u, v = np.asarray(u), np.asarray(v)
+        assert u.dtype == v.dtype and u.shape == v.shape
+        assert u.tobytes() == v.tobytes(), np.flatnonzero(u.view(np.uint8) != v.view(np.uint8))[:5]
+
+
+def _points(rng, r3, reach):
+    """Random points around the base and the special ones."""
+    n = 400
+    x = rng.uniform(-1.5, 1.5, n) * reach
+    y = rng.uniform(-1.5, 1.5, n) * reach
+    # on the rims of leg 1's annulus and at the base joints, NaN, inf, far away
+    t = rng.uniform(0, 2 * np.pi, 8)
+    special_x = [-r3, r3, np.nan, np.inf, 1e300, 0.0, -np.inf, 5e15]
+    special_y = [0.0, 0.0, 1.0, 0.0, 0.0, np.nan, 2.0, 0.0]
+    x = np.concatenate([x, special_x, -r3 + reach * np.cos(t)])
+    y = np.concatenate([y, special_y, reach * np.sin(t)])
+    return x, y
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(1.0, 300.0), st.floats(1.0, 300.0), st.floats(0.0, 200.0), st.sampled_from(MODES),
+       st.integers(0, 2**31))
+def test_five_bar_kinematics_bit_for_bit(r1, r2, r3, mode, seed):
+    rng = np.random.default_rng(seed)
+    m = FiveBar(r1, r2, r3, mode=mode)
+    x, y = _points(rng, r3, r1 + r2)
+    legs = m._legs()
+    with pytest.MonkeyPatch.context() as mp:
+        for f in (lambda: legs_elbows(x, y, r3, legs), lambda: legs_closure(x, y, r3, legs),
+                  lambda: legs_ik(x, y, r3, legs), lambda: m.jacobian(x, y), lambda: ix.lci(m.jacobian(x, y)),
+                  lambda: m.type2_function(x, y),
+                  # shapes other than 1-d, scalars
+                  lambda: legs_closure(x[:12].reshape(3, 4), y[:12].reshape(3, 4), r3, legs),
+                  lambda: legs_ik(float(x[0]), float(y[0]), r3, legs), lambda: ix.lci(m.jacobian(x[1], y[1]))):
+            assert_same_bits(*both(mp, f))
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.floats(1.0, 300.0), min_size=4, max_size=4), st.floats(0.0, 200.0), st.integers(0, 2**31))
+def test_asymmetric_legs_bit_for_bit(lengths, r3, seed):
+    a1, c1, a2, c2 = lengths
+    rng = np.random.default_rng(seed)
+    m = AsymmetricFiveBar(a1, c1, a2, c2, r3)
+    x, y = _points(rng, r3, max(a1 + c1, a2 + c2))
+    with pytest.MonkeyPatch.context() as mp:
+        for f in (lambda: m.closure(x, y), lambda: m.ik(x, y), lambda: ix.lci(m.jacobian(x, y))):
+            assert_same_bits(*both(mp, f))
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.integers(0, 2**31), st.sampled_from([1e-300, 1e-160, 1e-5, 1.0, 1e5, 1e160, 1e300]))
+def test_lci_of_matrices_bit_for_bit(seed, scale):
+    rng = np.random.default_rng(seed)
+    J = rng.normal(size=(200, 2, 2)) * scale
+    J[0] = 0.0
+    J[1, 0, 0] = np.nan
+    J[2, 1, 1] = np.inf
+    J[3] = [[1.0, 2.0], [2.0, 4.0]]  # singular
+    J[4, 0, 1] = 5e-324  # subnormal
+    J[5] = [[np.inf, 1.0], [1.0, 0.0]]
+    with pytest.MonkeyPatch.context() as mp:
+        assert_same_bits(*both(mp, lambda: ix.lci(J)))
+        assert_same_bits(*both(mp, lambda: ix.lci(J[:8].reshape(2, 4, 2, 2))))
+        assert_same_bits(*both(mp, lambda: ix.lci(J[7])))
+
+
+def _random_polygon(rng, n):
+    """A simple polygon, star-shaped about its centre: one vertex per sector of angle
+    2 pi / n, random radii."""
+    a = (np.arange(n) + rng.uniform(0.0, 0.8, n)) * (2 * np.pi / n)
+    r = rng.uniform(20, 100, n)
+    return Task.polygon(np.c_[r * np.cos(a), 150 + r * np.sin(a)])
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**31), st.integers(3, 12))
+def test_task_boundary_and_contains_bit_for_bit(seed, n):
+    rng = np.random.default_rng(seed)
+    tasks = [parse_task("rect:100,60@0,180"), parse_task(STAR), _random_polygon(rng, n),
+             Task.path(np.array([[0.0, 0.0], [10.0, 5.0], [20.0, -3.0], [40.0, 0.0]]))]
+    t = np.concatenate([rng.uniform(-2.0, 3.0, 300), np.linspace(-1.0, 2.0, 61), [-0.0, 0.0, 1.0, np.nan]])
+    with pytest.MonkeyPatch.context() as mp:
+        for task in tasks:
+            bx, by = task.boundary_at(t)
+            assert_same_bits(*both(mp, lambda: task.boundary_at(t)))
+            assert_same_bits(*both(mp, lambda: task.boundary_at(t[:6].reshape(2, 3))))
+            # random points, points within rounding of the boundary, vertices, NaN and inf
+            x = np.concatenate([rng.uniform(-150, 150, 300), bx + rng.normal(0, 1e-9, bx.size), [np.nan, np.inf, 0.0]])
+            y = np.concatenate([rng.uniform(50, 300, 300), by + rng.normal(0, 1e-9, by.size), [0.0, 0.0, np.nan]])
+            assert_same_bits(*both(mp, lambda: task.contains(x, y)))
+            assert_same_bits(*both(mp, lambda: task.contains(x[:6].reshape(3, 2), 170.0)))
+            if task.is_region:
+                got = task.contains(x, y)
+                assert got[:300].any() and not got[:300].all()  # both verdicts occur
+
+
+def test_the_switch_happens_after_the_numpy_time(monkeypatch):
+    """Twin.compiled(): False in a process that has not loaded numba and spent less
+    than TWIN_AFTER_SECONDS in the twins' NumPy paths, True after."""
+    monkeypatch.setattr(jit, "_numba", None)
+    monkeypatch.setattr(jit, "_twin_numpy_seconds", 0.0)
+    assert not jit.Twin.compiled()
+    m = FiveBar(100.0, 120.0, 20.0)
+    x = np.linspace(-50, 50, 1000)
+    while jit._twin_numpy_seconds < jit.TWIN_AFTER_SECONDS:
+        legs_elbows(x, np.full_like(x, 150.0), m.r3, m._legs())
+    assert jit.Twin.compiled()
