@@ -146,15 +146,17 @@ def _interior_offsets(n):
 
 
 def _lowest(vals, k):
-    """``np.argsort(vals)[:k]``, the indices of the ``k`` lowest values, lowest first,
-    without sorting them all: by a partition when the ``k + 1`` lowest values are
-    distinct (their order is then unique); with ties (or NaN) by the full sort, whose
-    choice among equal values the zoom has always started from."""
+    """The indices of the ``k`` lowest values, the set of ``np.argsort(vals)[:k]``,
+    without sorting them all: by a partition when the ``k``-th lowest value is below the
+    ``(k + 1)``-th (the set is then unique; ties inside it leave its order to the partial
+    sort, which no search depends on: each start zooms on its own and the searches take
+    the minimum over all); when a tie straddles the ``k``-th place (or with NaN) by the
+    full sort, whose choice among equal values the zoom has always started from."""
     if vals.size > k + 1:
         part = np.argpartition(vals, k)[:k + 1]  # the k + 1 lowest, in no order
         o = np.argsort(vals[part])
         low = vals[part][o]
-        if np.all(low[1:] > low[:-1]):
+        if low[k - 1] < low[k]:  # False with NaN
             return part[o[:k]]
     return np.argsort(vals)[:k]
 
