@@ -1,4 +1,7 @@
-"""The compiled twins (mechopt.core.jit.Twin) give the NumPy paths' values bit for bit.
+"""The design evaluation's fast paths give the values of the plain ones bit for bit:
+the compiled twins (mechopt.core.jit.Twin) those of the NumPy paths, the zoom's starts
+chosen by a partition and the searches of several functions run together
+(mechopt.analysis.sampling) those of the full sort and of one search per function.
 
 Each hot NumPy path of the design evaluation has a numba loop that repeats its
 operations point by point; the evaluation switches to the loops after its first
@@ -201,3 +204,46 @@ def test_design_evaluations_do_not_depend_on_the_order_of_the_starts(monkeypatch
             srt = np.sort(vals)
             ties += int(np.any(srt[1:4] == srt[:3]))
     assert ties > 0  # the designs exercise tied starts
+
+
+@pytest.mark.parametrize("task", ["rect:100,60@0,180", STAR])
+def test_searches_of_several_rows_are_those_of_one_row_each(task):
+    """``region_mins`` of several functions zooms them together (one search over all
+    rows); every minimum is bit for bit the one the function's own search finds."""
+    from mechopt.analysis.design_eval import DesignEvaluator
+    from mechopt.analysis.sampling import Sampling
+    from mechopt.requirements import Requirements
+
+    ev = DesignEvaluator("five-bar", parse_task(task), Requirements(min_lci=0.3), ("size",), max_length=300)
+    rng = np.random.default_rng(2)
+    checked = 0
+    for a, b, c, mode in zip(rng.uniform(90, 220, 8), rng.uniform(90, 220, 8), rng.uniform(0, 60, 8),
+                             ["+-", "-+", "++", "--"] * 2):
+        v = dict(r1=float(a), r2=float(b), r3=float(c), mode=mode, task_x=0.0, task_y=float(rng.uniform(150, 200)))
+        for s in (Sampling(), Sampling.fine()):
+            ctx = ev.context(v, s)
+            m = ctx.mech
+
+            def F(x, y):
+                x, y = ctx.to_mech(x, y)
+                t2 = m.type2_function(x, y)
+                return np.stack([S.bad_to(ix.lci(m.jacobian(x, y)), 0.0), S.bad_to(t2, 2.0), S.bad_to(-t2, 2.0),
+                                 S.bad_to(m.ik(x, y)[0], 9.0)])
+
+            vals = F(ctx.samples["allx"], ctx.samples["ally"])
+            together = S.region_mins(ctx.samples, F, True, vals)
+            alone = [S.region_mins(ctx.samples, lambda x, y, r=r: F(x, y)[r:r + 1], True, vals[r:r + 1])[0]
+                     for r in range(len(vals))]
+            assert [float(t).hex() for t in together] == [float(t).hex() for t in alone]
+            ranges = S.leg_ranges(ctx.samples, lambda x, y: m.ik(*ctx.to_mech(x, y)), True)
+            q = lambda x, y, i, sg: sg * S.bad_to(m.ik(*ctx.to_mech(x, y))[i], sg * np.inf)  # noqa: E731
+            for i, (lo, hi) in enumerate(ranges):
+                for sg, want in ((1.0, lo), (-1.0, -hi)):
+                    def G(x, y, i=i, sg=sg):
+                        return q(x, y, i, sg)[None]
+                    nb = ctx.samples["bx"].size
+                    got = S.minimise(G, [S._boundary_search(ctx.samples, G(ctx.samples["bx"], ctx.samples["by"]),
+                                                            True)], ctx.samples["task"])[0][0]
+                    assert float(got).hex() == float(want).hex()
+                    checked += nb > 0
+    assert checked > 0

@@ -161,52 +161,72 @@ def _lowest(vals, k):
     return np.argsort(vals)[:k]
 
 
-def _boundary_search(ctx, vals, refine, row=0, k=3, levels=4, n=17):
-    """Minimum of a function over the task's boundary (``vals``: its values at the
-    boundary samples), refined by zooming (module doc) around the ``k`` lowest
-    samples. A generator run by :func:`minimise`: it yields the boundary parameters
-    of each zoom level and is sent the values there (row ``row`` of them); it returns
-    the minimum."""
-    if vals.size == 0:
-        return math.inf
-    best = float(np.min(vals))
+def _keep_lower(best, v):
+    """Python's ``min(best, v)`` row by row: ``v`` where ``v < best`` (so a NaN ``v``
+    never replaces ``best``, and a NaN ``best`` stays)."""
+    return np.where(v < best, v, best)
+
+
+def _own_blocks(V, m):
+    """Each row's values at its own points: row ``r`` of ``V`` (shape ``(m, m * P)``,
+    ``F`` at the points of every row, row ``r``'s ``P`` points in the ``r``-th block),
+    as one array of shape ``(m * P,)``."""
+    if m == 1:
+        return V[0]
+    return V.reshape(m, m, -1)[np.arange(m), np.arange(m)].ravel()
+
+
+def _boundary_search(ctx, vals, refine, k=3, levels=4, n=17):
+    """Minimum over the task's boundary of each row of ``vals`` (a function's values at
+    the boundary samples, one function per row), refined by zooming (module doc) around
+    each row's ``k`` lowest samples. A generator run by :func:`minimise`: it yields the
+    boundary parameters of each zoom level (every row's, row after row) and is sent the
+    values there (``F``'s rows at all of them); it returns the minima, one per row.
+    The rows zoom independently: each reads only its own function at its own points,
+    so the minima are those of one search per row."""
+    m = vals.shape[0]
+    if vals.shape[1] == 0:
+        return [math.inf] * m
+    best = vals.min(axis=1)
     if not refine or ctx["tb"].size == 0:
-        return best
-    t = ctx["tb"][_lowest(vals, k)]
+        return [float(b) for b in best]
+    t = ctx["tb"][np.concatenate([_lowest(v, k) for v in vals])]  # k starts per row, row after row
+    rows = np.arange(t.size)
     for off in _boundary_offsets(ctx["tb"].size, levels, n):
-        ts = t[:, None] + off[None, :]
-        vv = (yield ts.ravel())[row].reshape(ts.shape)
-        j = np.argmin(vv, axis=1)
-        t = ts[np.arange(len(t)), j]
-        best = min(best, float(vv.min()))
-    return best
+        ts = t[:, None] + off
+        vv = _own_blocks((yield ts.ravel()), m).reshape(ts.shape)
+        t = ts[rows, np.argmin(vv, axis=1)]
+        best = _keep_lower(best, vv.reshape(m, -1).min(axis=1))
+    return [float(b) for b in best]
 
 
-def _interior_search(ctx, vals, refine, row=0, k=3, levels=3, n=9):
-    """Minimum of a function over the task's interior grid (``vals``: its values
-    there), refined by zooming (module doc) around the ``k`` lowest grid points; a
-    generator run by :func:`minimise`, as :func:`_boundary_search`, that yields
-    points ``(x, y)``."""
+def _interior_search(ctx, vals, refine, k=3, levels=3, n=9):
+    """Minimum over the task's interior grid of each row of ``vals`` (a function's
+    values there, one function per row), refined by zooming (module doc) around each
+    row's ``k`` lowest grid points; a generator run by :func:`minimise`, as
+    :func:`_boundary_search`, that yields points ``(x, y)``."""
+    m = vals.shape[0]
     if ctx["ix"].size == 0:
-        return math.inf
-    best = float(np.min(vals))
+        return [math.inf] * m
+    best = vals.min(axis=1)
     if not refine:
-        return best
-    order = _lowest(vals, k)
+        return [float(b) for b in best]
+    order = np.concatenate([_lowest(v, k) for v in vals])  # k starts per row, row after row
     px, py = ctx["ix"][order], ctx["iy"][order]
+    rows = np.arange(order.size)
     h = ctx["step"]
     task = ctx["task"]
     GX, GY = _interior_offsets(n)
     for _ in range(levels):
-        X = px[:, None] + h * GX[None, :]
-        Y = py[:, None] + h * GY[None, :]
+        X = px[:, None] + h * GX
+        Y = py[:, None] + h * GY
         inside = task.contains(X, Y)
-        vv = np.where(inside, (yield X.ravel(), Y.ravel())[row].reshape(X.shape), np.inf)
+        vv = np.where(inside, _own_blocks((yield X.ravel(), Y.ravel()), m).reshape(X.shape), np.inf)
         j = np.argmin(vv, axis=1)
-        px, py = X[np.arange(len(px)), j], Y[np.arange(len(py)), j]
-        best = min(best, float(vv.min()))
+        px, py = X[rows, j], Y[rows, j]
+        best = _keep_lower(best, vv.reshape(m, -1).min(axis=1))
         h = 2.0 * h / (n - 1)
-    return best
+    return [float(b) for b in best]
 
 
 def minimise(F, searches, task):
@@ -288,11 +308,10 @@ def region_mins(ctx, F, refine, vals):
         The minimum of each row.
     """
     nb = ctx["bx"].size
-    searches = []
-    for i, v in enumerate(vals):
-        searches += [_boundary_search(ctx, v[:nb], refine, i), _interior_search(ctx, v[nb:], refine, i)]
-    m = minimise(F, searches, ctx["task"])
-    return [min(m[2 * i], m[2 * i + 1]) for i in range(len(vals))]
+    vals = np.asarray(vals)
+    on_boundary, inside = minimise(F, [_boundary_search(ctx, vals[:, :nb], refine),
+                                       _interior_search(ctx, vals[:, nb:], refine)], ctx["task"])
+    return [min(b, i) for b, i in zip(on_boundary, inside)]
 
 
 def leg_ranges(ctx, legs, refine, bad=(np.inf, np.inf)):
@@ -322,6 +341,5 @@ def leg_ranges(ctx, legs, refine, bad=(np.inf, np.inf)):
         q1, q2 = legs(x, y)[:2]
         return np.stack([bad_to(q1, bad[0]), bad_to(-q1, bad[1]), bad_to(q2, bad[0]), bad_to(-q2, bad[1])])
 
-    vals = rows(ctx["bx"], ctx["by"])
-    m = minimise(rows, [_boundary_search(ctx, vals[i], refine, i) for i in range(len(vals))], ctx["task"])
+    m = minimise(rows, [_boundary_search(ctx, rows(ctx["bx"], ctx["by"]), refine)], ctx["task"])[0]
     return [(m[0], -m[1]), (m[2], -m[3])]
