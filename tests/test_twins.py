@@ -247,3 +247,21 @@ def test_searches_of_several_rows_are_those_of_one_row_each(task):
                     assert float(got).hex() == float(want).hex()
                     checked += nb > 0
     assert checked > 0
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.sampled_from(["biglide", "gantry"]), st.floats(20.0, 300.0), st.floats(50.0, 400.0),
+       st.sampled_from(["+-", "-+", "++", "--"]), st.integers(0, 2**31))
+def test_slider_closure_bit_for_bit(kind, half, link, mode, seed):
+    from mechopt.mechanisms.biglide import Biglide
+    from mechopt.mechanisms.gantry import Gantry
+    rng = np.random.default_rng(seed)
+    if kind == "biglide":  # guides at +-l1, links l2 > l1, strokes of either sign
+        m = Biglide(half, half + link, -link, 1.5 * link, mode=mode)
+    else:  # the gantry's link l, half span d1, a stroke from q_min, the tool offset l2
+        m = Gantry(half, half + link, 2.0 * link, q_min=-link, l2=float(rng.uniform(0, 50)), mode=mode)
+    x = np.concatenate([rng.uniform(-2, 2, 400) * (half + link), [np.nan, np.inf, 0.0, half + link, half]])
+    y = np.concatenate([rng.uniform(-2, 2, 400) * (half + link), [0.0, 0.0, np.nan, 0.0, 0.0]])
+    with pytest.MonkeyPatch.context() as mp:
+        for f in (lambda: m.closure(x, y), lambda: ix.lci(m.jacobian(x, y)), lambda: m.closure(x[:6].reshape(2, 3), 1.0)):
+            assert_same_bits(*both(mp, f))

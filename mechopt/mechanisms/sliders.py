@@ -72,6 +72,7 @@ from mechopt.core import rigid_bodies as _b
 from mechopt.core import geometry as _g
 from mechopt.core import interval as _iv
 from mechopt.core import validation as _v
+from mechopt.core.jit import Twin
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.error_spec import ErrorSpec
 from mechopt.core.protocol import ASSEMBLY_MODES, PlanarMechanism, as_points
@@ -95,6 +96,31 @@ _SIGN = {"+": 1.0, "-": -1.0}
 #: between breakpoints (``tqi_mean(method="gauss")``) and the ``max_speed`` k_av integral
 GAUSS_ORDER_TQI = 128
 GAUSS_ORDER_KAV = 64
+
+
+def _closure_loop(x, y, p, via_positions, A, b, ok):
+    """:meth:`TwoSliderMechanism.closure` point by point (compiled,
+    :class:`mechopt.core.jit.Twin`): ``p = [g1, g2, L, s1, s2, e, lo1, hi1, lo2, hi2]``
+    (the strokes widened by their tolerance), each entry by the NumPy path's operations
+    (:meth:`~TwoSliderMechanism.legs`, :func:`_w`), NaN where a leg does not assemble."""
+    g1, g2, L, s1, s2, e = p[0], p[1], p[2], p[3], p[4], p[5]
+    for i in range(x.size):
+        px, py = x[i], y[i]
+        u1, u2 = px - g1, px - g2
+        c1 = -s1 * np.sqrt(L * L - u1 * u1)
+        c2 = -s2 * np.sqrt(L * L - u2 * u2)
+        y_a = py - e
+        q1, q2 = y_a - c1, y_a - c2
+        ok[i] = (q1 >= p[6]) and (q1 <= p[7]) and (q2 >= p[8]) and (q2 <= p[9])
+        if via_positions:
+            c1, c2 = y_a - q1, y_a - q2
+        if not ok[i]:
+            u1 = c1 = u2 = c2 = np.nan
+        A[i, 0, 0], A[i, 0, 1], A[i, 1, 0], A[i, 1, 1] = u1, c1, u2, c2
+        b[i, 0], b[i, 1] = c1, c2
+
+
+_CLOSURE_TWIN = Twin(_closure_loop)
 
 
 def _w(u, l):
@@ -498,6 +524,15 @@ class TwoSliderMechanism(PlanarMechanism):
             Where every leg assembles.
         """
         x, y = as_points(x, y)
+        if Twin.compiled():
+            (lo1, hi1), (lo2, hi2) = self._lims
+            t = self._stroke_tol
+            p = np.array([self._g[0], self._g[1], self._L, self._s[0], self._s[1], self._e,
+                          lo1 - t, hi1 + t, lo2 - t, hi2 + t], float)
+            A, b, ok = np.empty(x.shape + (2, 2)), np.empty(x.shape + (2,)), np.empty(x.shape, dtype=np.bool_)
+            _CLOSURE_TWIN(x.reshape(-1), y.reshape(-1), p, self._closure_via_positions,
+                          A.reshape(-1, 2, 2), b.reshape(-1, 2), ok.reshape(-1))
+            return A, b, ok
         q1, q2, c1, c2, ok = self.legs(x, y)
         if self._closure_via_positions:
             y_a = y - self._e
