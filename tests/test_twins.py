@@ -21,6 +21,7 @@ from mechopt.analysis.task import Task, parse_task
 from mechopt.core import indices as ix
 from mechopt.core import jit
 from mechopt.mechanisms.asymmetric_five_bar import AsymmetricFiveBar
+from mechopt.requirements.speed import _box_rows
 from mechopt.mechanisms.five_bar.model import MODES, FiveBar, legs_closure, legs_elbows, legs_ik
 
 pytestmark = pytest.mark.skipif(not jit.HAVE_NUMBA, reason="the twins are numba loops (the fast extra)")
@@ -92,7 +93,7 @@ def test_asymmetric_legs_bit_for_bit(lengths, r3, seed):
 
 @settings(max_examples=80, deadline=None)
 @given(st.integers(0, 2**31), st.sampled_from([1e-300, 1e-160, 1e-5, 1.0, 1e5, 1e160, 1e300]))
-def test_lci_of_matrices_bit_for_bit(seed, scale):
+def test_lci_and_row_norms_of_matrices_bit_for_bit(seed, scale):
     rng = np.random.default_rng(seed)
     J = rng.normal(size=(200, 2, 2)) * scale
     J[0] = 0.0
@@ -105,6 +106,8 @@ def test_lci_of_matrices_bit_for_bit(seed, scale):
         assert_same_bits(*both(mp, lambda: ix.lci(J)))
         assert_same_bits(*both(mp, lambda: ix.lci(J[:8].reshape(2, 4, 2, 2))))
         assert_same_bits(*both(mp, lambda: ix.lci(J[7])))
+        assert_same_bits(*both(mp, lambda: _box_rows(J)))
+        assert_same_bits(*both(mp, lambda: _box_rows(J[:8].reshape(2, 4, 2, 2))))
 
 
 def _random_polygon(rng, n):

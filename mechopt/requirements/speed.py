@@ -29,6 +29,7 @@ import math
 import numpy as np
 
 from mechopt.core import indices as _ix
+from mechopt.core.jit import Twin
 from mechopt.analysis.sampling import bad_to
 from mechopt.requirements.base import Objective, Option, Requirement
 
@@ -152,10 +153,27 @@ def liu_extremes(ctx, w=None, t=None, refine=None) -> tuple:
 
 def _box_rows(J):
     """``1/||row_1||, 1/||row_2||, |det J|/||row_1||, |det J|/||row_2||`` (0 where unreachable)."""
+    if Twin.compiled():
+        flat = np.ascontiguousarray(J).reshape(-1, 2, 2)
+        out = np.empty((4, flat.shape[0]))
+        _BOX_ROWS_TWIN(flat, out)
+        return out.reshape((4,) + J.shape[:-2])
     a, b = np.hypot(J[..., 0, 0], J[..., 0, 1]), np.hypot(J[..., 1, 0], J[..., 1, 1])
     det = np.abs(J[..., 0, 0] * J[..., 1, 1] - J[..., 0, 1] * J[..., 1, 0])
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.stack([bad_to(1.0 / a, 0.0), bad_to(1.0 / b, 0.0), bad_to(det / a, 0.0), bad_to(det / b, 0.0)])
+
+
+def _box_rows_loop(J, out):
+    """:func:`_box_rows` matrix by matrix (compiled, :class:`mechopt.core.jit.Twin`)."""
+    for i in range(J.shape[0]):
+        a, b = np.hypot(J[i, 0, 0], J[i, 0, 1]), np.hypot(J[i, 1, 0], J[i, 1, 1])
+        det = abs(J[i, 0, 0] * J[i, 1, 1] - J[i, 0, 1] * J[i, 1, 0])
+        for r, v in enumerate((1.0 / a, 1.0 / b, det / a, det / b)):
+            out[r, i] = v if np.isfinite(v) else 0.0
+
+
+_BOX_ROWS_TWIN = Twin(_box_rows_loop)
 
 
 def box_extremes(ctx, refine=None) -> np.ndarray:
