@@ -32,16 +32,18 @@ import pytest
 
 #: the group of every test that uses the shared quick reproduction
 QUICK_GROUP = "quick_reproduction"
-#: modules whose module fixture is cheap beside their long tests (the tutorials, the
-#: fuzzers' scratch folder): their tests are spread over the workers, each worker
-#: building the fixture. (test_signals is not: its reference runs cost about as much
-#: as one of its tests, and a group of a few tests starts before the single tests.)
-SPREAD = {"test_docs", "test_fuzz"}
+#: modules whose module fixture is cheap beside their long tests (the fuzzers' scratch
+#: folder): their tests are spread over the workers, each worker building the fixture.
+#: (test_signals is not: its reference runs cost about as much as one of its tests, and
+#: a group of a few tests starts before the single tests.)
+SPREAD = {"test_fuzz"}
 #: modules whose module fixtures serve disjoint sets of tests: one group per word, made
 #: of the tests whose id (after the module) contains it, so that the groups (each with
 #: the fixture it needs) run side by side; a test with none of the words goes alone.
-#: (test_signals: an optimize and an atlas reference, each costing about one of its tests)
-SPLIT = {"test_signals": ("optimize", "atlas")}
+#: (test_signals: an optimize and an atlas reference, each costing about one of its tests;
+#: test_docs: the tiny runs of every command, about 11 s, serve the "..._listed" tests,
+#: built once, while the tutorials, each longer than that, go alone)
+SPLIT = {"test_signals": ("optimize", "atlas"), "test_docs": ("listed",)}
 #: tests of several modules that share a session fixture, one group each (the fixture
 #: is then computed once): ``{group: (node id, ...)}``, ids without their parameters
 TOGETHER = {

@@ -29,3 +29,22 @@ def test_together_names_existing_tests_that_use_the_shared_fixture():
 def test_split_and_spread_name_existing_modules():
     for module in (*conftest.SPLIT, *conftest.SPREAD):
         assert (ROOT / "tests" / f"{module}.py").is_file(), module
+
+
+def test_each_split_group_holds_every_test_of_its_fixture():
+    """A SPLIT word names tests of its module, and every test of the module that uses
+    the module fixture of a group's tests carries the group's word (else it would build
+    that fixture once more, wherever it runs alone)."""
+    import re
+
+    for module, words in conftest.SPLIT.items():
+        path = ROOT / "tests" / f"{module}.py"
+        tests = _test_functions(path)
+        fixtures = set(re.findall(r"@pytest\.fixture\(scope=\"module\"\)\ndef (\w+)", path.read_text()))
+        for word in words:
+            members = {n: args for n, args in tests.items() if word in n}
+            assert members, (module, word)
+            used = fixtures & {a for args in members.values() for a in args}
+            assert used, (module, word)
+            for name, args in tests.items():
+                assert not (used & set(args)) or word in name, (module, name, used)
