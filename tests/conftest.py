@@ -5,7 +5,8 @@
 figure saved can be inspected and every script's table is kept as it returned it):
 ``tests/test_reproduce.py`` checks the command's files, ``tests/test_experiment_*.py``,
 ``tests/test_stan2008_readings.py`` and ``tests/test_liu2006.py`` each script's run inside it (the same
-``run(folder, quick=True)`` call as on its own, into the paper's folder).
+``run(folder, quick=True)`` call as on its own, into the paper's folder), ``tests/test_report.py``
+the report of a copy of its wu2008 folder.
 
 Under ``pytest -n 2`` (pytest-xdist) the tests that share a fixture broader than a
 function (this session fixture, or a module-scoped one) go to one worker as a group
