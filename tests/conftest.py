@@ -51,6 +51,8 @@ TOGETHER = {
     "le2013_default_runs": ("tests/test_problems.py::test_le_ga_finds_the_best_of_a_dense_scan",
                             "tests/test_problems.py::test_le_relaxed_is_at_least_as_good",
                             "tests/test_convergence.py::test_le_relaxed_default_optimum_is_at_least_the_tied_one"),
+    "numpy_atlas": ("tests/test_signals.py::test_atlas_under_a_signal",
+                    "tests/test_atlas_resume.py::test_killed_atlas_resumes_to_the_same_table"),
 }
 
 #: seconds (setup, call and teardown) of the tests of a measured run that took at least
@@ -116,6 +118,33 @@ def default_run():
         return runs[name]
 
     return run
+
+
+#: the atlas that tests/test_signals.py and tests/test_atlas_resume.py interrupt and resume,
+#: on the pure-NumPy path (``MECHOPT_NO_NUMBA=1``: slow enough to be stopped half-way):
+#: 344 designs in 22 chunks
+NUMPY_ATLAS = ["atlas", "five-bar", "--step", "0.1", "--n-jobs", "2", "--chunk-size", "16", "--no-figures"]
+
+
+@pytest.fixture(scope="session")
+def numpy_atlas_reference(tmp_path_factory):
+    """``(atlas.csv, tag)``: :data:`NUMPY_ATLAS` run to its end, uninterrupted, by the
+    command line in a process of its own (``MECHOPT_NO_NUMBA=1``), made once per session:
+    the reference the interrupted and resumed atlases must equal byte for byte. Every
+    process of the run carried ``MECHOPT_TEST_TAG=tag`` (tests/test_signals.py checks
+    that none outlived it)."""
+    import os
+    import subprocess
+    import sys
+    import uuid
+
+    out = tmp_path_factory.mktemp("numpy_atlas") / "atlas"
+    tag = uuid.uuid4().hex
+    env = {**os.environ, "MECHOPT_NO_NUMBA": "1", "MECHOPT_TEST_TAG": tag}
+    done = subprocess.run([sys.executable, "-m", "mechopt.cli", *NUMPY_ATLAS, "--out", str(out)], env=env,
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    return out / "atlas.csv", tag
 
 
 def pytest_configure(config):
