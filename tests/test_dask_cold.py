@@ -19,9 +19,12 @@ distributed = pytest.importorskip("dask.distributed")
 from mechopt.cli import main  # noqa: E402
 from mechopt.core import jit  # noqa: E402
 
-#: a worker preload: the warm-up takes 2.5 s and every atlas chunk 2 s, both above the
-#: --dask-timeout of 1 s the tests pass
-SLOW = textwrap.dedent('''
+#: the seconds the preload below adds to a worker's warm-up and to each atlas chunk: both
+#: above the --dask-timeout of 1 s the tests pass (by half of it: a sleep only lasts longer
+#: under load; were 2.5 and 2.0 s)
+WARM_S, CHUNK_S = 1.5, 1.5
+#: a worker preload: the warm-up takes WARM_S longer and every atlas chunk CHUNK_S
+SLOW = textwrap.dedent(f'''
     """Dask worker preload: a slow start-up and slow chunks (in the worker process only:
     a LocalCluster's nanny, in the test's own process, loads the preload too)."""
     import time
@@ -40,11 +43,11 @@ SLOW = textwrap.dedent('''
         _warm, _chunk = P.warm_up, A._atlas_chunk
 
         def warm_up(_=None):
-            time.sleep(2.5)
+            time.sleep({WARM_S})
             return _warm(_)
 
         def _atlas_chunk(task):
-            time.sleep(2.0)
+            time.sleep({CHUNK_S})
             return _chunk(task)
 
         P.warm_up, A._atlas_chunk, P._slow_test_patch = warm_up, _atlas_chunk, True
@@ -71,8 +74,8 @@ def test_slow_start_up_and_long_chunks_are_no_stall(tmp_path, slow_cluster, caps
     ref = tmp_path / "ref"
     assert main(["atlas", "five-bar", "--step", "0.25", "--no-figures", "--n-jobs", "1", "--out", str(ref)]) == 0
     pd.testing.assert_frame_equal(table, pd.read_csv(ref / "atlas.csv"), check_exact=True)
-    # the warm-up (2.5 s) and two 2 s chunks ran, each beyond the 1 s timeout
-    assert wall > 2.5 + 2 * 2.0
+    # the warm-up and two chunks ran, each beyond the 1 s timeout
+    assert wall > WARM_S + 2 * CHUNK_S
 
 
 def test_warm_workers_reports_each_worker(slow_cluster):
@@ -81,7 +84,7 @@ def test_warm_workers_reports_each_worker(slow_cluster):
     with distributed.Client(slow_cluster.scheduler_address) as client:
         t0 = time.monotonic()
         seconds = warm_workers(client, timeout=60)
-        assert time.monotonic() - t0 >= 2.5  # the preload's slow start-up was waited for
+        assert time.monotonic() - t0 >= WARM_S  # the preload's slow start-up was waited for
         assert list(seconds) == list(client.scheduler_info()["workers"])
         assert all(0 <= s < 60 for s in seconds.values())
         assert warm_workers(client) is seconds  # once per client

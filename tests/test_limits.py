@@ -39,8 +39,16 @@ ORDINARY = [(0.85, 1.6, 0.55, "+-"), (0.7, 1.7, 0.6, "-+"), (1.6, 0.9, 0.5, "+-"
             (1.2, 1.8, 0.0, "+-"), (1.0, 1.5, 0.5, "++")]
 
 
+#: evaluations by (repr of the design, options): the size-1 designs that several cases
+#: scale (each ordinary design against seven powers of two) are evaluated once
+_EVALUATED = {}
+
+
 def _values(mech, **kw):
-    return evaluate(mech, **kw).values
+    key = (repr(mech), tuple(sorted(kw.items())))
+    if key not in _EVALUATED:
+        _EVALUATED[key] = evaluate(mech, **kw).values
+    return dict(_EVALUATED[key])
 
 
 #: read off the raster by an argmax over rows that may tie: "accurate to about one cell"

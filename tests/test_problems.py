@@ -69,13 +69,19 @@ def _dominates_by(front, point, keys):
     return float(imp.max())
 
 
+#: the weights of the sweep: both ends (the W-only and T-only optima) and three weights
+#: between them, each of whose optima must lie on the front; ``-m slow``: every 0.1
+STAN_WEIGHTS = [pytest.param("0:1:0.25", id="w0.25"), pytest.param("0:1:0.1", id="w0.1", marks=pytest.mark.slow)]
+
+
+@pytest.mark.parametrize("weights", STAN_WEIGHTS)
 @pytest.mark.parametrize("name, var, w_only, t_only", [
     ("stan2008-bipod", "q1_min_over_b", 1.35, None),
     ("stan2008-biglide", "L2", 1.2, 1.2),
 ])
-def test_stan_trends_and_sweep_on_front(tmp_path, name, var, w_only, t_only):
+def test_stan_trends_and_sweep_on_front(tmp_path, name, var, w_only, t_only, weights):
     p = get(name)
-    table = sweep(p, parse_weights("0:1:0.1"), seed=1, n_jobs=1, out=tmp_path, progress=False)
+    table = sweep(p, parse_weights(weights), seed=1, n_jobs=1, out=tmp_path, progress=False)
     # w weighs W: w = 1 is the W-only optimum, w = 0 the T-only one
     assert table[var].iloc[-1] == pytest.approx(w_only, abs=2e-3)
     grid = np.linspace(p.xl[0], p.xu[0], 401)

@@ -128,15 +128,6 @@ def test_summary_readme(results):
     assert "Where we differ, and why" in text
 
 
-def test_finished_papers_are_skipped_unless_forced(results, capsys):
-    before = (results / "wu2008" / "table.csv").stat().st_mtime_ns
-    assert main(["reproduce", "wu2008", "--quick", "--out", str(results)]) == 0
-    assert "skipped" in capsys.readouterr().err
-    assert (results / "wu2008" / "table.csv").stat().st_mtime_ns == before
-    assert main(["reproduce", "wu2008", "--quick", "--force", "--out", str(results)]) == 0
-    assert (results / "wu2008" / "table.csv").stat().st_mtime_ns != before
-
-
 def test_unknown_paper(capsys, tmp_path):
     assert main(["reproduce", "smith1999", "--out", str(tmp_path / "r")]) == 2
     assert "paper must be one of" in capsys.readouterr().err
@@ -234,28 +225,54 @@ def test_a_quick_paper_is_recomputed_by_a_full_run(tmp_path, capsys, monkeypatch
 
 
 # --- the reproduction's fast paths give the same numbers, bit for bit ---------------------
-def test_papers_in_worker_processes_write_the_same_files(results, tmp_path, monkeypatch):
-    """``reproduce all`` maps the papers over worker processes (default_jobs): every
-    file of a paper run in a worker equals the serial run's (tables, fronts, sweeps,
-    curves, figures), byte for byte; only run.json / manifest.json (wall times, run
-    ids) and the log differ."""
+def test_finished_papers_are_skipped_unless_forced_and_workers_write_the_same_files(results, tmp_path, monkeypatch,
+                                                                                     capsys):
+    """On a copy of the quick reproduction's folder: a finished paper is skipped, and
+    ``--force`` recomputes it. The forced run is ``reproduce all`` of two papers mapped
+    over worker processes (default_jobs): it rewrites every file of each paper, and every
+    file equals the serial run's (tables, fronts, sweeps, curves, figures), byte for byte;
+    only run.json / manifest.json (wall times, run ids) and the log differ. (One forced
+    run serves both checks: it was a forced serial run of wu2008 and a fresh parallel
+    run of both papers.)"""
+    import shutil
+
     from mechopt.workflows import reproduce as rep
+
+    copy = tmp_path / "results"
+    shutil.copytree(results, copy)  # copy2: the serial run's modification times too
+    before = (copy / "wu2008" / "table.csv").stat().st_mtime_ns
+    assert main(["reproduce", "wu2008", "--quick", "--out", str(copy)]) == 0
+    assert "skipped" in capsys.readouterr().err
+    assert (copy / "wu2008" / "table.csv").stat().st_mtime_ns == before
 
     two = ("le2013", "wu2008")
     monkeypatch.setattr(rep, "PAPERS", two)
-    log = []
-    table = rep.reproduce("all", out=tmp_path, quick=True, n_jobs=2, log=log.append)
+    reproduce, calls = rep.reproduce, []
+
+    def on_two_processes(*args, **kw):  # the command's own call, on two worker processes
+        calls.append(kw)
+        table = reproduce(*args, **{**kw, "n_jobs": 2})
+        calls.append(table)
+        return table
+
+    monkeypatch.setattr(rep, "reproduce", on_two_processes)
+    assert main(["reproduce", "all", "--quick", "--force", "--out", str(copy)]) == 0
+    assert calls[0]["force"] is True and calls[0]["quick"] is True
+    log = [line for line in capsys.readouterr().err.splitlines() if not line.startswith("reproduce: ")]
     assert any("on 2 processes" in m for m in log)
     assert sorted(m.split(":")[0] for m in log if m.startswith("[")) == ["[1/2] le2013", "[2/2] wu2008"]
-    assert list(dict.fromkeys(table["paper"])) == list(two)
+    assert list(dict.fromkeys(calls[1]["paper"])) == list(two)
     for paper in two:
         ours = {p.relative_to(results / paper) for p in (results / paper).rglob("*") if p.is_file()}
-        theirs = {p.relative_to(tmp_path / paper) for p in (tmp_path / paper).rglob("*") if p.is_file()}
+        theirs = {p.relative_to(copy / paper) for p in (copy / paper).rglob("*") if p.is_file()}
         assert ours == theirs, paper
         for rel in sorted(ours):
+            # every file was written anew by the forced run (none left from the copy)
+            assert (copy / paper / rel).stat().st_mtime_ns != (results / paper / rel).stat().st_mtime_ns, \
+                (paper, rel)
             if rel.name in ("run.json", "manifest.json"):
                 continue
-            assert (results / paper / rel).read_bytes() == (tmp_path / paper / rel).read_bytes(), (paper, rel)
+            assert (results / paper / rel).read_bytes() == (copy / paper / rel).read_bytes(), (paper, rel)
 
 
 def test_progress_lines_per_stage(tmp_path, capsys, monkeypatch):

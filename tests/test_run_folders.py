@@ -41,13 +41,14 @@ def _digests(folder: Path) -> dict:
     return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in sorted(folder.iterdir()) if p.is_file()}
 
 
-@pytest.fixture()
-def interrupted(tmp_path):
+@pytest.fixture(scope="module")
+def interrupted_once(tmp_path_factory):
     """A folder of a run stopped right after its checkpoint of generation 2 (by a
-    KeyboardInterrupt raised where a kill would land)."""
+    KeyboardInterrupt raised where a kill would land), made once per module: each test
+    gets a copy (:func:`interrupted`)."""
     import mechopt.run.runner as R
 
-    out = tmp_path / "interrupted"
+    out = tmp_path_factory.mktemp("once") / "interrupted"
     real = R._save_checkpoint
     calls = []
 
@@ -66,11 +67,34 @@ def interrupted(tmp_path):
     return out
 
 
-@pytest.fixture()
-def reference(tmp_path):
-    out = tmp_path / "reference"
+@pytest.fixture(scope="module")
+def reference_once(tmp_path_factory):
+    """The folder of the same run to its end, made once per module (each test gets a
+    copy: :func:`reference`)."""
+    out = tmp_path_factory.mktemp("once") / "reference"
     assert main(["optimize", *FAST, "--out", str(out)]) == 0
     return out
+
+
+def _copy(folder, tmp_path):
+    """A copy of a run folder in the test's own ``tmp_path`` (the tests edit, resume,
+    rerun or refuse runs in it), byte for byte, with its modification times."""
+    out = tmp_path / folder.name
+    shutil.copytree(folder, out)
+    assert _digests(out) == _digests(folder)
+    return out
+
+
+@pytest.fixture()
+def interrupted(interrupted_once, tmp_path):
+    """A fresh copy of :func:`interrupted_once`'s folder."""
+    return _copy(interrupted_once, tmp_path)
+
+
+@pytest.fixture()
+def reference(reference_once, tmp_path):
+    """A fresh copy of :func:`reference_once`'s folder."""
+    return _copy(reference_once, tmp_path)
 
 
 # ------------------------------------------------------------------ checkpoints

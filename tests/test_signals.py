@@ -16,6 +16,8 @@ import uuid
 
 import pytest
 
+from conftest import NUMPY_ATLAS
+
 psutil = pytest.importorskip("psutil")
 
 pytestmark = pytest.mark.skipif(sys.platform != "linux", reason="signals and /proc")
@@ -28,8 +30,9 @@ OPT = ["optimize", "liu2006-w-gci", "--pop", "40", "--gen", "15", "--seed", "3",
        "--checkpoint-every", "1"]
 #: a progress line on a pipe: "liu2006-w-gci nsga2: 3/30 (1.1 s) ..." or "atlas: 1/22 (0.5 s) ..."
 PROGRESS = re.compile(r"^[\w.-]+( [\w.-]+)?: \d+/\d+ \(\d")
-#: (344 designs in 22 chunks, as many chunks as the 1364 designs of --step 0.05 in chunks of 64)
-ATLAS = ["atlas", "five-bar", "--step", "0.1", "--n-jobs", "2", "--chunk-size", "16", "--no-figures"]
+#: (344 designs in 22 chunks, as many chunks as the 1364 designs of --step 0.05 in chunks of 64;
+#: tests/conftest.py: its reference is shared with tests/test_atlas_resume.py)
+ATLAS = NUMPY_ATLAS
 
 
 def _tagged(tag):
@@ -139,9 +142,10 @@ def _case(tmp_path, argv, sig, seed, reference, file, extra_env=None):
     assert not list(out.rglob(".*.tmp"))
 
 
-# one reference per command, each computed once per module and only where a test needs it:
-# under pytest-xdist the optimize and the atlas tests form two groups (tests/conftest.py,
-# SPLIT) that run side by side, each computing its own reference
+# one reference per command, each computed once and only where a test needs it: under
+# pytest-xdist the optimize and the atlas tests form two groups (tests/conftest.py, SPLIT;
+# the atlas one with tests/test_atlas_resume.py, TOGETHER, which uses the same reference)
+# that run side by side, each computing its own reference
 @pytest.fixture(scope="module")
 def optimize_reference(tmp_path_factory):
     out = tmp_path_factory.mktemp("ref") / "opt"
@@ -150,10 +154,12 @@ def optimize_reference(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def atlas_reference(tmp_path_factory):
-    out = tmp_path_factory.mktemp("ref") / "atlas"
-    _run_to_end(ATLAS, out, {"MECHOPT_NO_NUMBA": "1"})
-    return out / "atlas.csv"
+def atlas_reference(numpy_atlas_reference):
+    """The session's uninterrupted NumPy-path atlas (tests/conftest.py), run to its end
+    by the command with every process tagged: none of them outlives it."""
+    path, tag = numpy_atlas_reference
+    assert _no_survivors(tag)
+    return path
 
 
 #: in CI one signal per command and SIGKILL on both; every (command, signal) pair at
