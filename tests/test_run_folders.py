@@ -320,7 +320,8 @@ def test_the_same_run_again_replaces_its_own_outputs(reference, capsys):
 def test_a_sweep_in_an_optimize_folder_is_refused(reference, capsys):
     assert main(["sweep", "le2013-gamma", "--weights", "0,1", "--pop", "6", "--gen", "2", "--n-jobs", "1",
                  "--out", str(reference)]) == 2
-    assert "holds a optimize run" in _err_line(capsys) or True
+    line = _err_line(capsys)
+    assert "holds an optimize run; pass --overwrite" in line, line
 
 
 def test_an_atlas_of_other_settings_is_refused(tmp_path, capsys):

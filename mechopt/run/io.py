@@ -708,7 +708,7 @@ def claim_out(folder, kind: str, key: dict, outputs, overwrite: bool = False) ->
                          f"manifest accounts for{why}; move them away or choose another folder")
     if old is not None and (not trusted or old["kind"] != kind or old["key"] != key):
         what = ("a run manifest not authenticated by your key" if not trusted
-                else f"a {old['kind']} run" if old["kind"] != kind
+                else f"{'an' if old['kind'][:1] in 'aeiou' else 'a'} {old['kind']} run" if old["kind"] != kind
                 else f"another {kind} run ({differences(old['key'], key)})")
         if not overwrite:
             raise ValueError(f"--out {str(folder)!r} holds {what}; pass --overwrite to replace it, "
