@@ -68,7 +68,7 @@ from mechopt.core.interval import Gradient, Interval, hypot
 from mechopt.analysis.sampling import bad_to
 
 __all__ = ["Quantity", "Bound", "lci_quantity", "type2_quantity", "speed_quantity", "force_quantity",
-           "range_quantity", "lower_bound", "outer_range", "Ranges", "BUDGET", "RTOL", "METHOD"]
+           "range_quantity", "range_quantities", "lower_bound", "lower_bounds", "outer_range", "Ranges", "BUDGET", "RTOL", "METHOD"]
 
 #: default budget of evaluated cells per quantity
 BUDGET = 30000
@@ -345,6 +345,23 @@ def range_quantity(i: int, sign: float, scale: float) -> Quantity:
                     actuator=i, sign=s, relative=False)
 
 
+def range_quantities(scale: float) -> list:
+    """The four quantities of :func:`outer_range`: ``q1``, ``-q1``, ``q2``, ``-q2``
+    (:func:`range_quantity`).
+
+    Parameters
+    ----------
+    scale : float
+        The stopping gap's reference [rad or L], > 0.
+
+    Returns
+    -------
+    list of Quantity
+        The quantities, in that order.
+    """
+    return [range_quantity(i, s, scale) for i in (0, 1) for s in (1.0, -1.0)]
+
+
 # ------------------------------------------------------------------ cells
 def _translation(to_mech):
     """``(dx, dy)`` of ``to_mech`` (a translation; ValueError otherwise)."""
@@ -457,55 +474,102 @@ class _Cells:
         return rows, parent
 
 
-def _evaluate(mech, q, cells, rows, dx, dy, lengths=None, shift=0.0):
-    """Lower bounds over the cells ``rows`` (each widened by ``shift`` on every side: the
-    task moved by up to ``shift`` in x and y; and every length in ``lengths``: ``{name:
-    (lo, hi)}``) and where they may be out of reach: per term the larger of the natural
-    interval bound and the mean value form's about the cell's centre and the lengths'
-    midpoints (both enclose the term's range), the smallest over the terms, within
-    ``[floor, cap]``; the floor where the cell may be out of reach."""
-    X, Y = cells.boxes(rows, dx, dy)
-    if shift:  # outward-rounded sums: every point of the cell moved by up to +-shift
-        X, Y = X + Interval(-shift, shift), Y + Interval(-shift, shift)
-    if q.actuator is not None:
-        return _evaluate_range(mech, q, X, Y, lengths)
-    names = list(lengths or {})
-    boxes = [X, Y] + [Interval(*lengths[n]) for n in names]
-    centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
-    with np.errstate(all="ignore"):
-        v = Gradient.variables(*boxes)
-        A, b, certain = mech.closure_enclosure(v[0], v[1], **({"lengths": dict(zip(names, v[2:]))} if names else {}))
-        at = {"lengths": {n: Interval(c) for n, c in zip(names, centres[2:])}} if names else {}
-        Ac, bc, _ = mech.closure_enclosure(Interval(centres[0]), Interval(centres[1]), **at)
-        lb = np.full(len(rows), np.inf)
+def _take(v, idx):
+    """``v`` (an :class:`~mechopt.core.interval.Interval`, a
+    :class:`~mechopt.core.interval.Gradient`, an array or a tuple of them) at the cells
+    ``idx`` (exact: indexing; a scalar, the same for every cell, stays)."""
+    if isinstance(v, tuple):
+        return tuple(_take(w, idx) for w in v)
+    if isinstance(v, Gradient):
+        return Gradient(_take(v.v, idx), _take(v.g, idx))
+    if isinstance(v, Interval):
+        lo, hi = v.lo, v.hi
+        if not (np.ndim(lo) or np.ndim(hi)):
+            return v
+        lo, hi = np.broadcast_arrays(lo, hi)
+        return Interval.__getitem__(_pair(lo, hi), idx)
+    return v[idx] if np.ndim(v) else v
+
+
+def _pair(lo, hi):
+    """An :class:`~mechopt.core.interval.Interval` of ordered endpoints (no check)."""
+    out = object.__new__(Interval)
+    out.lo, out.hi = lo, hi
+    return out
+
+
+class _Enclosures:
+    """The enclosures over cells ``rows`` that the quantities read, each computed once for
+    all the searches that share a round (:func:`lower_bounds`): for quantities of the
+    closure, the closure enclosure with interval derivatives over each cell (and the
+    lengths' box) and at its centre; for range quantities, the actuator enclosure over each
+    cell and at its centre, and the closure enclosure over the cell. Each cell's
+    enclosures are elementwise functions of its own box, so a cell gets the same
+    intervals whichever cells share its batch."""
+
+    def __init__(self, mech, cells, rows, dx, dy, lengths, shift, closure: bool, ranges: bool):
+        X, Y = cells.boxes(rows, dx, dy)
+        if shift:  # outward-rounded sums: every point of the cell moved by up to +-shift
+            X, Y = X + Interval(-shift, shift), Y + Interval(-shift, shift)
+        self.n, self.X, self.Y = len(rows), X, Y
+        with np.errstate(all="ignore"):
+            if closure:
+                names = list(lengths or {})
+                boxes = [X, Y] + [Interval(*lengths[n]) for n in names]
+                self.centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
+                self.boxes = boxes
+                v = Gradient.variables(*boxes)
+                kw = {"lengths": dict(zip(names, v[2:]))} if names else {}
+                self.grad = mech.closure_enclosure(v[0], v[1], **kw)
+                at = {"lengths": {n: Interval(c) for n, c in zip(names, self.centres[2:])}} if names else {}
+                self.at_centre = mech.closure_enclosure(Interval(self.centres[0]), Interval(self.centres[1]), **at)
+            if ranges:
+                L = {n: Interval(*lh) for n, lh in lengths.items()} if lengths else None
+                kw = {"lengths": L} if L else {}
+                cx, cy = X.mid, Y.mid
+                self.cx, self.cy = cx, cy
+                self.act = mech.actuator_enclosure(X, Y, **kw)
+                self.act_centre = mech.actuator_enclosure(Interval(cx), Interval(cy), **kw)
+                self.plain = mech.closure_enclosure(X, Y, **kw)
+
+    def bound(self, q, idx):
+        """Lower bounds of ``q`` over the cells ``idx`` and where they may be out of reach."""
+        with np.errstate(all="ignore"):
+            if q.actuator is not None:
+                return self._range(q, idx)
+            return self._closure(q, idx)
+
+    def _closure(self, q, idx):
+        """Per term the larger of the natural interval bound and the mean value form's
+        about the cell's centre and the lengths' midpoints (both enclose the term's range),
+        the smallest over the terms, within ``[floor, cap]``; the floor where the cell may
+        be out of reach."""
+        A, b, certain = _take(self.grad, idx)
+        Ac, bc, _ = _take(self.at_centre, idx)
+        box = list(zip(_take(tuple(self.boxes), idx), _take(tuple(self.centres), idx)))
+        lb = np.full(len(idx), np.inf)
         for term, at_c in zip(q.terms(A, b), q.terms(Ac, bc)):
-            low = np.maximum(term.lo, term.mean_value_lower(at_c, list(zip(boxes, centres))))
+            low = np.maximum(term.lo, term.mean_value_lower(at_c, box))
             lb = np.minimum(lb, np.where(np.isnan(low), -np.inf, low))
-    lb = np.minimum(np.maximum(lb, q.floor), q.cap)
-    lb = np.where(certain, lb, q.floor)
-    return lb, ~np.broadcast_to(certain, lb.shape)
+        lb = np.minimum(np.maximum(lb, q.floor), q.cap)
+        lb = np.where(certain, lb, q.floor)
+        return lb, ~np.broadcast_to(certain, lb.shape)
 
-
-def _evaluate_range(mech, q, X, Y, lengths):
-    """Lower bounds of ``sign * q_i`` over the boxes ``X, Y`` (and the lengths' box): the
-    larger of the natural enclosure and the mean value form ``q(c) + g . (C - c)`` with
-    ``g = sign a_i / b_i`` over the box (where the closure is certain: ``q_i`` is
-    differentiable there) and ``q(c)`` enclosed at the centre over the lengths' box;
-    ``-inf`` where the box may be out of reach."""
-    i, s = q.actuator, q.sign
-    L = {n: Interval(*lh) for n, lh in lengths.items()} if lengths else None
-    kw = {"lengths": L} if L else {}
-    cx, cy = X.mid, Y.mid
-    with np.errstate(all="ignore"):
-        (qs, certain) = mech.actuator_enclosure(X, Y, **kw)
-        (qc, _) = mech.actuator_enclosure(Interval(cx), Interval(cy), **kw)
-        A, b, smooth = mech.closure_enclosure(X, Y, **kw)
+    def _range(self, q, idx):
+        """The larger of the natural enclosure of ``sign * q_i`` and the mean value form
+        ``q(c) + g . (C - c)`` with ``g = sign a_i / b_i`` over the box (where the closure
+        is certain: ``q_i`` is differentiable there) and ``q(c)`` enclosed at the centre
+        over the lengths' box; ``-inf`` where the box may be out of reach."""
+        i, s = q.actuator, q.sign
+        (qs, certain), (qc, _) = _take(self.act, idx), _take(self.act_centre, idx)
+        A, b, smooth = _take(self.plain, idx)
+        X, Y, cx, cy = _take((self.X, self.Y, self.cx, self.cy), idx)
         val, at_c = (qs[i], qc[i]) if s > 0 else (-qs[i], -qc[i])
         mv = at_c + (s * A[i][0] / b[i]) * (X - cx) + (s * A[i][1] / b[i]) * (Y - cy)
         low = np.where(np.broadcast_to(smooth, val.lo.shape), np.maximum(val.lo, mv.lo), val.lo)
-    certain = np.broadcast_to(certain, low.shape)
-    low = np.where(certain & ~np.isnan(low), low, -math.inf)
-    return low, ~certain
+        certain = np.broadcast_to(certain, low.shape)
+        low = np.where(certain & ~np.isnan(low), low, -math.inf)
+        return low, ~certain
 
 
 def _upper(mech, q, cells, rows, dx, dy):
@@ -565,6 +629,47 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
         For a mechanism without enclosure, a ``to_mech`` that is not a translation, a
         budget < 1 or a non-positive ``rtol``.
     """
+    return lower_bounds(mech, task, [q], to_mech=to_mech, budget=budget, rtol=rtol, uppers=[upper],
+                        lengths=lengths, shift=shift)[0]
+
+
+class _Search:
+    """The state of one quantity's branch and bound in :func:`lower_bounds`."""
+
+    def __init__(self, q, upper):
+        self.q, self.ub, self.converged, self.done, self.step = q, float(upper), False, False, None
+
+
+def lower_bounds(mech, task, qs, to_mech=None, budget: int = BUDGET, rtol: float = RTOL, uppers=None,
+                 lengths: dict | None = None, shift: float = 0.0) -> list:
+    """:func:`lower_bound` of several quantities over the same task, mechanism, lengths
+    and shift, their searches run in lock-step: each round every search still running
+    picks and splits its cells as it would alone, and the enclosures over all the new
+    cells (the same cell once) are computed in one vectorised call
+    (:class:`_Enclosures`), which the quantities then read. A cell's enclosures are
+    elementwise functions of its own box, and each search's picks read its own cells
+    only: every search takes the same steps, and returns the same bound bit for bit,
+    as alone; only the number of array operations falls.
+
+    Parameters
+    ----------
+    mech, task, to_mech, budget, rtol, lengths, shift
+        As :func:`lower_bound`'s (``budget``: per quantity).
+    qs : sequence of Quantity
+        The quantities.
+    uppers : sequence of float, optional
+        Per quantity, :func:`lower_bound`'s ``upper`` (default none known).
+
+    Returns
+    -------
+    list of Bound
+        One per quantity, in order.
+
+    Raises
+    ------
+    ValueError
+        As :func:`lower_bound`.
+    """
     budget = int(budget)
     if budget < 1:
         raise ValueError(f"budget must be >= 1, got {budget!r}")
@@ -572,61 +677,99 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
         raise ValueError(f"rtol must be a number > 0, got {rtol!r}")
     if not (shift >= 0 and math.isfinite(shift)):
         raise ValueError(f"shift must be a length >= 0, got {shift!r}")
+    qs = list(qs)
+    uppers = [math.inf] * len(qs) if uppers is None else [float(u) for u in uppers]
+    if len(uppers) != len(qs):
+        raise ValueError(f"{len(qs)} quantities but {len(uppers)} upper values")
     if mech.closure_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
         raise ValueError(f"{type(mech).__name__} has no closure enclosure")
-    if q.actuator is not None and mech.actuator_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
+    ranged = any(q.actuator is not None for q in qs)
+    if ranged and mech.actuator_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
         raise ValueError(f"{type(mech).__name__} has no actuator enclosure")
+    closure = any(q.actuator is None for q in qs)
     dx, dy = _translation(to_mech)
     cells = _Cells(task)
-    rows = cells.rows
-    lb, unk = _evaluate(mech, q, cells, rows, dx, dy, lengths, shift)
-    used = len(rows)
-    ub = min(float(upper), _upper(mech, q, cells, rows, dx, dy))
+    enc = _Enclosures(mech, cells, cells.rows, dx, dy, lengths, shift, closure, ranged)
     if task.is_region:  # boundary samples: the minimum is often on the boundary
         tb, _ = task.boundary_params(256)
         bx, by = task.boundary_at(tb)
-        with np.errstate(all="ignore"):
-            ub = min(ub, float(np.min(q.point(mech, bx + dx, by + dy))))
-    converged = False
+    searches = [_Search(q, u) for q, u in zip(qs, uppers)]
+    every = np.arange(len(cells.rows))
+    for s in searches:
+        s.rows = cells.rows
+        s.lb, s.unk = enc.bound(s.q, every)
+        s.used = len(s.rows)
+        s.ub = min(s.ub, _upper(mech, s.q, cells, s.rows, dx, dy))
+        if task.is_region:
+            with np.errstate(all="ignore"):
+                s.ub = min(s.ub, float(np.min(s.q.point(mech, bx + dx, by + dy))))
     while True:
-        tol = _tol(q, ub, rtol)
+        for s in searches:
+            s.step = None if s.done else _step(s, cells, budget, rtol)
+        todo = [s for s in searches if s.step is not None]
+        if not todo:
+            break
+        kids = np.concatenate([s.step[1] for s in todo])
+        # the same cell once: rows equal bit for bit (a cell's enclosures depend on its bits only)
+        key = np.ascontiguousarray(kids).view(np.dtype((np.void, kids.dtype.itemsize * kids.shape[1])))[:, 0]
+        _, first, where = np.unique(key, return_index=True, return_inverse=True)
+        enc = _Enclosures(mech, cells, kids[first], dx, dy, lengths, shift,
+                          any(s.q.actuator is None for s in todo), any(s.q.actuator is not None for s in todo))
+        at = 0
+        for s in todo:
+            pick, k, parent, truncated = s.step
+            klb, kunk = enc.bound(s.q, where.ravel()[at:at + len(k)])
+            at += len(k)
+            klb = np.maximum(klb, s.lb[pick][parent])  # both bound the child
+            s.used += len(k)
+            s.ub = min(s.ub, _upper(mech, s.q, cells, k, dx, dy))
+            keep = np.ones(len(s.rows), bool)
+            keep[pick] = False
+            s.rows = np.concatenate([s.rows[keep], k])
+            s.lb = np.concatenate([s.lb[keep], klb])
+            s.unk = np.concatenate([s.unk[keep], kunk])
+            s.done = truncated
+    out = []
+    for s in searches:
+        q, lb, rows = s.q, s.lb, s.rows
         low = float(lb.min()) if len(lb) else math.inf
-        if ub - low <= tol:
-            converged = True
-            break
-        if cells.kind == "pt":
-            break
-        pick = np.flatnonzero((lb < ub - tol) & (cells.sizes(rows) > cells.min_size))
-        if not pick.size:
-            break
-        # few cells: two levels at once (a round costs mostly its fixed overhead)
-        levels = 2 if pick.size * cells.children(2) <= _TWO_LEVELS else 1
-        room = (budget - used) // cells.children(levels)
-        truncated = room < pick.size
-        if truncated:
-            if room <= 0:
-                break
-            pick = pick[np.argsort(lb[pick], kind="stable")[:room]]
-        kids, parent = cells.split(rows[pick], levels)
-        klb, kunk = _evaluate(mech, q, cells, kids, dx, dy, lengths, shift)
-        klb = np.maximum(klb, lb[pick][parent])  # both bound the child
-        used += len(kids)
-        ub = min(ub, _upper(mech, q, cells, kids, dx, dy))
-        keep = np.ones(len(rows), bool)
-        keep[pick] = False
-        rows = np.concatenate([rows[keep], kids])
-        lb = np.concatenate([lb[keep], klb])
-        unk = np.concatenate([unk[keep], kunk])
-        if truncated:
-            break
+        tol = _tol(q, s.ub, rtol)
+        sizes = cells.sizes(rows)
+        out.append(Bound(lower=low, upper=s.ub, cells=int(s.used), leaves=int(len(rows)),
+                         smallest_cell=float(sizes.min()) if len(sizes) else 0.0,
+                         largest_cell=float(sizes.max()) if len(sizes) else 0.0,
+                         may_unreachable=bool(np.any(s.unk & (lb <= q.floor))),
+                         converged=s.converged or s.ub - low <= tol, tol=float(tol)))
+    return out
+
+
+def _step(s, cells, budget, rtol):
+    """One round of a search: None when it stops (converged, nothing to split, out of
+    budget), else ``(pick, kids, parent, truncated)``."""
+    q, lb, rows = s.q, s.lb, s.rows
+    tol = _tol(q, s.ub, rtol)
     low = float(lb.min()) if len(lb) else math.inf
-    tol = _tol(q, ub, rtol)
-    sizes = cells.sizes(rows)
-    return Bound(lower=low, upper=ub, cells=int(used), leaves=int(len(rows)),
-                 smallest_cell=float(sizes.min()) if len(sizes) else 0.0,
-                 largest_cell=float(sizes.max()) if len(sizes) else 0.0,
-                 may_unreachable=bool(np.any(unk & (lb <= q.floor))), converged=converged or ub - low <= tol,
-                 tol=float(tol))
+    if s.ub - low <= tol:
+        s.converged = s.done = True
+        return None
+    if cells.kind == "pt":
+        s.done = True
+        return None
+    pick = np.flatnonzero((lb < s.ub - tol) & (cells.sizes(rows) > cells.min_size))
+    if not pick.size:
+        s.done = True
+        return None
+    # few cells: two levels at once (a round costs mostly its fixed overhead)
+    levels = 2 if pick.size * cells.children(2) <= _TWO_LEVELS else 1
+    room = (budget - s.used) // cells.children(levels)
+    truncated = room < pick.size
+    if truncated:
+        if room <= 0:
+            s.done = True
+            return None
+        pick = pick[np.argsort(lb[pick], kind="stable")[:room]]
+    kids, parent = cells.split(rows[pick], levels)
+    return pick, kids, parent, truncated
 
 
 @dataclass
@@ -648,6 +791,25 @@ class Ranges:
     outer: list
     inner: list
     bounds: list
+
+    @classmethod
+    def of(cls, bounds):
+        """The ranges of the four searches of :func:`range_quantities`, in its order.
+
+        Parameters
+        ----------
+        bounds : list of Bound
+            ``q1``, ``-q1``, ``q2``, ``-q2``.
+
+        Returns
+        -------
+        Ranges
+            Their outer and inner ranges.
+        """
+        bounds = list(bounds)
+        outer = [(bounds[k].lower, -bounds[k + 1].lower) for k in (0, 2)]
+        inner = [(bounds[k].upper, -bounds[k + 1].upper) for k in (0, 2)]
+        return cls(outer, inner, bounds)
 
     @property
     def cells(self) -> int:
@@ -697,8 +859,5 @@ def outer_range(mech, task, scale: float, to_mech=None, budget: int = BUDGET, rt
     ValueError
         As :func:`lower_bound`, and for a mechanism without actuator enclosure.
     """
-    bounds = [lower_bound(mech, task, range_quantity(i, s, scale), to_mech=to_mech, budget=budget, rtol=rtol,
-                          lengths=lengths, shift=shift) for i in (0, 1) for s in (1.0, -1.0)]
-    outer = [(bounds[k].lower, -bounds[k + 1].lower) for k in (0, 2)]
-    inner = [(bounds[k].upper, -bounds[k + 1].upper) for k in (0, 2)]
-    return Ranges(outer, inner, bounds)
+    return Ranges.of(lower_bounds(mech, task, range_quantities(scale), to_mech=to_mech, budget=budget, rtol=rtol,
+                                  lengths=lengths, shift=shift))

@@ -153,14 +153,11 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
     req, out = ctx.req, {}
     lengths = None if tolerance is None else {
         n: (max(float(v[n]) - tolerance, 0.0), float(v[n]) + tolerance) for n in ev.spec.lengths}
+    searches, ranged = [], []  # (name, quantity, required level, estimate); range requirements
     for name, r in active.items():
         if name in RANGED:
             est = float(margins[name]) if margins is not None and name in margins else float(r.evaluate(ctx)[0])
-            try:
-                out[name] = _ranges(ctx, name, est, budget or _b.BUDGET, lengths, tolerance)
-            except ValueError:  # with a tolerance: an actuator enclosure without length intervals
-                if tolerance is None:
-                    raise
+            ranged.append((name, est))
             continue
         if name == "lci":
             q, need = _b.lci_quantity(), req.min_lci
@@ -175,27 +172,41 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
             q = _b.force_quantity(limits(req.actuator_torque), reading(ctx), effort_factor(ctx))
             need, est = req.min_force, (lambda: force(ctx))
         est = float(margins[name]) + float(need) if margins is not None and name in margins else float(est())
-        # over a tolerance box the nominal design's values need not reach the box's minimum:
-        # the sampled box minimum (a value of a mechanism of the box) stops the search
-        up = est if tolerance is not None and math.isfinite(est) else math.inf
-        b = _b.lower_bound(ctx.check, ctx.task, q, to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y),
-                           budget=budget or _b.BUDGET, lengths=lengths, upper=up, shift=tolerance or 0.0)
+        searches.append((name, q, need, est))
+    # every search in lock-step (mechopt.analysis.bounds.lower_bounds: each bound as alone)
+    qs = [q for _, q, _, _ in searches]
+    # over a tolerance box the nominal design's values need not reach the box's minimum:
+    # the sampled box minimum (a value of a mechanism of the box) stops the search
+    ups = [est if tolerance is not None and math.isfinite(est) else math.inf for *_, est in searches]
+    for name, _ in ranged:
+        qs += _b.range_quantities(1.0 if name == "joints" else ctx.task.diameter)
+        ups += [math.inf] * 4
+    kw = dict(to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y), budget=budget or _b.BUDGET,
+              lengths=lengths, shift=tolerance or 0.0)
+    try:
+        found = _b.lower_bounds(ctx.check, ctx.task, qs, uppers=ups, **kw)
+    except ValueError:  # with a tolerance: an actuator enclosure without length intervals
+        if tolerance is None or not ranged:
+            raise
+        found, ranged = _b.lower_bounds(ctx.check, ctx.task, qs[:len(searches)], uppers=ups[:len(searches)], **kw), []
+    for (name, q, need, est), b in zip(searches, found):
         out[name] = {"quantity": q.name, "lower_bound": b.lower, "estimate": est, "gap": est - b.lower,
                      "upper": b.upper, "proven_margin": b.lower - float(need),
                      "method": _b.METHOD, "cells": b.cells, "smallest_cell": b.smallest_cell,
                      "largest_cell": b.largest_cell, "converged": b.converged, "may_unreachable": b.may_unreachable}
-    return out
+    for k, (name, est) in enumerate(ranged):
+        at = len(searches) + 4 * k
+        out[name] = _ranges(ctx, name, est, _b.Ranges.of(found[at:at + 4]))
+    return dict(sorted(out.items(), key=lambda kv: list(active).index(kv[0])))
 
 
-def _ranges(ctx, name, est, budget, lengths, tolerance) -> dict:
+def _ranges(ctx, name, est, rg) -> dict:
     """:func:`proven_bounds`' entry of ``joints`` or ``stroke``: the margin's lower bound
-    from :func:`mechopt.analysis.bounds.outer_range` over the placed task."""
+    from the proven outer ranges ``rg`` (:class:`mechopt.analysis.bounds.Ranges`) over
+    the placed task."""
     from mechopt.analysis import bounds as _b
 
     joints = name == "joints"
-    rg = _b.outer_range(ctx.check, ctx.task, 1.0 if joints else ctx.task.diameter,
-                        to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y), budget=budget, lengths=lengths,
-                        shift=tolerance or 0.0)
 
     def margin(ranges):
         if joints:
