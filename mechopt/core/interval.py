@@ -46,16 +46,60 @@ def _make(lo, hi):
     return out
 
 
+#: ``u (1 + 2u)``, ``u = 2^-53`` the unit roundoff of double precision (:func:`_down`)
+_PHI = 2.0 ** -53 * (1.0 + 2.0 ** -52)
+#: the smallest positive subnormal double, ``2^-1074``
+_ETA = 2.0 ** -1074
+#: the largest finite double
+_MAX = float(np.finfo(float).max)
+
+
 def _down(v):
-    """``v`` moved one ulp toward -inf (NaN -> -inf: unbounded)."""
-    v = np.nextafter(v, _NINF)
-    return np.where(v != v, _NINF, v)
+    """``v`` moved at least one ulp toward -inf (NaN -> -inf: unbounded): ``v - (|v| phi +
+    eta)`` in rounding to nearest, ``phi = u (1 + 2u)``, ``u = 2^-53``, ``eta = 2^-1074``
+    (Rump, Zimmermann, Boldo, Melquiond, *Computing predecessor and successor in rounding
+    to nearest*, BIT 49, 2009): ``np.nextafter(v, -inf)`` itself except for ``|v|`` in
+    ``[2^-1022, 2^-1020)``, where it may be one ulp lower (tests/test_interval_rounding.py
+    checks both), in a few cheap array operations where ``np.nextafter`` costs a libm call
+    per element.
+
+    The argument that the result is at most ``pred(v)`` (all an enclosure needs): for a
+    finite ``v`` the gap from ``v`` down to ``pred(v)`` is at most ``2u |v|`` (``|v| >=
+    2^-1022``) or ``eta`` (below); the computed ``e = fl(fl(phi |v|) + eta)`` is at least
+    ``fl(phi |v|)`` (rounding is monotone), which is ``>= phi |v| / (1 + u) > u |v|`` where
+    ``phi |v|`` is normal, and ``e = fl(phi |v|) + eta >= phi |v| + eta / 2`` exactly where
+    it is subnormal; either way ``e`` exceeds half the gap (and ``e >= eta`` covers ``v = 0``
+    and subnormal ``v``), so ``v - e`` lies strictly below the midpoint of ``pred(v)`` and
+    ``v`` and rounds to ``pred(v)`` or lower. ``|v|`` is capped at the largest double first
+    (no ``inf - inf``, no warning): ``+inf`` gives ``+inf``, capped to the largest double
+    (``pred(inf)``, as ``np.nextafter``); ``-inf`` stays, overflow gives ``-inf``, NaN gives
+    ``-inf`` (``np.fmax``).
+    """
+    e = np.abs(v)
+    if type(e) is not np.ndarray:  # a scalar: no buffer to reuse
+        e = np.minimum(v - (np.minimum(e, _MAX) * _PHI + _ETA), _MAX)
+        return np.asarray(np.fmax(e, _NINF))
+    np.minimum(e, _MAX, out=e)
+    e *= _PHI
+    e += _ETA
+    np.subtract(v, e, out=e)
+    np.minimum(e, _MAX, out=e)
+    return np.fmax(e, _NINF, out=e)
 
 
 def _up(v):
-    """``v`` moved one ulp toward +inf (NaN -> +inf: unbounded)."""
-    v = np.nextafter(v, _PINF)
-    return np.where(v != v, _PINF, v)
+    """``v`` moved at least one ulp toward +inf (NaN -> +inf: unbounded): ``v + (|v| phi +
+    eta)``, the mirror image of :func:`_down` (the same argument)."""
+    e = np.abs(v)
+    if type(e) is not np.ndarray:  # a scalar: no buffer to reuse
+        e = np.maximum(v + (np.minimum(e, _MAX) * _PHI + _ETA), -_MAX)
+        return np.asarray(np.fmin(e, _PINF))
+    np.minimum(e, _MAX, out=e)
+    e *= _PHI
+    e += _ETA
+    np.add(v, e, out=e)
+    np.maximum(e, -_MAX, out=e)
+    return np.fmin(e, _PINF, out=e)
 
 
 class Interval:
