@@ -530,10 +530,17 @@ class _Enclosures:
                 self.cx, self.cy = cx, cy
                 self.act = mech.actuator_enclosure(X, Y, **kw)
                 self.act_centre = mech.actuator_enclosure(Interval(cx), Interval(cy), **kw)
-                self.plain = mech.closure_enclosure(X, Y, **kw)
+                if closure and not lengths:  # the values of the closure with derivatives: the same
+                    # interval operations on the same boxes (Gradient's values are Interval's)
+                    (a1, a2), (b1, b2), certain = self.grad
+                    self.plain = (tuple(tuple(e.v for e in row) for row in (a1, a2)), (b1.v, b2.v), certain)
+                else:
+                    self.plain = mech.closure_enclosure(X, Y, **kw)
 
     def bound(self, q, idx):
         """Lower bounds of ``q`` over the cells ``idx`` and where they may be out of reach."""
+        if len(idx) == self.n and np.array_equal(idx, np.arange(self.n)):
+            idx = slice(None)  # every cell in order: views, no copies
         with np.errstate(all="ignore"):
             if q.actuator is not None:
                 return self._range(q, idx)
@@ -547,7 +554,7 @@ class _Enclosures:
         A, b, certain = _take(self.grad, idx)
         Ac, bc, _ = _take(self.at_centre, idx)
         box = list(zip(_take(tuple(self.boxes), idx), _take(tuple(self.centres), idx)))
-        lb = np.full(len(idx), np.inf)
+        lb = np.full(len(self.X.lo[idx]), np.inf)
         for term, at_c in zip(q.terms(A, b), q.terms(Ac, bc)):
             low = np.maximum(term.lo, term.mean_value_lower(at_c, box))
             lb = np.minimum(lb, np.where(np.isnan(low), -np.inf, low))

@@ -52,6 +52,8 @@ _PHI = 2.0 ** -53 * (1.0 + 2.0 ** -52)
 _ETA = 2.0 ** -1074
 #: the largest finite double
 _MAX = float(np.finfo(float).max)
+#: arrays of fewer elements are rounded by ``np.nextafter`` (:func:`_down`)
+_FEW = 1024
 
 
 def _down(v):
@@ -75,10 +77,10 @@ def _down(v):
     (``pred(inf)``, as ``np.nextafter``); ``-inf`` stays, overflow gives ``-inf``, NaN gives
     ``-inf`` (``np.fmax``).
     """
+    if np.size(v) < _FEW:  # few: np.nextafter's fewer array operations cost less
+        v = np.nextafter(v, _NINF)
+        return np.where(v != v, _NINF, v)
     e = np.abs(v)
-    if type(e) is not np.ndarray:  # a scalar: no buffer to reuse
-        e = np.minimum(v - (np.minimum(e, _MAX) * _PHI + _ETA), _MAX)
-        return np.asarray(np.fmax(e, _NINF))
     np.minimum(e, _MAX, out=e)
     e *= _PHI
     e += _ETA
@@ -90,10 +92,10 @@ def _down(v):
 def _up(v):
     """``v`` moved at least one ulp toward +inf (NaN -> +inf: unbounded): ``v + (|v| phi +
     eta)``, the mirror image of :func:`_down` (the same argument)."""
+    if np.size(v) < _FEW:
+        v = np.nextafter(v, _PINF)
+        return np.where(v != v, _PINF, v)
     e = np.abs(v)
-    if type(e) is not np.ndarray:  # a scalar: no buffer to reuse
-        e = np.maximum(v + (np.minimum(e, _MAX) * _PHI + _ETA), -_MAX)
-        return np.asarray(np.fmin(e, _PINF))
     np.minimum(e, _MAX, out=e)
     e *= _PHI
     e += _ETA
