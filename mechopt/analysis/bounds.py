@@ -484,10 +484,9 @@ def _take(v, idx):
         return Gradient(_take(v.v, idx), _take(v.g, idx))
     if isinstance(v, Interval):
         lo, hi = v.lo, v.hi
-        if not (np.ndim(lo) or np.ndim(hi)):
-            return v
-        lo, hi = np.broadcast_arrays(lo, hi)
-        return Interval.__getitem__(_pair(lo, hi), idx)
+        if np.shape(lo) != np.shape(hi):
+            lo, hi = np.broadcast_arrays(lo, hi)
+        return _pair(lo[idx], hi[idx]) if np.ndim(lo) else v
     return v[idx] if np.ndim(v) else v
 
 

@@ -53,7 +53,7 @@ _ETA = 2.0 ** -1074
 #: the largest finite double
 _MAX = float(np.finfo(float).max)
 #: arrays of fewer elements are rounded by ``np.nextafter`` (:func:`_down`)
-_FEW = 1024
+_FEW = 256
 
 
 def _down(v):
@@ -79,7 +79,7 @@ def _down(v):
     """
     if np.size(v) < _FEW:  # few: np.nextafter's fewer array operations cost less
         v = np.nextafter(v, _NINF)
-        return np.where(v != v, _NINF, v)
+        return np.fmax(v, _NINF, out=v) if type(v) is np.ndarray else np.asarray(np.fmax(v, _NINF))
     e = np.abs(v)
     np.minimum(e, _MAX, out=e)
     e *= _PHI
@@ -94,7 +94,7 @@ def _up(v):
     eta)``, the mirror image of :func:`_down` (the same argument)."""
     if np.size(v) < _FEW:
         v = np.nextafter(v, _PINF)
-        return np.where(v != v, _PINF, v)
+        return np.fmin(v, _PINF, out=v) if type(v) is np.ndarray else np.asarray(np.fmin(v, _PINF))
     e = np.abs(v)
     np.minimum(e, _MAX, out=e)
     e *= _PHI
