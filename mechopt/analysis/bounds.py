@@ -68,7 +68,7 @@ from mechopt.core.interval import Gradient, Interval, hypot
 from mechopt.analysis.sampling import bad_to
 
 __all__ = ["Quantity", "Bound", "lci_quantity", "type2_quantity", "speed_quantity", "force_quantity",
-           "range_quantity", "range_quantities", "lower_bound", "lower_bounds", "outer_range", "Ranges", "BUDGET", "RTOL", "METHOD"]
+           "range_quantity", "range_quantities", "lower_bound", "lower_bounds", "lower_bounds_of_designs", "outer_range", "Ranges", "BUDGET", "RTOL", "METHOD"]
 
 #: default budget of evaluated cells per quantity
 BUDGET = 30000
@@ -114,6 +114,10 @@ class Quantity:
     relative : bool
         The stopping gap is relative to ``max(|upper|, scale)`` (True) or to ``scale``
         alone (a coordinate whose offset says nothing of its precision).
+    key : tuple or None
+        Quantities of equal keys have the same cell bounds (the same ``terms``, or the
+        same actuator and sign): :func:`lower_bounds_of_designs` evaluates them in one
+        call; None: none other.
     """
 
     name: str
@@ -125,6 +129,7 @@ class Quantity:
     actuator: int | None = None
     sign: float = 1.0
     relative: bool = True
+    key: tuple | None = None
 
 
 @dataclass
@@ -204,7 +209,7 @@ def lci_quantity() -> Quantity:
 
     def point(mech, x, y):
         return bad_to(_ix.lci(mech.jacobian(x, y)), 0.0)
-    return Quantity("lci", 0.0, 1.0, 1.0, terms, point)
+    return Quantity("lci", 0.0, 1.0, 1.0, terms, point, key=("lci",))
 
 
 def type2_quantity(sign: float) -> Quantity:
@@ -229,7 +234,7 @@ def type2_quantity(sign: float) -> Quantity:
 
     def point(mech, x, y):
         return bad_to(s * mech.type2_function(x, y), -1.0)
-    return Quantity("type2", -1.0, 1.0, 1.0, terms, point)
+    return Quantity("type2", -1.0, 1.0, 1.0, terms, point, key=("type2", s))
 
 
 def speed_quantity(w, norm="box") -> Quantity:
@@ -265,7 +270,7 @@ def speed_quantity(w, norm="box") -> Quantity:
                 return np.minimum(*r)
             smax = _ix.singular_values(J / w[:, None])[0]
             return bad_to(1.0 / smax, 0.0)
-    return Quantity("speed", 0.0, 0.0, math.inf, terms, point)
+    return Quantity("speed", 0.0, 0.0, math.inf, terms, point, key=("speed", tuple(map(float, w)), str(norm)))
 
 
 def force_quantity(t, norm="box", factor=1.0) -> Quantity:
@@ -307,7 +312,8 @@ def force_quantity(t, norm="box", factor=1.0) -> Quantity:
                 r2 = bad_to(det / np.hypot(J[..., 1, 0], J[..., 1, 1]), 0.0)
                 return np.minimum(t[1] * r1, t[0] * r2) * f
             return bad_to(_ix.singular_values(J * t[:, None])[1], 0.0) * f
-    return Quantity("force", 0.0, 0.0, math.inf, terms, point)
+    return Quantity("force", 0.0, 0.0, math.inf, terms, point,
+                    key=("force", tuple(map(float, t)), str(norm), f))
 
 
 def range_quantity(i: int, sign: float, scale: float) -> Quantity:
@@ -342,7 +348,7 @@ def range_quantity(i: int, sign: float, scale: float) -> Quantity:
     def point(mech, x, y):
         return bad_to(s * mech.ik(x, y)[i], -math.inf)
     return Quantity(f"{'' if s > 0 else '-'}q{i + 1}", -math.inf, float(scale), math.inf, None, point,
-                    actuator=i, sign=s, relative=False)
+                    actuator=i, sign=s, relative=False, key=("range", i, s))
 
 
 def range_quantities(scale: float) -> list:
@@ -490,6 +496,11 @@ def _take(v, idx):
     return v[idx] if np.ndim(v) else v
 
 
+def _value(v):
+    """The value of a :class:`~mechopt.core.interval.Gradient` (an interval: itself)."""
+    return v.v if isinstance(v, Gradient) else v
+
+
 def _pair(lo, hi):
     """An :class:`~mechopt.core.interval.Interval` of ordered endpoints (no check)."""
     out = object.__new__(Interval)
@@ -506,11 +517,20 @@ class _Enclosures:
     enclosures are elementwise functions of its own box, so a cell gets the same
     intervals whichever cells share its batch."""
 
-    def __init__(self, mech, cells, rows, dx, dy, lengths, shift, closure: bool, ranges: bool):
-        X, Y = cells.boxes(rows, dx, dy)
+    def __init__(self, mech, cells, rows, dx, dy, lengths, shift, closure: bool, ranges: bool, fixed=None):
+        if np.ndim(dx) or np.ndim(dy):  # per cell (cells of several designs): moved where nonzero,
+            X, Y = cells.boxes(rows, 0.0, 0.0)  # as :meth:`_Cells.boxes` moves a design's cells
+            moved = (dx != 0) | (dy != 0)
+            if np.any(moved):
+                Xm, Ym = X + dx, Y + dy
+                X, Y = (_pair(np.where(moved, m.lo, b.lo), np.where(moved, m.hi, b.hi)) for m, b in ((Xm, X), (Ym, Y)))
+        else:
+            X, Y = cells.boxes(rows, dx, dy)
         if shift:  # outward-rounded sums: every point of the cell moved by up to +-shift
             X, Y = X + Interval(-shift, shift), Y + Interval(-shift, shift)
         self.n, self.X, self.Y = len(rows), X, Y
+        # the lengths of the cells' designs (constants, each cell its own design's)
+        fixed = {n: Interval(v) for n, v in (fixed or {}).items()}
         with np.errstate(all="ignore"):
             if closure:
                 names = list(lengths or {})
@@ -518,12 +538,13 @@ class _Enclosures:
                 self.centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
                 self.boxes = boxes
                 v = Gradient.variables(*boxes)
-                kw = {"lengths": dict(zip(names, v[2:]))} if names else {}
+                kw = {"lengths": {**fixed, **dict(zip(names, v[2:]))}} if names or fixed else {}
                 self.grad = mech.closure_enclosure(v[0], v[1], **kw)
-                at = {"lengths": {n: Interval(c) for n, c in zip(names, self.centres[2:])}} if names else {}
+                at = {"lengths": {**fixed, **{n: Interval(c) for n, c in zip(names, self.centres[2:])}}} \
+                    if names or fixed else {}
                 self.at_centre = mech.closure_enclosure(Interval(self.centres[0]), Interval(self.centres[1]), **at)
             if ranges:
-                L = {n: Interval(*lh) for n, lh in lengths.items()} if lengths else None
+                L = {**fixed, **({n: Interval(*lh) for n, lh in lengths.items()} if lengths else {})}
                 kw = {"lengths": L} if L else {}
                 cx, cy = X.mid, Y.mid
                 self.cx, self.cy = cx, cy
@@ -531,8 +552,9 @@ class _Enclosures:
                 self.act_centre = mech.actuator_enclosure(Interval(cx), Interval(cy), **kw)
                 if closure and not lengths:  # the values of the closure with derivatives: the same
                     # interval operations on the same boxes (Gradient's values are Interval's)
-                    (a1, a2), (b1, b2), certain = self.grad
-                    self.plain = (tuple(tuple(e.v for e in row) for row in (a1, a2)), (b1.v, b2.v), certain)
+                    A, b, certain = self.grad
+                    self.plain = (tuple(tuple(_value(e) for e in row) for row in A), tuple(_value(e) for e in b),
+                                  certain)
                 else:
                     self.plain = mech.closure_enclosure(X, Y, **kw)
 
@@ -642,20 +664,15 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
 class _Search:
     """The state of one quantity's branch and bound in :func:`lower_bounds`."""
 
-    def __init__(self, q, upper):
-        self.q, self.ub, self.converged, self.done, self.step = q, float(upper), False, False, None
+    def __init__(self, q, upper, design):
+        self.q, self.ub, self.design = q, float(upper), design
+        self.converged, self.done, self.step = False, False, None
 
 
 def lower_bounds(mech, task, qs, to_mech=None, budget: int = BUDGET, rtol: float = RTOL, uppers=None,
                  lengths: dict | None = None, shift: float = 0.0) -> list:
     """:func:`lower_bound` of several quantities over the same task, mechanism, lengths
-    and shift, their searches run in lock-step: each round every search still running
-    picks and splits its cells as it would alone, and the enclosures over all the new
-    cells (the same cell once) are computed in one vectorised call
-    (:class:`_Enclosures`), which the quantities then read. A cell's enclosures are
-    elementwise functions of its own box, and each search's picks read its own cells
-    only: every search takes the same steps, and returns the same bound bit for bit,
-    as alone; only the number of array operations falls.
+    and shift, their searches run in lock-step (:func:`lower_bounds_of_designs`).
 
     Parameters
     ----------
@@ -676,6 +693,71 @@ def lower_bounds(mech, task, qs, to_mech=None, budget: int = BUDGET, rtol: float
     ValueError
         As :func:`lower_bound`.
     """
+    return lower_bounds_of_designs(task, [(mech, to_mech, qs, uppers)], budget=budget, rtol=rtol, lengths=lengths,
+                                   shift=shift)[0]
+
+
+def _alike(m1, m2, names) -> bool:
+    """``m1`` and ``m2`` of one class and equal in every attribute but the lengths ``names``
+    (then ``m1``'s enclosures with ``m2``'s lengths passed as ``lengths`` are ``m2``'s)."""
+    if type(m1) is not type(m2) or not hasattr(m1, "__dict__") or not hasattr(m2, "__dict__"):
+        return False
+    a = {k: v for k, v in vars(m1).items() if k not in names}
+    b = {k: v for k, v in vars(m2).items() if k not in names}
+    if a.keys() != b.keys():
+        return False
+    for k in a:
+        try:
+            if not (a[k] is b[k] or (type(a[k]) is type(b[k]) and isinstance(a[k], (int, float, str, bool))
+                                     and a[k] == b[k])):
+                return False
+        except Exception:  # noqa: BLE001 - an attribute that does not compare: not alike
+            return False
+    return True
+
+
+def lower_bounds_of_designs(task, designs, budget: int = BUDGET, rtol: float = RTOL, lengths: dict | None = None,
+                            shift: float = 0.0, names=()) -> list:
+    """:func:`lower_bound` of several quantities of several designs (mechanisms and
+    placements) over the same task, every search run in lock-step: each round every search
+    still running picks and splits its cells as it would alone, and the enclosures over
+    all the new cells (the same cell of the same design once) are computed in one
+    vectorised call per group of designs (:class:`_Enclosures`), which the quantities then
+    read. Designs whose mechanisms differ only in the lengths ``names`` (same class, every
+    other attribute equal: the working mode, the strokes) share a group: the group's first
+    mechanism's enclosures are called with each cell's design's lengths as ``lengths``
+    (degenerate intervals, per cell), which the enclosures' contract makes the enclosures
+    of that design's mechanism. A cell's enclosures are elementwise functions of its own
+    box and lengths, and each search's picks read its own cells only: every search takes
+    the same steps as alone, only the number of array operations falls (the lengths as
+    degenerate intervals instead of floats: the same interval operations for the
+    mechanisms of mechopt, whose enclosures turn a float length into a degenerate interval
+    first).
+
+    Parameters
+    ----------
+    task : mechopt.analysis.task.Task
+        The task, as placed (task frame).
+    designs : sequence of tuple
+        Per design ``(mech, to_mech, qs, uppers)``: :func:`lower_bound`'s ``mech`` and
+        ``to_mech``, its quantities and their ``upper`` values (None: none known).
+    budget, rtol, lengths, shift
+        As :func:`lower_bound`'s (``budget``: per quantity).
+    names : sequence of str
+        The length attributes in which the designs' mechanisms may differ and share a
+        group (the design spec's lengths); with ``lengths`` (a tolerance box) no group
+        forms.
+
+    Returns
+    -------
+    list of list of Bound
+        Per design, one per quantity, in order.
+
+    Raises
+    ------
+    ValueError
+        As :func:`lower_bound`.
+    """
     budget = int(budget)
     if budget < 1:
         raise ValueError(f"budget must be >= 1, got {budget!r}")
@@ -683,27 +765,81 @@ def lower_bounds(mech, task, qs, to_mech=None, budget: int = BUDGET, rtol: float
         raise ValueError(f"rtol must be a number > 0, got {rtol!r}")
     if not (shift >= 0 and math.isfinite(shift)):
         raise ValueError(f"shift must be a length >= 0, got {shift!r}")
-    qs = list(qs)
-    uppers = [math.inf] * len(qs) if uppers is None else [float(u) for u in uppers]
-    if len(uppers) != len(qs):
-        raise ValueError(f"{len(qs)} quantities but {len(uppers)} upper values")
-    if mech.closure_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
-        raise ValueError(f"{type(mech).__name__} has no closure enclosure")
-    ranged = any(q.actuator is not None for q in qs)
-    if ranged and mech.actuator_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
-        raise ValueError(f"{type(mech).__name__} has no actuator enclosure")
-    closure = any(q.actuator is None for q in qs)
-    dx, dy = _translation(to_mech)
+    searches, mechs, moves, groups = [], [], [], []
+    for d, (mech, to_mech, qs, uppers) in enumerate(designs):
+        qs = list(qs)
+        uppers = [math.inf] * len(qs) if uppers is None else [float(u) for u in uppers]
+        if len(uppers) != len(qs):
+            raise ValueError(f"{len(qs)} quantities but {len(uppers)} upper values")
+        if mech.closure_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
+            raise ValueError(f"{type(mech).__name__} has no closure enclosure")
+        if any(q.actuator is not None for q in qs) and \
+                mech.actuator_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
+            raise ValueError(f"{type(mech).__name__} has no actuator enclosure")
+        mechs.append(mech)
+        moves.append(_translation(to_mech))
+        searches += [_Search(q, u, d) for q, u in zip(qs, uppers)]
+        g = next((g for g in groups if not lengths and names and _alike(mechs[g[0]], mech, names)), None)
+        if g is None:
+            groups.append([d])
+        else:
+            g.append(d)
+    group_of = {d: k for k, g in enumerate(groups) for d in g}
     cells = _Cells(task)
-    enc = _Enclosures(mech, cells, cells.rows, dx, dy, lengths, shift, closure, ranged)
     if task.is_region:  # boundary samples: the minimum is often on the boundary
         tb, _ = task.boundary_params(256)
         bx, by = task.boundary_at(tb)
-    searches = [_Search(q, u) for q, u in zip(qs, uppers)]
-    every = np.arange(len(cells.rows))
+
+    def evaluate(todo, rows_of):
+        """Per search of ``todo`` the bounds over its cells ``rows_of(s)``, its group's
+        enclosures computed once over the distinct (design, cell) pairs."""
+        out = {}
+        for k, g in enumerate(groups):
+            mine = [s for s in todo if group_of[s.design] == k]
+            if not mine:
+                continue
+            rows = np.concatenate([rows_of(s) for s in mine])
+            tag = np.concatenate([np.full(len(rows_of(s)), s.design, float) for s in mine])
+            # the same cell of the same design once: rows equal bit for bit
+            full = np.ascontiguousarray(np.column_stack([rows, tag]))
+            key = full.view(np.dtype((np.void, full.dtype.itemsize * full.shape[1])))[:, 0]
+            _, first, where = np.unique(key, return_index=True, return_inverse=True)
+            where = where.ravel()
+            design = tag[first].astype(int)
+            if len(g) > 1:
+                dx = np.array([moves[d][0] for d in range(len(designs))])[design]
+                dy = np.array([moves[d][1] for d in range(len(designs))])[design]
+                fixed = {n: np.array([float(getattr(mechs[d], n)) for d in range(len(designs))])[design]
+                         for n in names}
+            else:
+                (dx, dy), fixed = moves[g[0]], None
+            enc = _Enclosures(mechs[g[0]], cells, rows[first], dx, dy, lengths, shift,
+                              any(s.q.actuator is None for s in mine), any(s.q.actuator is not None for s in mine),
+                              fixed)
+            # the searches' cells in the batch; one evaluation per kind of quantity
+            spans, at = {}, 0
+            for s in mine:
+                n = len(rows_of(s))
+                spans[id(s)] = (at, at + n)
+                at += n
+            kinds = {}
+            for s in mine:
+                kinds.setdefault(s.q.key if s.q.key is not None else id(s.q), []).append(s)
+            for same in kinds.values():
+                lb, unk = enc.bound(same[0].q, np.concatenate([where[slice(*spans[id(s)])] for s in same]))
+                at = 0
+                for s in same:
+                    n = spans[id(s)][1] - spans[id(s)][0]
+                    out[id(s)] = lb[at:at + n], unk[at:at + n]
+                    at += n
+        return out
+
     for s in searches:
         s.rows = cells.rows
-        s.lb, s.unk = enc.bound(s.q, every)
+    first = evaluate(searches, lambda s: s.rows)
+    for s in searches:
+        mech, (dx, dy) = mechs[s.design], moves[s.design]
+        s.lb, s.unk = first[id(s)]
         s.used = len(s.rows)
         s.ub = min(s.ub, _upper(mech, s.q, cells, s.rows, dx, dy))
         if task.is_region:
@@ -715,37 +851,30 @@ def lower_bounds(mech, task, qs, to_mech=None, budget: int = BUDGET, rtol: float
         todo = [s for s in searches if s.step is not None]
         if not todo:
             break
-        kids = np.concatenate([s.step[1] for s in todo])
-        # the same cell once: rows equal bit for bit (a cell's enclosures depend on its bits only)
-        key = np.ascontiguousarray(kids).view(np.dtype((np.void, kids.dtype.itemsize * kids.shape[1])))[:, 0]
-        _, first, where = np.unique(key, return_index=True, return_inverse=True)
-        enc = _Enclosures(mech, cells, kids[first], dx, dy, lengths, shift,
-                          any(s.q.actuator is None for s in todo), any(s.q.actuator is not None for s in todo))
-        at = 0
+        found = evaluate(todo, lambda s: s.step[1])
         for s in todo:
             pick, k, parent, truncated = s.step
-            klb, kunk = enc.bound(s.q, where.ravel()[at:at + len(k)])
-            at += len(k)
+            klb, kunk = found[id(s)]
             klb = np.maximum(klb, s.lb[pick][parent])  # both bound the child
             s.used += len(k)
-            s.ub = min(s.ub, _upper(mech, s.q, cells, k, dx, dy))
+            s.ub = min(s.ub, _upper(mechs[s.design], s.q, cells, k, *moves[s.design]))
             keep = np.ones(len(s.rows), bool)
             keep[pick] = False
             s.rows = np.concatenate([s.rows[keep], k])
             s.lb = np.concatenate([s.lb[keep], klb])
             s.unk = np.concatenate([s.unk[keep], kunk])
             s.done = truncated
-    out = []
+    out = [[] for _ in designs]
     for s in searches:
         q, lb, rows = s.q, s.lb, s.rows
         low = float(lb.min()) if len(lb) else math.inf
         tol = _tol(q, s.ub, rtol)
         sizes = cells.sizes(rows)
-        out.append(Bound(lower=low, upper=s.ub, cells=int(s.used), leaves=int(len(rows)),
-                         smallest_cell=float(sizes.min()) if len(sizes) else 0.0,
-                         largest_cell=float(sizes.max()) if len(sizes) else 0.0,
-                         may_unreachable=bool(np.any(s.unk & (lb <= q.floor))),
-                         converged=s.converged or s.ub - low <= tol, tol=float(tol)))
+        out[s.design].append(Bound(lower=low, upper=s.ub, cells=int(s.used), leaves=int(len(rows)),
+                                   smallest_cell=float(sizes.min()) if len(sizes) else 0.0,
+                                   largest_cell=float(sizes.max()) if len(sizes) else 0.0,
+                                   may_unreachable=bool(np.any(s.unk & (lb <= q.floor))),
+                                   converged=s.converged or s.ub - low <= tol, tol=float(tol)))
     return out
 
 
