@@ -61,7 +61,7 @@ def _down(v):
     eta)`` in rounding to nearest, ``phi = u (1 + 2u)``, ``u = 2^-53``, ``eta = 2^-1074``
     (Rump, Zimmermann, Boldo, Melquiond, *Computing predecessor and successor in rounding
     to nearest*, BIT 49, 2009): ``np.nextafter(v, -inf)`` itself except for ``|v|`` in
-    ``[2^-1022, 2^-1020)``, where it may be one ulp lower (tests/test_interval_rounding.py
+    ``[2^-1022, 2^-1020]``, where it may be one ulp lower (tests/test_bounds_lockstep.py
     checks both), in a few cheap array operations where ``np.nextafter`` costs a libm call
     per element.
 
