@@ -76,8 +76,12 @@ MOVES = [(0.0, 0.0), (3.0, -20.0), (-5.5, 10.0), (0.0, 0.0)]
 
 
 def _quantities(k):
-    return [B.lci_quantity(), B.type2_quantity(1.0 if k % 2 else -1.0), B.speed_quantity([3.0, 2.0], "box"),
-            B.force_quantity([2.0, 1.0], 2, 1.5)] + B.range_quantities(1.0)
+    """Every kind of quantity, with parameters that differ between designs of one group
+    (quantities of different parameters must not share an evaluation)."""
+    w, t = ([3.0, 2.0], [2.0, 1.0]) if k % 2 else ([2.0, 3.0], [1.0, 2.5])
+    return [B.lci_quantity(), B.type2_quantity(1.0 if k < 3 else -1.0), B.speed_quantity(w, "box"),
+            B.speed_quantity(w, 2), B.force_quantity(t, "box", 1.5), B.force_quantity(t, 2, 1.0 + k)] \
+        + B.range_quantities(1.0)
 
 
 def _shifted(dx, dy):
