@@ -29,6 +29,18 @@ stops). A child's bound is at least its parent's (both bound it; interval evalua
 is inclusion isotone), so the bound never falls as cells split, and a smaller budget
 runs a prefix of the same search: the bound does not rise when the budget shrinks.
 
+Lock-step (:func:`lower_bounds`, :func:`lower_bounds_of_designs`): the searches of several
+quantities, and of several designs (mechanisms and placements) over one task, advance
+round by round together; each search picks and splits its own cells as alone, and the
+enclosures over all the rounds' new cells are computed in one vectorised call (designs
+that differ only in their lengths share it, each cell with its design's lengths), each
+kind of quantity's bounds in one more. A cell's enclosures are elementwise functions of
+its box and its design, so each search returns the bound it returns alone, bit for bit
+(tests/test_bounds_lockstep.py; but for endpoints in ``[2^-1022, 2^-1020]``, whose
+outward rounding depends on the batch's size, :mod:`mechopt.core.interval`: either
+encloses), and the argument above holds for each; only the number of array operations
+falls.
+
 Ranges (:func:`range_quantity`): ``max_T q_i = -min_T (-q_i)``, so the same search
 bounds an actuator coordinate's range from outside (the joints' and strokes' proofs).
 Over a cell the mechanism's
@@ -708,8 +720,8 @@ def _alike(m1, m2, names) -> bool:
         return False
     for k in a:
         try:
-            if not (a[k] is b[k] or (type(a[k]) is type(b[k]) and isinstance(a[k], (int, float, str, bool))
-                                     and a[k] == b[k])):
+            if not (a[k] is b[k] or (type(a[k]) is type(b[k]) and isinstance(a[k], (int, float, str, bool, tuple))
+                                     and bool(a[k] == b[k]))):
                 return False
         except Exception:  # noqa: BLE001 - an attribute that does not compare: not alike
             return False
@@ -723,7 +735,8 @@ def lower_bounds_of_designs(task, designs, budget: int = BUDGET, rtol: float = R
     still running picks and splits its cells as it would alone, and the enclosures over
     all the new cells (the same cell of the same design once) are computed in one
     vectorised call per group of designs (:class:`_Enclosures`), which the quantities then
-    read. Designs whose mechanisms differ only in the lengths ``names`` (same class, every
+    read (:mod:`mechopt.analysis.bounds`, "Lock-step"). Designs whose mechanisms differ
+    only in the lengths ``names`` (same class, every
     other attribute equal: the working mode, the strokes) share a group: the group's first
     mechanism's enclosures are called with each cell's design's lengths as ``lengths``
     (degenerate intervals, per cell), which the enclosures' contract makes the enclosures

@@ -7,10 +7,13 @@ An :class:`Interval` holds two float arrays ``lo <= hi`` of one shape: the set o
 * ``+ - * /``, :meth:`Interval.sqr`, :meth:`Interval.sqrt` are computed on the
   endpoints in IEEE 754 double precision, whose basic operations (``+ - * /`` and
   ``sqrt``) are correctly rounded to nearest: the exact value lies within half an ulp
-  of the float. Each computed endpoint is then moved one ulp outward
-  (``np.nextafter`` toward ``-inf`` for ``lo``, toward ``+inf`` for ``hi``), so the
-  enclosure holds in floating point (a rounding of one ulp is more than the half ulp
-  the rounding can lose; overflow gives an infinite endpoint, still an enclosure).
+  of the float. Each computed endpoint is then moved at least one ulp outward (toward
+  ``-inf`` for ``lo``, toward ``+inf`` for ``hi``: ``np.nextafter`` for arrays of fewer
+  than 256 elements; for more, ``v -+ (|v| u(1 + 2u) + 2^-1074)``, the same float except
+  one ulp further out for ``|v|`` in ``[2^-1022, 2^-1020]``, :func:`_down` states the
+  argument), so the enclosure holds in floating point (a rounding of one ulp is more
+  than the half ulp the rounding can lose; overflow gives an infinite endpoint, still an
+  enclosure).
 * ``abs``, ``min``, ``max`` and negation are exact in floating point: no rounding.
 * division by an interval that contains 0 gives ``(-inf, inf)`` (unbounded); a NaN
   endpoint (``inf - inf``, ``0 * inf``) is replaced by the infinite endpoint on its
@@ -21,9 +24,10 @@ An :class:`Interval` holds two float arrays ``lo <= hi`` of one shape: the set o
   "the point may be out of reach".
 
 Inclusion isotonicity: each operation is monotone in its operands' endpoints (rounding
-to nearest and ``nextafter`` are monotone), so the result over a sub-box is contained in
-the result over the box; :mod:`mechopt.analysis.bounds` relies on it (its bounds never
-fall when a cell is split). The natural interval extension of an expression (each
+to nearest and both outward roundings are monotone), so the result over a sub-box is
+contained in the result over the box (computed in arrays of the same size class: the two
+roundings differ in ``[2^-1022, 2^-1020]``); :mod:`mechopt.analysis.bounds` keeps the
+larger of a cell's and its parent's bounds anyway (both bound the cell). The natural interval extension of an expression (each
 operation replaced by its interval version) encloses the expression's range over a
 box, overestimating it by the dependency between repeated variables, an error of
 first order in the box's width (Moore, Kearfott, Cloud, *Introduction to Interval
