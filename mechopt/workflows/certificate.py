@@ -179,24 +179,22 @@ def proven_bounds_of_designs(ev: DesignEvaluator, vs: list, margins: list | None
     live = [p for p in plans if p is not None]
     if not live:
         return [{} for _ in plans]
-    lengths = None if tolerance is None else live[0]["lengths"]
-    kw = dict(budget=budget or _b.BUDGET, lengths=lengths, shift=tolerance or 0.0, names=tuple(ev.spec.lengths))
+    kw = dict(budget=budget or _b.BUDGET, lengths=None, shift=tolerance or 0.0, names=tuple(ev.spec.lengths))
 
-    def designs(ranges=True):
+    def designs(these, ranges=True):  # lower_bounds_of_designs' designs (without the range searches)
         return [(p["ctx"].check, p["to_mech"], p["qs"] if ranges else p["qs"][:len(p["searches"])],
-                 p["ups"] if ranges else p["ups"][:len(p["searches"])]) for p in live]
-    if tolerance is not None:  # one design (its own lengths box)
-        (p,) = live
+                 p["ups"] if ranges else p["ups"][:len(p["searches"])]) for p in these]
+    if tolerance is None:
+        for p, f in zip(live, _b.lower_bounds_of_designs(live[0]["ctx"].task, designs(live), **kw)):
+            p["found"] = f
+    for p in live if tolerance is not None else []:  # each design over its own box of lengths
+        kw["lengths"] = p["lengths"]
         try:
-            found = _b.lower_bounds_of_designs(p["ctx"].task, designs(), **kw)
+            (p["found"],) = _b.lower_bounds_of_designs(p["ctx"].task, designs([p]), **kw)
         except ValueError:  # an actuator enclosure without length intervals
             if not p["ranged"]:
                 raise
-            found, p["ranged"] = _b.lower_bounds_of_designs(p["ctx"].task, designs(False), **kw), []
-    else:
-        found = _b.lower_bounds_of_designs(live[0]["ctx"].task, designs(), **kw)
-    for p, f in zip(live, found):
-        p["found"] = f
+            (p["found"],), p["ranged"] = _b.lower_bounds_of_designs(p["ctx"].task, designs([p], False), **kw), []
     return [{} if p is None else _assemble(p) for p in plans]
 
 
