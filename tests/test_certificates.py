@@ -182,6 +182,23 @@ def test_certificate_json_records_every_front_design(run_dir):
         assert all(d["variables"][k] == row[k] for k in ("r1", "r2", "r3"))
 
 
+def test_certificate_bounds_in_lock_step_are_each_designs_alone(run_dir):
+    """certificate.json's bounds (every front design's searches in lock-step) are, bit for
+    bit, those of each design bounded alone (proven_bounds, one design at a time)."""
+    from mechopt.workflows.certificate import proven_bounds
+
+    cert = json.loads((run_dir / "certificate.json").read_text())
+    ev = DesignEvaluator("five-bar", parse_task(RUN_TASK), Requirements(min_lci=RUN_GAMMA), ("size", "min-lci"),
+                         max_length=RUN_ARGS["max_length"])
+    for d in cert["designs"][:3]:
+        reqs = d["requirements"]
+        alone = proven_bounds(ev, {**d["variables"], **d["task_placement"]}, {k: e["margin"] for k, e in reqs.items()})
+        assert set(alone) == {"singular", "lci"}
+        for name, b in alone.items():
+            got = reqs[name]["bound"]
+            assert (got["lower_bound"], got["cells"]) == (b["lower_bound"], b["cells"]), name
+
+
 def _main(argv, capsys):
     from mechopt.cli import main
 

@@ -29,6 +29,18 @@ stops). A child's bound is at least its parent's (both bound it; interval evalua
 is inclusion isotone), so the bound never falls as cells split, and a smaller budget
 runs a prefix of the same search: the bound does not rise when the budget shrinks.
 
+Lock-step (:func:`lower_bounds`, :func:`lower_bounds_of_designs`): the searches of several
+quantities, and of several designs (mechanisms and placements) over one task, advance
+round by round together; each search picks and splits its own cells as alone, and the
+enclosures over all the rounds' new cells are computed in one vectorised call (designs
+that differ only in their lengths share it, each cell with its design's lengths), each
+kind of quantity's bounds in one more. A cell's enclosures are elementwise functions of
+its box and its design, so each search returns the bound it returns alone, bit for bit
+(tests/test_bounds_lockstep.py; but for endpoints in ``[2^-1022, 2^-1020]``, whose
+outward rounding depends on the batch's size, :mod:`mechopt.core.interval`: either
+encloses), and the argument above holds for each; only the number of array operations
+falls.
+
 Ranges (:func:`range_quantity`): ``max_T q_i = -min_T (-q_i)``, so the same search
 bounds an actuator coordinate's range from outside (the joints' and strokes' proofs).
 Over a cell the mechanism's
@@ -68,7 +80,7 @@ from mechopt.core.interval import Gradient, Interval, hypot
 from mechopt.analysis.sampling import bad_to
 
 __all__ = ["Quantity", "Bound", "lci_quantity", "type2_quantity", "speed_quantity", "force_quantity",
-           "range_quantity", "lower_bound", "outer_range", "Ranges", "BUDGET", "RTOL", "METHOD"]
+           "range_quantity", "range_quantities", "lower_bound", "lower_bounds", "lower_bounds_of_designs", "outer_range", "Ranges", "BUDGET", "RTOL", "METHOD"]
 
 #: default budget of evaluated cells per quantity
 BUDGET = 30000
@@ -114,6 +126,10 @@ class Quantity:
     relative : bool
         The stopping gap is relative to ``max(|upper|, scale)`` (True) or to ``scale``
         alone (a coordinate whose offset says nothing of its precision).
+    key : tuple or None
+        Quantities of equal keys have the same cell bounds (the same ``terms``, or the
+        same actuator and sign): :func:`lower_bounds_of_designs` evaluates them in one
+        call; None: none other.
     """
 
     name: str
@@ -125,6 +141,7 @@ class Quantity:
     actuator: int | None = None
     sign: float = 1.0
     relative: bool = True
+    key: tuple | None = None
 
 
 @dataclass
@@ -204,7 +221,7 @@ def lci_quantity() -> Quantity:
 
     def point(mech, x, y):
         return bad_to(_ix.lci(mech.jacobian(x, y)), 0.0)
-    return Quantity("lci", 0.0, 1.0, 1.0, terms, point)
+    return Quantity("lci", 0.0, 1.0, 1.0, terms, point, key=("lci",))
 
 
 def type2_quantity(sign: float) -> Quantity:
@@ -229,7 +246,7 @@ def type2_quantity(sign: float) -> Quantity:
 
     def point(mech, x, y):
         return bad_to(s * mech.type2_function(x, y), -1.0)
-    return Quantity("type2", -1.0, 1.0, 1.0, terms, point)
+    return Quantity("type2", -1.0, 1.0, 1.0, terms, point, key=("type2", s))
 
 
 def speed_quantity(w, norm="box") -> Quantity:
@@ -265,7 +282,7 @@ def speed_quantity(w, norm="box") -> Quantity:
                 return np.minimum(*r)
             smax = _ix.singular_values(J / w[:, None])[0]
             return bad_to(1.0 / smax, 0.0)
-    return Quantity("speed", 0.0, 0.0, math.inf, terms, point)
+    return Quantity("speed", 0.0, 0.0, math.inf, terms, point, key=("speed", tuple(map(float, w)), str(norm)))
 
 
 def force_quantity(t, norm="box", factor=1.0) -> Quantity:
@@ -307,7 +324,8 @@ def force_quantity(t, norm="box", factor=1.0) -> Quantity:
                 r2 = bad_to(det / np.hypot(J[..., 1, 0], J[..., 1, 1]), 0.0)
                 return np.minimum(t[1] * r1, t[0] * r2) * f
             return bad_to(_ix.singular_values(J * t[:, None])[1], 0.0) * f
-    return Quantity("force", 0.0, 0.0, math.inf, terms, point)
+    return Quantity("force", 0.0, 0.0, math.inf, terms, point,
+                    key=("force", tuple(map(float, t)), str(norm), f))
 
 
 def range_quantity(i: int, sign: float, scale: float) -> Quantity:
@@ -342,7 +360,24 @@ def range_quantity(i: int, sign: float, scale: float) -> Quantity:
     def point(mech, x, y):
         return bad_to(s * mech.ik(x, y)[i], -math.inf)
     return Quantity(f"{'' if s > 0 else '-'}q{i + 1}", -math.inf, float(scale), math.inf, None, point,
-                    actuator=i, sign=s, relative=False)
+                    actuator=i, sign=s, relative=False, key=("range", i, s))
+
+
+def range_quantities(scale: float) -> list:
+    """The four quantities of :func:`outer_range`: ``q1``, ``-q1``, ``q2``, ``-q2``
+    (:func:`range_quantity`).
+
+    Parameters
+    ----------
+    scale : float
+        The stopping gap's reference [rad or L], > 0.
+
+    Returns
+    -------
+    list of Quantity
+        The quantities, in that order.
+    """
+    return [range_quantity(i, s, scale) for i in (0, 1) for s in (1.0, -1.0)]
 
 
 # ------------------------------------------------------------------ cells
@@ -457,55 +492,124 @@ class _Cells:
         return rows, parent
 
 
-def _evaluate(mech, q, cells, rows, dx, dy, lengths=None, shift=0.0):
-    """Lower bounds over the cells ``rows`` (each widened by ``shift`` on every side: the
-    task moved by up to ``shift`` in x and y; and every length in ``lengths``: ``{name:
-    (lo, hi)}``) and where they may be out of reach: per term the larger of the natural
-    interval bound and the mean value form's about the cell's centre and the lengths'
-    midpoints (both enclose the term's range), the smallest over the terms, within
-    ``[floor, cap]``; the floor where the cell may be out of reach."""
-    X, Y = cells.boxes(rows, dx, dy)
-    if shift:  # outward-rounded sums: every point of the cell moved by up to +-shift
-        X, Y = X + Interval(-shift, shift), Y + Interval(-shift, shift)
-    if q.actuator is not None:
-        return _evaluate_range(mech, q, X, Y, lengths)
-    names = list(lengths or {})
-    boxes = [X, Y] + [Interval(*lengths[n]) for n in names]
-    centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
-    with np.errstate(all="ignore"):
-        v = Gradient.variables(*boxes)
-        A, b, certain = mech.closure_enclosure(v[0], v[1], **({"lengths": dict(zip(names, v[2:]))} if names else {}))
-        at = {"lengths": {n: Interval(c) for n, c in zip(names, centres[2:])}} if names else {}
-        Ac, bc, _ = mech.closure_enclosure(Interval(centres[0]), Interval(centres[1]), **at)
-        lb = np.full(len(rows), np.inf)
+def _take(v, idx):
+    """``v`` (an :class:`~mechopt.core.interval.Interval`, a
+    :class:`~mechopt.core.interval.Gradient`, an array or a tuple of them) at the cells
+    ``idx`` (exact: indexing; a scalar, the same for every cell, stays)."""
+    if isinstance(v, tuple):
+        return tuple(_take(w, idx) for w in v)
+    if isinstance(v, Gradient):
+        return Gradient(_take(v.v, idx), _take(v.g, idx))
+    if isinstance(v, Interval):
+        lo, hi = v.lo, v.hi
+        if np.shape(lo) != np.shape(hi):
+            lo, hi = np.broadcast_arrays(lo, hi)
+        return _pair(lo[idx], hi[idx]) if np.ndim(lo) else v
+    return v[idx] if np.ndim(v) else v
+
+
+def _value(v):
+    """The value of a :class:`~mechopt.core.interval.Gradient` (an interval: itself)."""
+    return v.v if isinstance(v, Gradient) else v
+
+
+def _pair(lo, hi):
+    """An :class:`~mechopt.core.interval.Interval` of ordered endpoints (no check)."""
+    out = object.__new__(Interval)
+    out.lo, out.hi = lo, hi
+    return out
+
+
+class _Enclosures:
+    """The enclosures over cells ``rows`` that the quantities read, each computed once for
+    all the searches that share a round (:func:`lower_bounds`): for quantities of the
+    closure, the closure enclosure with interval derivatives over each cell (and the
+    lengths' box) and at its centre; for range quantities, the actuator enclosure over each
+    cell and at its centre, and the closure enclosure over the cell. Each cell's
+    enclosures are elementwise functions of its own box, so a cell gets the same
+    intervals whichever cells share its batch."""
+
+    def __init__(self, mech, cells, rows, dx, dy, lengths, shift, closure: bool, ranges: bool, fixed=None):
+        if np.ndim(dx) or np.ndim(dy):  # per cell (cells of several designs): moved where nonzero,
+            X, Y = cells.boxes(rows, 0.0, 0.0)  # as :meth:`_Cells.boxes` moves a design's cells
+            moved = (dx != 0) | (dy != 0)
+            if np.any(moved):
+                Xm, Ym = X + dx, Y + dy
+                X, Y = (_pair(np.where(moved, m.lo, b.lo), np.where(moved, m.hi, b.hi)) for m, b in ((Xm, X), (Ym, Y)))
+        else:
+            X, Y = cells.boxes(rows, dx, dy)
+        if shift:  # outward-rounded sums: every point of the cell moved by up to +-shift
+            X, Y = X + Interval(-shift, shift), Y + Interval(-shift, shift)
+        self.n, self.X, self.Y = len(rows), X, Y
+        # the lengths of the cells' designs (constants, each cell its own design's)
+        fixed = {n: Interval(v) for n, v in (fixed or {}).items()}
+        with np.errstate(all="ignore"):
+            if closure:
+                names = list(lengths or {})
+                boxes = [X, Y] + [Interval(*lengths[n]) for n in names]
+                self.centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
+                self.boxes = boxes
+                v = Gradient.variables(*boxes)
+                kw = {"lengths": {**fixed, **dict(zip(names, v[2:]))}} if names or fixed else {}
+                self.grad = mech.closure_enclosure(v[0], v[1], **kw)
+                at = {"lengths": {**fixed, **{n: Interval(c) for n, c in zip(names, self.centres[2:])}}} \
+                    if names or fixed else {}
+                self.at_centre = mech.closure_enclosure(Interval(self.centres[0]), Interval(self.centres[1]), **at)
+            if ranges:
+                L = {**fixed, **({n: Interval(*lh) for n, lh in lengths.items()} if lengths else {})}
+                kw = {"lengths": L} if L else {}
+                cx, cy = X.mid, Y.mid
+                self.cx, self.cy = cx, cy
+                self.act = mech.actuator_enclosure(X, Y, **kw)
+                self.act_centre = mech.actuator_enclosure(Interval(cx), Interval(cy), **kw)
+                if closure and not lengths:  # the values of the closure with derivatives: the same
+                    # interval operations on the same boxes (Gradient's values are Interval's)
+                    A, b, certain = self.grad
+                    self.plain = (tuple(tuple(_value(e) for e in row) for row in A), tuple(_value(e) for e in b),
+                                  certain)
+                else:
+                    self.plain = mech.closure_enclosure(X, Y, **kw)
+
+    def bound(self, q, idx):
+        """Lower bounds of ``q`` over the cells ``idx`` and where they may be out of reach."""
+        if len(idx) == self.n and np.array_equal(idx, np.arange(self.n)):
+            idx = slice(None)  # every cell in order: views, no copies
+        with np.errstate(all="ignore"):
+            if q.actuator is not None:
+                return self._range(q, idx)
+            return self._closure(q, idx)
+
+    def _closure(self, q, idx):
+        """Per term the larger of the natural interval bound and the mean value form's
+        about the cell's centre and the lengths' midpoints (both enclose the term's range),
+        the smallest over the terms, within ``[floor, cap]``; the floor where the cell may
+        be out of reach."""
+        A, b, certain = _take(self.grad, idx)
+        Ac, bc, _ = _take(self.at_centre, idx)
+        box = list(zip(_take(tuple(self.boxes), idx), _take(tuple(self.centres), idx)))
+        lb = np.full(len(self.X.lo[idx]), np.inf)
         for term, at_c in zip(q.terms(A, b), q.terms(Ac, bc)):
-            low = np.maximum(term.lo, term.mean_value_lower(at_c, list(zip(boxes, centres))))
+            low = np.maximum(term.lo, term.mean_value_lower(at_c, box))
             lb = np.minimum(lb, np.where(np.isnan(low), -np.inf, low))
-    lb = np.minimum(np.maximum(lb, q.floor), q.cap)
-    lb = np.where(certain, lb, q.floor)
-    return lb, ~np.broadcast_to(certain, lb.shape)
+        lb = np.minimum(np.maximum(lb, q.floor), q.cap)
+        lb = np.where(certain, lb, q.floor)
+        return lb, ~np.broadcast_to(certain, lb.shape)
 
-
-def _evaluate_range(mech, q, X, Y, lengths):
-    """Lower bounds of ``sign * q_i`` over the boxes ``X, Y`` (and the lengths' box): the
-    larger of the natural enclosure and the mean value form ``q(c) + g . (C - c)`` with
-    ``g = sign a_i / b_i`` over the box (where the closure is certain: ``q_i`` is
-    differentiable there) and ``q(c)`` enclosed at the centre over the lengths' box;
-    ``-inf`` where the box may be out of reach."""
-    i, s = q.actuator, q.sign
-    L = {n: Interval(*lh) for n, lh in lengths.items()} if lengths else None
-    kw = {"lengths": L} if L else {}
-    cx, cy = X.mid, Y.mid
-    with np.errstate(all="ignore"):
-        (qs, certain) = mech.actuator_enclosure(X, Y, **kw)
-        (qc, _) = mech.actuator_enclosure(Interval(cx), Interval(cy), **kw)
-        A, b, smooth = mech.closure_enclosure(X, Y, **kw)
+    def _range(self, q, idx):
+        """The larger of the natural enclosure of ``sign * q_i`` and the mean value form
+        ``q(c) + g . (C - c)`` with ``g = sign a_i / b_i`` over the box (where the closure
+        is certain: ``q_i`` is differentiable there) and ``q(c)`` enclosed at the centre
+        over the lengths' box; ``-inf`` where the box may be out of reach."""
+        i, s = q.actuator, q.sign
+        (qs, certain), (qc, _) = _take(self.act, idx), _take(self.act_centre, idx)
+        A, b, smooth = _take(self.plain, idx)
+        X, Y, cx, cy = _take((self.X, self.Y, self.cx, self.cy), idx)
         val, at_c = (qs[i], qc[i]) if s > 0 else (-qs[i], -qc[i])
         mv = at_c + (s * A[i][0] / b[i]) * (X - cx) + (s * A[i][1] / b[i]) * (Y - cy)
         low = np.where(np.broadcast_to(smooth, val.lo.shape), np.maximum(val.lo, mv.lo), val.lo)
-    certain = np.broadcast_to(certain, low.shape)
-    low = np.where(certain & ~np.isnan(low), low, -math.inf)
-    return low, ~certain
+        certain = np.broadcast_to(certain, low.shape)
+        low = np.where(certain & ~np.isnan(low), low, -math.inf)
+        return low, ~certain
 
 
 def _upper(mech, q, cells, rows, dx, dy):
@@ -565,6 +669,108 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
         For a mechanism without enclosure, a ``to_mech`` that is not a translation, a
         budget < 1 or a non-positive ``rtol``.
     """
+    return lower_bounds(mech, task, [q], to_mech=to_mech, budget=budget, rtol=rtol, uppers=[upper],
+                        lengths=lengths, shift=shift)[0]
+
+
+class _Search:
+    """The state of one quantity's branch and bound in :func:`lower_bounds`."""
+
+    def __init__(self, q, upper, design):
+        self.q, self.ub, self.design = q, float(upper), design
+        self.converged, self.done, self.step = False, False, None
+
+
+def lower_bounds(mech, task, qs, to_mech=None, budget: int = BUDGET, rtol: float = RTOL, uppers=None,
+                 lengths: dict | None = None, shift: float = 0.0) -> list:
+    """:func:`lower_bound` of several quantities over the same task, mechanism, lengths
+    and shift, their searches run in lock-step (:func:`lower_bounds_of_designs`).
+
+    Parameters
+    ----------
+    mech, task, to_mech, budget, rtol, lengths, shift
+        As :func:`lower_bound`'s (``budget``: per quantity).
+    qs : sequence of Quantity
+        The quantities.
+    uppers : sequence of float, optional
+        Per quantity, :func:`lower_bound`'s ``upper`` (default none known).
+
+    Returns
+    -------
+    list of Bound
+        One per quantity, in order.
+
+    Raises
+    ------
+    ValueError
+        As :func:`lower_bound`.
+    """
+    return lower_bounds_of_designs(task, [(mech, to_mech, qs, uppers)], budget=budget, rtol=rtol, lengths=lengths,
+                                   shift=shift)[0]
+
+
+def _alike(m1, m2, names) -> bool:
+    """``m1`` and ``m2`` of one class and equal in every attribute but the lengths ``names``
+    (then ``m1``'s enclosures with ``m2``'s lengths passed as ``lengths`` are ``m2``'s)."""
+    if type(m1) is not type(m2) or not hasattr(m1, "__dict__") or not hasattr(m2, "__dict__"):
+        return False
+    a = {k: v for k, v in vars(m1).items() if k not in names}
+    b = {k: v for k, v in vars(m2).items() if k not in names}
+    if a.keys() != b.keys():
+        return False
+    for k in a:
+        try:
+            if not (a[k] is b[k] or (type(a[k]) is type(b[k]) and isinstance(a[k], (int, float, str, bool, tuple))
+                                     and bool(a[k] == b[k]))):
+                return False
+        except Exception:  # noqa: BLE001 - an attribute that does not compare: not alike
+            return False
+    return True
+
+
+def lower_bounds_of_designs(task, designs, budget: int = BUDGET, rtol: float = RTOL, lengths: dict | None = None,
+                            shift: float = 0.0, names=()) -> list:
+    """:func:`lower_bound` of several quantities of several designs (mechanisms and
+    placements) over the same task, every search run in lock-step: each round every search
+    still running picks and splits its cells as it would alone, and the enclosures over
+    all the new cells (the same cell of the same design once) are computed in one
+    vectorised call per group of designs (:class:`_Enclosures`), which the quantities then
+    read (:mod:`mechopt.analysis.bounds`, "Lock-step"). Designs whose mechanisms differ
+    only in the lengths ``names`` (same class, every
+    other attribute equal: the working mode, the strokes) share a group: the group's first
+    mechanism's enclosures are called with each cell's design's lengths as ``lengths``
+    (degenerate intervals, per cell), which the enclosures' contract makes the enclosures
+    of that design's mechanism. A cell's enclosures are elementwise functions of its own
+    box and lengths, and each search's picks read its own cells only: every search takes
+    the same steps as alone, only the number of array operations falls (the lengths as
+    degenerate intervals instead of floats: the same interval operations for the
+    mechanisms of mechopt, whose enclosures turn a float length into a degenerate interval
+    first).
+
+    Parameters
+    ----------
+    task : mechopt.analysis.task.Task
+        The task, as placed (task frame).
+    designs : sequence of tuple
+        Per design ``(mech, to_mech, qs, uppers)``: :func:`lower_bound`'s ``mech`` and
+        ``to_mech``, its quantities and their ``upper`` values (None: none known).
+    budget, rtol, lengths, shift
+        As :func:`lower_bound`'s (``budget``: per quantity).
+    names : sequence of str
+        The length attributes in which the designs' mechanisms may differ and share a
+        group (the design spec's lengths); with ``lengths`` (a tolerance box) no group
+        forms.
+
+    Returns
+    -------
+    list of list of Bound
+        Per design, one per quantity, in order.
+
+    Raises
+    ------
+    ValueError
+        As :func:`lower_bound`.
+    """
     budget = int(budget)
     if budget < 1:
         raise ValueError(f"budget must be >= 1, got {budget!r}")
@@ -572,61 +778,146 @@ def lower_bound(mech, task, q: Quantity, to_mech=None, budget: int = BUDGET, rto
         raise ValueError(f"rtol must be a number > 0, got {rtol!r}")
     if not (shift >= 0 and math.isfinite(shift)):
         raise ValueError(f"shift must be a length >= 0, got {shift!r}")
-    if mech.closure_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
-        raise ValueError(f"{type(mech).__name__} has no closure enclosure")
-    if q.actuator is not None and mech.actuator_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
-        raise ValueError(f"{type(mech).__name__} has no actuator enclosure")
-    dx, dy = _translation(to_mech)
+    searches, mechs, moves, groups = [], [], [], []
+    for d, (mech, to_mech, qs, uppers) in enumerate(designs):
+        qs = list(qs)
+        uppers = [math.inf] * len(qs) if uppers is None else [float(u) for u in uppers]
+        if len(uppers) != len(qs):
+            raise ValueError(f"{len(qs)} quantities but {len(uppers)} upper values")
+        if mech.closure_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
+            raise ValueError(f"{type(mech).__name__} has no closure enclosure")
+        if any(q.actuator is not None for q in qs) and \
+                mech.actuator_enclosure(Interval(np.zeros(1)), Interval(np.zeros(1))) is None:
+            raise ValueError(f"{type(mech).__name__} has no actuator enclosure")
+        mechs.append(mech)
+        moves.append(_translation(to_mech))
+        searches += [_Search(q, u, d) for q, u in zip(qs, uppers)]
+        g = next((g for g in groups if not lengths and names and _alike(mechs[g[0]], mech, names)), None)
+        if g is None:
+            groups.append([d])
+        else:
+            g.append(d)
+    group_of = {d: k for k, g in enumerate(groups) for d in g}
     cells = _Cells(task)
-    rows = cells.rows
-    lb, unk = _evaluate(mech, q, cells, rows, dx, dy, lengths, shift)
-    used = len(rows)
-    ub = min(float(upper), _upper(mech, q, cells, rows, dx, dy))
     if task.is_region:  # boundary samples: the minimum is often on the boundary
         tb, _ = task.boundary_params(256)
         bx, by = task.boundary_at(tb)
-        with np.errstate(all="ignore"):
-            ub = min(ub, float(np.min(q.point(mech, bx + dx, by + dy))))
-    converged = False
+
+    def evaluate(todo, rows_of):
+        """Per search of ``todo`` the bounds over its cells ``rows_of(s)``, its group's
+        enclosures computed once over the distinct (design, cell) pairs."""
+        out = {}
+        for k, g in enumerate(groups):
+            mine = [s for s in todo if group_of[s.design] == k]
+            if not mine:
+                continue
+            rows = np.concatenate([rows_of(s) for s in mine])
+            tag = np.concatenate([np.full(len(rows_of(s)), s.design, float) for s in mine])
+            # the same cell of the same design once: rows equal bit for bit
+            full = np.ascontiguousarray(np.column_stack([rows, tag]))
+            key = full.view(np.dtype((np.void, full.dtype.itemsize * full.shape[1])))[:, 0]
+            _, first, where = np.unique(key, return_index=True, return_inverse=True)
+            where = where.ravel()
+            design = tag[first].astype(int)
+            if len(g) > 1:
+                dx = np.array([moves[d][0] for d in range(len(designs))])[design]
+                dy = np.array([moves[d][1] for d in range(len(designs))])[design]
+                fixed = {n: np.array([float(getattr(mechs[d], n)) for d in range(len(designs))])[design]
+                         for n in names}
+            else:
+                (dx, dy), fixed = moves[g[0]], None
+            enc = _Enclosures(mechs[g[0]], cells, rows[first], dx, dy, lengths, shift,
+                              any(s.q.actuator is None for s in mine), any(s.q.actuator is not None for s in mine),
+                              fixed)
+            # the searches' cells in the batch; one evaluation per kind of quantity
+            spans, at = {}, 0
+            for s in mine:
+                n = len(rows_of(s))
+                spans[id(s)] = (at, at + n)
+                at += n
+            kinds = {}
+            for s in mine:
+                kinds.setdefault(s.q.key if s.q.key is not None else id(s.q), []).append(s)
+            for same in kinds.values():
+                lb, unk = enc.bound(same[0].q, np.concatenate([where[slice(*spans[id(s)])] for s in same]))
+                at = 0
+                for s in same:
+                    n = spans[id(s)][1] - spans[id(s)][0]
+                    out[id(s)] = lb[at:at + n], unk[at:at + n]
+                    at += n
+        return out
+
+    for s in searches:
+        s.rows = cells.rows
+    first = evaluate(searches, lambda s: s.rows)
+    for s in searches:
+        mech, (dx, dy) = mechs[s.design], moves[s.design]
+        s.lb, s.unk = first[id(s)]
+        s.used = len(s.rows)
+        s.ub = min(s.ub, _upper(mech, s.q, cells, s.rows, dx, dy))
+        if task.is_region:
+            with np.errstate(all="ignore"):
+                s.ub = min(s.ub, float(np.min(s.q.point(mech, bx + dx, by + dy))))
     while True:
-        tol = _tol(q, ub, rtol)
+        for s in searches:
+            s.step = None if s.done else _step(s, cells, budget, rtol)
+        todo = [s for s in searches if s.step is not None]
+        if not todo:
+            break
+        found = evaluate(todo, lambda s: s.step[1])
+        for s in todo:
+            pick, k, parent, truncated = s.step
+            klb, kunk = found[id(s)]
+            klb = np.maximum(klb, s.lb[pick][parent])  # both bound the child
+            s.used += len(k)
+            s.ub = min(s.ub, _upper(mechs[s.design], s.q, cells, k, *moves[s.design]))
+            keep = np.ones(len(s.rows), bool)
+            keep[pick] = False
+            s.rows = np.concatenate([s.rows[keep], k])
+            s.lb = np.concatenate([s.lb[keep], klb])
+            s.unk = np.concatenate([s.unk[keep], kunk])
+            s.done = truncated
+    out = [[] for _ in designs]
+    for s in searches:
+        q, lb, rows = s.q, s.lb, s.rows
         low = float(lb.min()) if len(lb) else math.inf
-        if ub - low <= tol:
-            converged = True
-            break
-        if cells.kind == "pt":
-            break
-        pick = np.flatnonzero((lb < ub - tol) & (cells.sizes(rows) > cells.min_size))
-        if not pick.size:
-            break
-        # few cells: two levels at once (a round costs mostly its fixed overhead)
-        levels = 2 if pick.size * cells.children(2) <= _TWO_LEVELS else 1
-        room = (budget - used) // cells.children(levels)
-        truncated = room < pick.size
-        if truncated:
-            if room <= 0:
-                break
-            pick = pick[np.argsort(lb[pick], kind="stable")[:room]]
-        kids, parent = cells.split(rows[pick], levels)
-        klb, kunk = _evaluate(mech, q, cells, kids, dx, dy, lengths, shift)
-        klb = np.maximum(klb, lb[pick][parent])  # both bound the child
-        used += len(kids)
-        ub = min(ub, _upper(mech, q, cells, kids, dx, dy))
-        keep = np.ones(len(rows), bool)
-        keep[pick] = False
-        rows = np.concatenate([rows[keep], kids])
-        lb = np.concatenate([lb[keep], klb])
-        unk = np.concatenate([unk[keep], kunk])
-        if truncated:
-            break
+        tol = _tol(q, s.ub, rtol)
+        sizes = cells.sizes(rows)
+        out[s.design].append(Bound(lower=low, upper=s.ub, cells=int(s.used), leaves=int(len(rows)),
+                                   smallest_cell=float(sizes.min()) if len(sizes) else 0.0,
+                                   largest_cell=float(sizes.max()) if len(sizes) else 0.0,
+                                   may_unreachable=bool(np.any(s.unk & (lb <= q.floor))),
+                                   converged=s.converged or s.ub - low <= tol, tol=float(tol)))
+    return out
+
+
+def _step(s, cells, budget, rtol):
+    """One round of a search: None when it stops (converged, nothing to split, out of
+    budget), else ``(pick, kids, parent, truncated)``."""
+    q, lb, rows = s.q, s.lb, s.rows
+    tol = _tol(q, s.ub, rtol)
     low = float(lb.min()) if len(lb) else math.inf
-    tol = _tol(q, ub, rtol)
-    sizes = cells.sizes(rows)
-    return Bound(lower=low, upper=ub, cells=int(used), leaves=int(len(rows)),
-                 smallest_cell=float(sizes.min()) if len(sizes) else 0.0,
-                 largest_cell=float(sizes.max()) if len(sizes) else 0.0,
-                 may_unreachable=bool(np.any(unk & (lb <= q.floor))), converged=converged or ub - low <= tol,
-                 tol=float(tol))
+    if s.ub - low <= tol:
+        s.converged = s.done = True
+        return None
+    if cells.kind == "pt":
+        s.done = True
+        return None
+    pick = np.flatnonzero((lb < s.ub - tol) & (cells.sizes(rows) > cells.min_size))
+    if not pick.size:
+        s.done = True
+        return None
+    # few cells: two levels at once (a round costs mostly its fixed overhead)
+    levels = 2 if pick.size * cells.children(2) <= _TWO_LEVELS else 1
+    room = (budget - s.used) // cells.children(levels)
+    truncated = room < pick.size
+    if truncated:
+        if room <= 0:
+            s.done = True
+            return None
+        pick = pick[np.argsort(lb[pick], kind="stable")[:room]]
+    kids, parent = cells.split(rows[pick], levels)
+    return pick, kids, parent, truncated
 
 
 @dataclass
@@ -648,6 +939,25 @@ class Ranges:
     outer: list
     inner: list
     bounds: list
+
+    @classmethod
+    def of(cls, bounds):
+        """The ranges of the four searches of :func:`range_quantities`, in its order.
+
+        Parameters
+        ----------
+        bounds : list of Bound
+            ``q1``, ``-q1``, ``q2``, ``-q2``.
+
+        Returns
+        -------
+        Ranges
+            Their outer and inner ranges.
+        """
+        bounds = list(bounds)
+        outer = [(bounds[k].lower, -bounds[k + 1].lower) for k in (0, 2)]
+        inner = [(bounds[k].upper, -bounds[k + 1].upper) for k in (0, 2)]
+        return cls(outer, inner, bounds)
 
     @property
     def cells(self) -> int:
@@ -697,8 +1007,5 @@ def outer_range(mech, task, scale: float, to_mech=None, budget: int = BUDGET, rt
     ValueError
         As :func:`lower_bound`, and for a mechanism without actuator enclosure.
     """
-    bounds = [lower_bound(mech, task, range_quantity(i, s, scale), to_mech=to_mech, budget=budget, rtol=rtol,
-                          lengths=lengths, shift=shift) for i in (0, 1) for s in (1.0, -1.0)]
-    outer = [(bounds[k].lower, -bounds[k + 1].lower) for k in (0, 2)]
-    inner = [(bounds[k].upper, -bounds[k + 1].upper) for k in (0, 2)]
-    return Ranges(outer, inner, bounds)
+    return Ranges.of(lower_bounds(mech, task, range_quantities(scale), to_mech=to_mech, budget=budget, rtol=rtol,
+                                  lengths=lengths, shift=shift))

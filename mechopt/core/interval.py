@@ -7,10 +7,13 @@ An :class:`Interval` holds two float arrays ``lo <= hi`` of one shape: the set o
 * ``+ - * /``, :meth:`Interval.sqr`, :meth:`Interval.sqrt` are computed on the
   endpoints in IEEE 754 double precision, whose basic operations (``+ - * /`` and
   ``sqrt``) are correctly rounded to nearest: the exact value lies within half an ulp
-  of the float. Each computed endpoint is then moved one ulp outward
-  (``np.nextafter`` toward ``-inf`` for ``lo``, toward ``+inf`` for ``hi``), so the
-  enclosure holds in floating point (a rounding of one ulp is more than the half ulp
-  the rounding can lose; overflow gives an infinite endpoint, still an enclosure).
+  of the float. Each computed endpoint is then moved at least one ulp outward (toward
+  ``-inf`` for ``lo``, toward ``+inf`` for ``hi``: ``np.nextafter`` for arrays of fewer
+  than 256 elements; for more, ``v -+ (|v| u(1 + 2u) + 2^-1074)``, the same float except
+  one ulp further out for ``|v|`` in ``[2^-1022, 2^-1020]``, :func:`_down` states the
+  argument), so the enclosure holds in floating point (a rounding of one ulp is more
+  than the half ulp the rounding can lose; overflow gives an infinite endpoint, still an
+  enclosure).
 * ``abs``, ``min``, ``max`` and negation are exact in floating point: no rounding.
 * division by an interval that contains 0 gives ``(-inf, inf)`` (unbounded); a NaN
   endpoint (``inf - inf``, ``0 * inf``) is replaced by the infinite endpoint on its
@@ -21,9 +24,10 @@ An :class:`Interval` holds two float arrays ``lo <= hi`` of one shape: the set o
   "the point may be out of reach".
 
 Inclusion isotonicity: each operation is monotone in its operands' endpoints (rounding
-to nearest and ``nextafter`` are monotone), so the result over a sub-box is contained in
-the result over the box; :mod:`mechopt.analysis.bounds` relies on it (its bounds never
-fall when a cell is split). The natural interval extension of an expression (each
+to nearest and both outward roundings are monotone), so the result over a sub-box is
+contained in the result over the box (computed in arrays of the same size class: the two
+roundings differ in ``[2^-1022, 2^-1020]``); :mod:`mechopt.analysis.bounds` keeps the
+larger of a cell's and its parent's bounds anyway (both bound the cell). The natural interval extension of an expression (each
 operation replaced by its interval version) encloses the expression's range over a
 box, overestimating it by the dependency between repeated variables, an error of
 first order in the box's width (Moore, Kearfott, Cloud, *Introduction to Interval
@@ -46,16 +50,62 @@ def _make(lo, hi):
     return out
 
 
+#: ``u (1 + 2u)``, ``u = 2^-53`` the unit roundoff of double precision (:func:`_down`)
+_PHI = 2.0 ** -53 * (1.0 + 2.0 ** -52)
+#: the smallest positive subnormal double, ``2^-1074``
+_ETA = 2.0 ** -1074
+#: the largest finite double
+_MAX = float(np.finfo(float).max)
+#: arrays of fewer elements are rounded by ``np.nextafter`` (:func:`_down`)
+_FEW = 256
+
+
 def _down(v):
-    """``v`` moved one ulp toward -inf (NaN -> -inf: unbounded)."""
-    v = np.nextafter(v, _NINF)
-    return np.where(v != v, _NINF, v)
+    """``v`` moved at least one ulp toward -inf (NaN -> -inf: unbounded): ``v - (|v| phi +
+    eta)`` in rounding to nearest, ``phi = u (1 + 2u)``, ``u = 2^-53``, ``eta = 2^-1074``
+    (Rump, Zimmermann, Boldo, Melquiond, *Computing predecessor and successor in rounding
+    to nearest*, BIT 49, 2009): ``np.nextafter(v, -inf)`` itself except for ``|v|`` in
+    ``[2^-1022, 2^-1020]``, where it may be one ulp lower (tests/test_bounds_lockstep.py
+    checks both), in a few cheap array operations where ``np.nextafter`` costs a libm call
+    per element.
+
+    The argument that the result is at most ``pred(v)`` (all an enclosure needs): for a
+    finite ``v`` the gap from ``v`` down to ``pred(v)`` is at most ``2u |v|`` (``|v| >=
+    2^-1022``) or ``eta`` (below); the computed ``e = fl(fl(phi |v|) + eta)`` is at least
+    ``fl(phi |v|)`` (rounding is monotone), which is ``>= phi |v| / (1 + u) > u |v|`` where
+    ``phi |v|`` is normal, and ``e = fl(phi |v|) + eta >= phi |v| + eta / 2`` exactly where
+    it is subnormal; either way ``e`` exceeds half the gap (and ``e >= eta`` covers ``v = 0``
+    and subnormal ``v``), so ``v - e`` lies strictly below the midpoint of ``pred(v)`` and
+    ``v`` and rounds to ``pred(v)`` or lower. ``|v|`` is capped at the largest double first
+    (no ``inf - inf``, no warning): ``+inf`` gives ``+inf``, capped to the largest double
+    (``pred(inf)``, as ``np.nextafter``); ``-inf`` stays, overflow gives ``-inf``, NaN gives
+    ``-inf`` (``np.fmax``).
+    """
+    if np.size(v) < _FEW:  # few: np.nextafter's fewer array operations cost less
+        v = np.nextafter(v, _NINF)
+        return np.fmax(v, _NINF, out=v) if type(v) is np.ndarray else np.asarray(np.fmax(v, _NINF))
+    e = np.abs(v)
+    np.minimum(e, _MAX, out=e)
+    e *= _PHI
+    e += _ETA
+    np.subtract(v, e, out=e)
+    np.minimum(e, _MAX, out=e)
+    return np.fmax(e, _NINF, out=e)
 
 
 def _up(v):
-    """``v`` moved one ulp toward +inf (NaN -> +inf: unbounded)."""
-    v = np.nextafter(v, _PINF)
-    return np.where(v != v, _PINF, v)
+    """``v`` moved at least one ulp toward +inf (NaN -> +inf: unbounded): ``v + (|v| phi +
+    eta)``, the mirror image of :func:`_down` (the same argument)."""
+    if np.size(v) < _FEW:
+        v = np.nextafter(v, _PINF)
+        return np.fmin(v, _PINF, out=v) if type(v) is np.ndarray else np.asarray(np.fmin(v, _PINF))
+    e = np.abs(v)
+    np.minimum(e, _MAX, out=e)
+    e *= _PHI
+    e += _ETA
+    np.add(v, e, out=e)
+    np.maximum(e, -_MAX, out=e)
+    return np.fmin(e, _PINF, out=e)
 
 
 class Interval:

@@ -29,7 +29,7 @@ from mechopt.analysis.design_eval import DesignEvaluator, certify
 from mechopt.analysis.sampling import Sampling
 
 __all__ = ["certificate", "check", "check_certificate", "is_certificate", "tolerance_box", "box_certified", "box_failures", "requirement_entries",
-           "proven_bounds", "format_check", "BOX_SAMPLES", "CERTIFICATE_VERSION", "CLAIM_RTOL", "BOUNDED",
+           "proven_bounds", "proven_bounds_of_designs", "format_check", "BOX_SAMPLES", "CERTIFICATE_VERSION", "CLAIM_RTOL", "BOUNDED",
            "RANGED"]
 
 #: the format of certificate.json (a new key keeps it; a changed meaning raises it)
@@ -141,6 +141,67 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
     ValueError
         With ``tolerance``, for a mechanism whose enclosure takes no length intervals.
     """
+    return proven_bounds_of_designs(ev, [v], [margins], budget=budget, tolerance=tolerance)[0]
+
+
+def proven_bounds_of_designs(ev: DesignEvaluator, vs: list, margins: list | None = None, budget: int | None = None,
+                             tolerance: float | None = None) -> list:
+    """:func:`proven_bounds` of several decoded designs of one evaluator, every search of
+    every design run in lock-step (:func:`mechopt.analysis.bounds.lower_bounds_of_designs`:
+    the enclosures over the cells of designs that differ only in their lengths computed in
+    one vectorised call; each bound as alone).
+
+    Parameters
+    ----------
+    ev : mechopt.analysis.design_eval.DesignEvaluator
+        The evaluator.
+    vs : list of dict
+        Decoded designs.
+    margins : list, optional
+        Per design, :func:`proven_bounds`' ``margins`` (None entries: computed again).
+    budget, tolerance
+        As :func:`proven_bounds`'.
+
+    Returns
+    -------
+    list of dict
+        Per design, :func:`proven_bounds`' result.
+
+    Raises
+    ------
+    ValueError
+        As :func:`proven_bounds`.
+    """
+    from mechopt.analysis import bounds as _b
+
+    margins = [None] * len(vs) if margins is None else list(margins)
+    plans = [_plan(ev, v, m, tolerance) for v, m in zip(vs, margins)]
+    live = [p for p in plans if p is not None]
+    if not live:
+        return [{} for _ in plans]
+    kw = dict(budget=budget or _b.BUDGET, lengths=None, shift=tolerance or 0.0, names=tuple(ev.spec.lengths))
+
+    def designs(these, ranges=True):  # lower_bounds_of_designs' designs (without the range searches)
+        return [(p["ctx"].check, p["to_mech"], p["qs"] if ranges else p["qs"][:len(p["searches"])],
+                 p["ups"] if ranges else p["ups"][:len(p["searches"])]) for p in these]
+    if tolerance is None:
+        for p, f in zip(live, _b.lower_bounds_of_designs(live[0]["ctx"].task, designs(live), **kw)):
+            p["found"] = f
+    for p in live if tolerance is not None else []:  # each design over its own box of lengths
+        kw["lengths"] = p["lengths"]
+        try:
+            (p["found"],) = _b.lower_bounds_of_designs(p["ctx"].task, designs([p]), **kw)
+        except ValueError:  # an actuator enclosure without length intervals
+            if not p["ranged"]:
+                raise
+            (p["found"],), p["ranged"] = _b.lower_bounds_of_designs(p["ctx"].task, designs([p], False), **kw), []
+    return [{} if p is None else _assemble(p) for p in plans]
+
+
+def _plan(ev, v, margins, tolerance):
+    """What :func:`proven_bounds` bounds for the design ``v``: its context, the quantities
+    and their ``upper`` values (the closure's, then four per range requirement), the
+    estimates; None when nothing is bounded."""
     from mechopt.analysis import bounds as _b
     from mechopt.requirements.force import effort_factor, force
     from mechopt.requirements.lci import lci_min
@@ -148,19 +209,16 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
 
     active = {r.name: r for r in ev.active if r.name in BOUNDED}
     if not active or ev.spec.validity({n: v[n] for n in ev.spec.lengths}, ev.max_length) > 0:
-        return {}
+        return None
     ctx = ev.context(v, Sampling.fine())
-    req, out = ctx.req, {}
+    req = ctx.req
     lengths = None if tolerance is None else {
         n: (max(float(v[n]) - tolerance, 0.0), float(v[n]) + tolerance) for n in ev.spec.lengths}
+    searches, ranged = [], []  # (name, quantity, required level, estimate); range requirements
     for name, r in active.items():
         if name in RANGED:
             est = float(margins[name]) if margins is not None and name in margins else float(r.evaluate(ctx)[0])
-            try:
-                out[name] = _ranges(ctx, name, est, budget or _b.BUDGET, lengths, tolerance)
-            except ValueError:  # with a tolerance: an actuator enclosure without length intervals
-                if tolerance is None:
-                    raise
+            ranged.append((name, est))
             continue
         if name == "lci":
             q, need = _b.lci_quantity(), req.min_lci
@@ -175,27 +233,41 @@ def proven_bounds(ev: DesignEvaluator, v: dict, margins: dict | None = None, bud
             q = _b.force_quantity(limits(req.actuator_torque), reading(ctx), effort_factor(ctx))
             need, est = req.min_force, (lambda: force(ctx))
         est = float(margins[name]) + float(need) if margins is not None and name in margins else float(est())
-        # over a tolerance box the nominal design's values need not reach the box's minimum:
-        # the sampled box minimum (a value of a mechanism of the box) stops the search
-        up = est if tolerance is not None and math.isfinite(est) else math.inf
-        b = _b.lower_bound(ctx.check, ctx.task, q, to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y),
-                           budget=budget or _b.BUDGET, lengths=lengths, upper=up, shift=tolerance or 0.0)
+        searches.append((name, q, need, est))
+    qs = [q for _, q, _, _ in searches]
+    # over a tolerance box the nominal design's values need not reach the box's minimum:
+    # the sampled box minimum (a value of a mechanism of the box) stops the search
+    ups = [est if tolerance is not None and math.isfinite(est) else math.inf for *_, est in searches]
+    for name, _ in ranged:
+        qs += _b.range_quantities(1.0 if name == "joints" else ctx.task.diameter)
+        ups += [math.inf] * 4
+    return {"ctx": ctx, "active": list(active), "lengths": lengths, "searches": searches, "ranged": ranged,
+            "qs": qs, "ups": ups, "to_mech": lambda x, y: ctx.spec.to_mech(ctx.check, x, y)}
+
+
+def _assemble(p) -> dict:
+    """:func:`proven_bounds`' result from a :func:`_plan` and its bounds ``p["found"]``."""
+    from mechopt.analysis import bounds as _b
+
+    out, searches, found = {}, p["searches"], p["found"]
+    for (name, q, need, est), b in zip(searches, found):
         out[name] = {"quantity": q.name, "lower_bound": b.lower, "estimate": est, "gap": est - b.lower,
                      "upper": b.upper, "proven_margin": b.lower - float(need),
                      "method": _b.METHOD, "cells": b.cells, "smallest_cell": b.smallest_cell,
                      "largest_cell": b.largest_cell, "converged": b.converged, "may_unreachable": b.may_unreachable}
-    return out
+    for k, (name, est) in enumerate(p["ranged"]):
+        at = len(searches) + 4 * k
+        out[name] = _ranges(p["ctx"], name, est, _b.Ranges.of(found[at:at + 4]))
+    return dict(sorted(out.items(), key=lambda kv: p["active"].index(kv[0])))
 
 
-def _ranges(ctx, name, est, budget, lengths, tolerance) -> dict:
+def _ranges(ctx, name, est, rg) -> dict:
     """:func:`proven_bounds`' entry of ``joints`` or ``stroke``: the margin's lower bound
-    from :func:`mechopt.analysis.bounds.outer_range` over the placed task."""
+    from the proven outer ranges ``rg`` (:class:`mechopt.analysis.bounds.Ranges`) over
+    the placed task."""
     from mechopt.analysis import bounds as _b
 
     joints = name == "joints"
-    rg = _b.outer_range(ctx.check, ctx.task, 1.0 if joints else ctx.task.diameter,
-                        to_mech=lambda x, y: ctx.spec.to_mech(ctx.check, x, y), budget=budget, lengths=lengths,
-                        shift=tolerance or 0.0)
 
     def margin(ranges):
         if joints:
@@ -214,11 +286,12 @@ def _ranges(ctx, name, est, budget, lengths, tolerance) -> dict:
             "inner_ranges": [list(map(float, o)) for o in rg.inner]}
 
 
-def _bounds_of(item) -> dict:
-    """:func:`proven_bounds` of one front design record ``(ev, rec)`` (module level: it
-    runs in workers)."""
-    ev, rec = item
-    return proven_bounds(ev, _variables(rec, ev.spec, None), rec["margins"])
+def _bounds_of(item) -> list:
+    """:func:`proven_bounds` of front design records ``(ev, recs)``, in lock-step
+    (:func:`proven_bounds_of_designs`; module level: it runs in workers)."""
+    ev, recs = item
+    return proven_bounds_of_designs(ev, [_variables(rec, ev.spec, None) for rec in recs],
+                                    [rec["margins"] for rec in recs])
 
 
 def certificate(result) -> dict:
@@ -249,7 +322,11 @@ def certificate(result) -> dict:
     designs = []
     recs = [result.design_at(i) for i in range(len(result.front))]
     # the bounds of the front designs, spread over the run's workers
-    every = parallel_map(_bounds_of, [(ev, rec) for rec in recs], int(result.info.get("n_jobs") or 1))
+    # (a chunk of designs per worker, each chunk's searches in lock-step)
+    n_jobs = max(1, min(int(result.info.get("n_jobs") or 1), len(recs)))
+    chunks = [recs[k::n_jobs] for k in range(n_jobs)]
+    done = parallel_map(_bounds_of, [(ev, c) for c in chunks], n_jobs)
+    every = [done[k % n_jobs][k // n_jobs] for k in range(len(recs))]
     for i, (rec, bounds) in enumerate(zip(recs, every)):
         res = {"margin": rec["margins"], "g": rec["constraints_g"]}
         # the digest of the record as design.json holds it (without the mechanism object)
