@@ -77,6 +77,13 @@ def test_five_bar_kinematics_bit_for_bit(r1, r2, r3, mode, seed):
                   lambda: legs_closure(x[:12].reshape(3, 4), y[:12].reshape(3, 4), r3, legs),
                   lambda: legs_ik(float(x[0]), float(y[0]), r3, legs), lambda: ix.lci(m.jacobian(x[1], y[1]))):
             assert_same_bits(*both(mp, f))
+        # lengths as arrays (a caller broadcasting designs over the points): the NumPy path
+        arr = ((np.array([[r1], [1.1 * r1]]), r2, legs[0][2]), (r1, np.array([[r2], [0.9 * r2]]), legs[1][2]))
+        for f in (lambda: legs_elbows(x[:9], y[:9], r3, arr), lambda: legs_closure(x[:9], y[:9], np.array([[r3]]), arr),
+                  lambda: legs_ik(x[:9], y[:9], r3, arr)):
+            ref, got = both(mp, f)
+            assert np.shape(got[-1]) == (2, 9)  # reachability, broadcast over the designs
+            assert_same_bits(ref, got)
 
 
 @settings(max_examples=30, deadline=None)

@@ -524,11 +524,8 @@ class TwoSliderMechanism(PlanarMechanism):
             Where every leg assembles.
         """
         x, y = as_points(x, y)
-        if Twin.compiled():
-            (lo1, hi1), (lo2, hi2) = self._lims
-            t = self._stroke_tol
-            p = np.array([self._g[0], self._g[1], self._L, self._s[0], self._s[1], self._e,
-                          lo1 - t, hi1 + t, lo2 - t, hi2 + t], float)
+        p = self._twin_params()
+        if p is not None:
             A, b, ok = np.empty(x.shape + (2, 2)), np.empty(x.shape + (2,)), np.empty(x.shape, dtype=np.bool_)
             _CLOSURE_TWIN(x.reshape(-1), y.reshape(-1), p, self._closure_via_positions,
                           A.reshape(-1, 2, 2), b.reshape(-1, 2), ok.reshape(-1))
@@ -544,6 +541,18 @@ class TwoSliderMechanism(PlanarMechanism):
         A = np.where(ok[..., None, None], A, np.nan)
         b = np.where(ok[..., None], b, np.nan)
         return A, b, ok
+
+    def _twin_params(self):
+        """``[g1, g2, L, s1, s2, e, lo1, hi1, lo2, hi2]`` (the strokes widened by their
+        tolerance) for the compiled closure when the twins run
+        (:meth:`mechopt.core.jit.Twin.compiled`) and every length is a number; None
+        otherwise (the NumPy path)."""
+        (lo1, hi1), (lo2, hi2) = self._lims
+        t = self._stroke_tol
+        v = (self._g[0], self._g[1], self._L, self._s[0], self._s[1], self._e, lo1 - t, hi1 + t, lo2 - t, hi2 + t)
+        if not Twin.compiled() or any(np.ndim(u) for u in v):
+            return None
+        return np.array(v, float)
 
     def closure_enclosure(self, x, y, lengths=None):
         """Interval enclosure of :meth:`closure` over boxes: with ``u_i = x - g_i`` and

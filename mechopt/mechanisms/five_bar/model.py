@@ -93,10 +93,11 @@ def legs_elbows(x, y, r3, legs):
     """
     x, y = as_points(x, y)
     (a1, c1, s1), (a2, c2, s2) = legs
-    if Twin.compiled():
+    p = _twin_legs(r3, legs)
+    if p is not None:
         xf, yf = x.reshape(-1), y.reshape(-1)
         out, ok = np.empty((4, xf.size)), np.empty(xf.size, dtype=np.bool_)
-        _ELBOWS_TWIN(xf, yf, np.array([r3, a1, c1, s1, a2, c2, s2], float), out, ok)
+        _ELBOWS_TWIN(xf, yf, p, out, ok)
         return (*(v.reshape(x.shape) for v in out), ok.reshape(x.shape))
     # P at A_i (0/0) and inf * 0 at a base joint: masked below by ``ok``
     with Twin.numpy_timer(), np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -105,6 +106,19 @@ def legs_elbows(x, y, r3, legs):
         ok = ok1 & ok2
         b1x, b1y, b2x, b2y = (np.where(ok, v, np.nan) for v in (b1x, b1y, b2x, b2y))
     return b1x, b1y, b2x, b2y, ok
+
+
+def _twin_legs(r3, legs):
+    """``[r3, a1, c1, s1, a2, c2, s2]`` for the compiled twins when they run
+    (:meth:`mechopt.core.jit.Twin.compiled`) and every length is a number; None otherwise
+    (lengths as arrays, a caller broadcasting designs: the NumPy path)."""
+    if not Twin.compiled():
+        return None
+    (a1, c1, s1), (a2, c2, s2) = legs
+    v = (r3, a1, c1, s1, a2, c2, s2)
+    if any(np.ndim(t) for t in v):
+        return None
+    return np.array(v, float)
 
 
 @jitable
@@ -209,11 +223,10 @@ def legs_closure(x, y, r3, legs):
         Where both legs assemble.
     """
     x, y = as_points(x, y)
-    if Twin.compiled():
-        (a1, c1, s1), (a2, c2, s2) = legs
+    p = _twin_legs(r3, legs)
+    if p is not None:
         A, b, ok = np.empty(x.shape + (2, 2)), np.empty(x.shape + (2,)), np.empty(x.shape, dtype=np.bool_)
-        _CLOSURE_TWIN(x.reshape(-1), y.reshape(-1), np.array([r3, a1, c1, s1, a2, c2, s2], float),
-                      A.reshape(-1, 2, 2), b.reshape(-1, 2), ok.reshape(-1))
+        _CLOSURE_TWIN(x.reshape(-1), y.reshape(-1), p, A.reshape(-1, 2, 2), b.reshape(-1, 2), ok.reshape(-1))
         return A, b, ok
     b1x, b1y, b2x, b2y, ok = legs_elbows(x, y, r3, legs)
     a1x, a1y = x - b1x, y - b1y
@@ -440,10 +453,10 @@ def legs_ik(x, y, r3, legs):
     """
     x, y = as_points(x, y)
     (a1, c1, s1), (a2, c2, s2) = legs
-    if Twin.compiled():
+    p = _twin_legs(r3, legs)
+    if p is not None:
         th1, th2, ok = np.empty(x.shape), np.empty(x.shape), np.empty(x.shape, dtype=np.bool_)
-        _IK_TWIN(x.reshape(-1), y.reshape(-1), np.array([r3, a1, c1, s1, a2, c2, s2], float),
-                 th1.reshape(-1), th2.reshape(-1), ok.reshape(-1))
+        _IK_TWIN(x.reshape(-1), y.reshape(-1), p, th1.reshape(-1), th2.reshape(-1), ok.reshape(-1))
         return th1, th2, ok
     reach = _reach(x, y, r3, legs)
     ok = _assembles(reach)
