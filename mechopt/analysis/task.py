@@ -411,16 +411,16 @@ class Task:
             The boundary points [unit].
         """
         t = np.asarray(t, float)
-        vx, vy, _, ex, ey, _, L, cum = self._edges if self.kind != "circle" else (None,) * 8
-        if self.kind != "circle" and Twin.compiled():
+        if self.kind == "circle":  # a region: no ends
+            a = 2 * np.pi * np.mod(t, 1.0)
+            return self.center[0] + self.radius * np.cos(a), self.center[1] + self.radius * np.sin(a)
+        vx, vy, _, ex, ey, _, L, cum = self._edges
+        if Twin.compiled():
             tf = t.reshape(-1)
             bx, by = np.empty(tf.size), np.empty(tf.size)
             _BOUNDARY_TWIN(tf, self.is_path, vx, vy, ex, ey, L, cum, bx, by)
             return bx.reshape(t.shape), by.reshape(t.shape)
         t = np.clip(t, 0.0, 1.0) if self.is_path else np.mod(t, 1.0)
-        if self.kind == "circle":
-            a = 2 * np.pi * t
-            return self.center[0] + self.radius * np.cos(a), self.center[1] + self.radius * np.sin(a)
         k = np.clip(np.searchsorted(cum, t, side="right") - 1, 0, len(vx) - 1)
         s = (t - cum[k]) / np.where(L[k] > 0, (cum[k + 1] - cum[k]), 1.0)
         return vx[k] + s * ex[k], vy[k] + s * ey[k]
