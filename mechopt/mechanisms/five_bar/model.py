@@ -172,25 +172,24 @@ def _closure_loop(x, y, legs, A, b, ok):
         b[i, 1] = (b2x - r3) * a2y - b2y * a2x
 
 
-def _ik_loop(x, y, legs, th1, th2, ok):
-    """:func:`legs_ik` point by point (compiled, :class:`mechopt.core.jit.Twin`;
-    ``legs = [r3, a1, c1, s1, a2, c2, s2]``): the crank angles into ``th1, th2`` (NaN
-    where a leg does not assemble), :func:`legs_reachable` into ``ok``."""
-    r3, a1, c1, s1, a2, c2, s2 = legs[0], legs[1], legs[2], legs[3], legs[4], legs[5], legs[6]
+def _ik_loop(x, y, legs, k1, k2, ok):
+    """:func:`legs_ik` up to its angles, point by point (compiled, :class:`mechopt.core.jit.Twin`;
+    ``legs = [r3, a1, c1, s1, a2, c2, s2]``): the clipped cosines of ``alpha_i`` into
+    ``k1, k2`` (0 where a leg does not assemble), :func:`legs_reachable` into ``ok``.
+    ``arccos`` and ``arctan2`` stay with NumPy (:func:`legs_ik`): its vectorised
+    versions (SIMD, where the CPU has them) differ from the C library's, which a
+    compiled loop calls, in the last bit at about one point in ten."""
+    r3, a1, c1, a2, c2 = legs[0], legs[1], legs[2], legs[4], legs[5]
     for i in range(x.size):
         px, py = x[i], y[i]
         d1, d2 = np.hypot(px + r3, py), np.hypot(px - r3, py)
         ok[i] = ((d1 >= abs(a1 - c1)) and (d1 <= a1 + c1) and (d2 >= abs(a2 - c2)) and (d2 <= a2 + c2)
                  and d1 > 0 and d2 > 0)
         if not ok[i]:
-            th1[i], th2[i] = np.nan, np.nan
+            k1[i], k2[i] = 0.0, 0.0
             continue
-        k1 = (a1 * a1 + d1 * d1 - c1 * c1) / (2 * a1 * d1)
-        k2 = (a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2)
-        alpha1 = np.arccos(min(max(k1, -1.0), 1.0))
-        alpha2 = np.arccos(min(max(k2, -1.0), 1.0))
-        th1[i] = np.arctan2(py, px + r3) + s1 * alpha1
-        th2[i] = np.pi - np.arctan2(py, r3 - px) + s2 * alpha2
+        k1[i] = min(max((a1 * a1 + d1 * d1 - c1 * c1) / (2 * a1 * d1), -1.0), 1.0)
+        k2[i] = min(max((a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2), -1.0), 1.0)
 
 
 _ELBOWS_TWIN = Twin(_elbows_loop)
@@ -454,18 +453,18 @@ def legs_ik(x, y, r3, legs):
     x, y = as_points(x, y)
     (a1, c1, s1), (a2, c2, s2) = legs
     p = _twin_legs(r3, legs)
-    if p is not None:
-        th1, th2, ok = np.empty(x.shape), np.empty(x.shape), np.empty(x.shape, dtype=np.bool_)
-        _IK_TWIN(x.reshape(-1), y.reshape(-1), p, th1.reshape(-1), th2.reshape(-1), ok.reshape(-1))
-        return th1, th2, ok
-    reach = _reach(x, y, r3, legs)
-    ok = _assembles(reach)
-    d1, d2 = reach[0][0], reach[1][0]  # |P - A_i|
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # clipped below
-        k1 = (a1 * a1 + d1 * d1 - c1 * c1) / (2 * a1 * d1)
-        k2 = (a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2)
-    alpha1 = np.arccos(np.clip(k1, -1.0, 1.0))
-    alpha2 = np.arccos(np.clip(k2, -1.0, 1.0))
+    if p is not None:  # the cosines compiled, the angles by NumPy's functions (_ik_loop)
+        k1, k2, ok = np.empty(x.shape), np.empty(x.shape), np.empty(x.shape, dtype=np.bool_)
+        _IK_TWIN(x.reshape(-1), y.reshape(-1), p, k1.reshape(-1), k2.reshape(-1), ok.reshape(-1))
+    else:
+        reach = _reach(x, y, r3, legs)
+        ok = _assembles(reach)
+        d1, d2 = reach[0][0], reach[1][0]  # |P - A_i|
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # clipped below
+            k1 = np.clip((a1 * a1 + d1 * d1 - c1 * c1) / (2 * a1 * d1), -1.0, 1.0)
+            k2 = np.clip((a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2), -1.0, 1.0)
+    alpha1 = np.arccos(k1)
+    alpha2 = np.arccos(k2)
     beta1 = np.arctan2(y, x + r3)
     beta2 = np.arctan2(y, r3 - x)
     th1 = beta1 + s1 * alpha1
