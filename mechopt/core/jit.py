@@ -237,7 +237,10 @@ class Twin:
     """A NumPy path and the compiled loop that computes the same values bit for bit
     (``+ - * /`` and ``sqrt`` are correctly rounded in both, and the loop performs each
     point's operations in the NumPy path's order; tests compare the two), compiled on
-    first use (:func:`njit`).
+    first use (:func:`njit`). Transcendental functions (``arccos``, ``arctan2``, ...)
+    stay outside the loop, with NumPy on both paths: NumPy's vectorised versions (SIMD,
+    on CPUs that have it) and the C library's, which a compiled loop calls, differ in the
+    last bit.
 
     :meth:`compiled` says which to run: the loop once numba is loaded in this process
     (by any kernel) or once the twins' NumPy paths have spent :data:`TWIN_AFTER_SECONDS`
