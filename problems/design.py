@@ -24,6 +24,7 @@ import numpy as np
 
 from mechopt.analysis.design_eval import DesignEvaluator
 from mechopt.analysis.sampling import Sampling
+from mechopt.core.jit import load_numba
 from mechopt.requirements import Requirements
 
 from mechopt.run.problem import MechoptProblem, Objective
@@ -105,6 +106,8 @@ class DesignProblem(MechoptProblem):
 
     def evaluate_designs(self, X):
         X = np.atleast_2d(np.asarray(X, float))
+        if len(X) > 1:  # a population: the compiled twins repay loading numba (mechopt.core.jit.Twin)
+            load_numba()
         ev = self.evaluator
         F = np.empty((len(X), self.n_obj))
         G = np.empty((len(X), len(self.constr_names)))

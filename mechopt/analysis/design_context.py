@@ -17,6 +17,7 @@ from functools import cached_property
 import numpy as np
 
 from mechopt.core import indices as _ix
+from mechopt.core.design_spec import DesignSpec
 from mechopt.analysis import sampling as _s
 
 __all__ = ["DesignContext"]
@@ -155,6 +156,40 @@ class DesignContext:
             The minimum.
         """
         return self.region_mins(lambda x, y: f(x, y)[None], vals[None], refine)[0]
+
+    def quantity_min(self, quantity, vals, scale=1.0, bad=0.0, refine=None) -> float:
+        """Minimum over the task of ``scale * q`` (non-finite values replaced by ``bad``)
+        for the mechanism's quantity ``q``: ``"lci"`` (the LCI of its Jacobian) or
+        ``"type2"`` (its type-II function), values ``vals`` at the samples: by the
+        mechanism's compiled zoom where it has one
+        (:meth:`~mechopt.core.protocol.PlanarMechanism.zoom_kernel`,
+        :func:`mechopt.analysis.sampling.compiled_region_min`), else by
+        :meth:`region_min`; the same minimum bit for bit.
+
+        Parameters
+        ----------
+        quantity : str
+            ``"lci"`` or ``"type2"``.
+        vals : ndarray
+            ``scale * q`` (``bad`` where not finite) at the samples.
+        scale, bad : float
+            The factor and the replacement of a non-finite value.
+        refine : bool, optional
+            Refine by zooming (default :attr:`refine`).
+
+        Returns
+        -------
+        float
+            The minimum.
+        """
+        refine = self.refine if refine is None else refine
+        if refine and type(self.spec).to_mech is DesignSpec.to_mech:  # the kernels take mechanism points
+            kernel = self.mech.zoom_kernel(quantity)
+            both = None if kernel is None else _s.compiled_region_min(self.samples, kernel, scale, bad, vals)
+            if both is not None:
+                return min(both)  # region_mins' min(boundary, interior)
+        raw = {"lci": lambda x, y: _ix.lci(self.mech.jacobian(x, y)), "type2": self.mech.type2_function}[quantity]
+        return self.region_min(lambda x, y: _s.bad_to(scale * raw(*self.to_mech(x, y)), bad), vals, refine)
 
     def region_mins(self, F, vals, refine=None) -> list:
         """Minima over the task of the rows of ``F(x, y)`` (values ``vals`` at the samples).

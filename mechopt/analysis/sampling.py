@@ -26,7 +26,7 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["Sampling", "samples", "bad_to", "region_mins", "leg_ranges", "minimise"]
+__all__ = ["Sampling", "samples", "bad_to", "region_mins", "leg_ranges", "minimise", "compiled_region_min"]
 
 
 @dataclass(frozen=True)
@@ -312,6 +312,64 @@ def region_mins(ctx, F, refine, vals):
     on_boundary, inside = minimise(F, [_boundary_search(ctx, vals[:, :nb], refine),
                                        _interior_search(ctx, vals[:, nb:], refine)], ctx["task"])
     return [min(b, i) for b, i in zip(on_boundary, inside)]
+
+
+@lru_cache(maxsize=None)
+def _boundary_offset_rows(size, levels, n):
+    """:func:`_boundary_offsets` as one array, a level per row (the compiled zoom's)."""
+    return _readonly(np.stack(_boundary_offsets(size, levels, n)))[0]
+
+
+def compiled_region_min(ctx, kernel, scale, bad, vals, k=3):
+    """The minima over the boundary and over the interior of one function,
+    ``scale * f`` with ``NaN -> bad``, by the compiled zoom
+    (:func:`mechopt.core.zoom.zoom_minimum`) of a mechanism's point kernel ``f``
+    (:class:`mechopt.core.zoom.ZoomKernel`), refined: those of :func:`_boundary_search`
+    and :func:`_interior_search` bit for bit (the starts are chosen here, by
+    :func:`_lowest`, as there), whose smaller one :func:`region_mins` returns. None for
+    a circle task (its boundary needs ``cos`` and ``sin``: the NumPy search).
+
+    Parameters
+    ----------
+    ctx : mechopt.analysis.design_context.DesignContext
+        The design's context (samples, task).
+    kernel : mechopt.core.zoom.ZoomKernel
+        The compiled search.
+    scale, bad : float
+        The factor of the kernel's value and the replacement of a non-finite one.
+    vals : ndarray
+        The function at ``ctx["allx"], ctx["ally"]``, shape ``(N,)``.
+    k : int
+        Starts per search.
+
+    Returns
+    -------
+    tuple of float or None
+        ``(boundary minimum, interior minimum)`` (inf where there is none).
+    """
+    task = ctx["task"]
+    if task.kind == "circle":
+        return None
+    nb = ctx["bx"].size
+    vb, vi = vals[:nb], vals[nb:]
+    tb_best = float(vb.min()) if vb.size else math.inf
+    in_best = float(vi.min()) if ctx["ix"].size else math.inf
+    if (vb.size == 0 or ctx["tb"].size == 0) and ctx["ix"].size == 0:
+        return tb_best, in_best  # a point task: no zoom
+    vx, vy, wy, ex, ey, L2, L, cum = task.edges
+    if vb.size and ctx["tb"].size:
+        t0 = ctx["tb"][_lowest(vb, k)]
+        offsets = _boundary_offset_rows(ctx["tb"].size, 4, 17)
+    else:
+        t0, offsets = np.zeros(0), np.zeros((0, 17))
+    GX, GY = _interior_offsets(9)
+    if ctx["ix"].size:
+        order = _lowest(vi, k)
+        px0, py0, levels = ctx["ix"][order], ctx["iy"][order], 3
+    else:
+        px0, py0, levels = np.zeros(0), np.zeros(0), 0
+    return kernel.minimum(scale, bad, tb_best, t0, offsets, task.is_path, vx, vy, wy, ex, ey, L, L2, cum,
+                          task.inside_tolerance, in_best, px0, py0, float(ctx["step"]), GX, GY, levels)
 
 
 def leg_ranges(ctx, legs, refine, bad=(np.inf, np.inf)):

@@ -25,6 +25,7 @@ import numpy as np
 
 from mechopt.core import validation as _v
 from mechopt.core.jit import Twin
+from mechopt.core.zoom import polygon_contains, polygon_point
 
 __all__ = ["Task", "parse_task", "read_points", "UNITS", "PLACEMENTS"]
 
@@ -382,9 +383,9 @@ class Task:
         return v[:, 0], v[:, 1]
 
     @cached_property
-    def _edges(self):
-        """The polygon's edges, computed once (the design evaluation asks for them at
-        every boundary sample): ``(vx, vy, wy, ex, ey, L2, L, cum)`` with ``(vx, vy)``
+    def edges(self):
+        """The polygon's edges, computed once (the design evaluation and the compiled
+        zoom of :mod:`mechopt.core.zoom` ask for them at every boundary sample): ``(vx, vy, wy, ex, ey, L2, L, cum)`` with ``(vx, vy)``
         the vertices, ``wy`` the next vertex's y, ``(ex, ey) = w - v``, ``L2 = |e|^2``,
         ``L = |e|`` and ``cum`` the arc-length fractions of the vertices (``cum[-1] = 1``).
         A path's edges join its consecutive points (no closing edge)."""
@@ -395,6 +396,12 @@ class Task:
         L = np.hypot(ex, ey)
         return (v[:, 0].copy(), v[:, 1].copy(), w[:, 1].copy(), ex, ey, ex * ex + ey * ey, L,
                 np.r_[0.0, np.cumsum(L)] / L.sum())
+
+    @property
+    def inside_tolerance(self) -> float:
+        """Distance within which a point outside counts as on the boundary
+        (:meth:`contains`): rounding relative to the diameter [unit]."""
+        return _v.ROUNDING * self.diameter
 
     def boundary_at(self, t):
         """Point at arc-length fraction ``t`` (mod 1) of the boundary, counter-clockwise;
@@ -414,7 +421,7 @@ class Task:
         if self.kind == "circle":  # a region: no ends
             a = 2 * np.pi * np.mod(t, 1.0)
             return self.center[0] + self.radius * np.cos(a), self.center[1] + self.radius * np.sin(a)
-        vx, vy, _, ex, ey, _, L, cum = self._edges
+        vx, vy, _, ex, ey, _, L, cum = self.edges
         if Twin.compiled():
             tf = t.reshape(-1)
             bx, by = np.empty(tf.size), np.empty(tf.size)
@@ -445,7 +452,7 @@ class Task:
         if self.kind == "circle":
             t = np.arange(n) / n
             return t, 2 * self.radius * math.sin(math.pi / n)
-        L = self._edges[6]
+        L = self.edges[6]
         total = L.sum()
         cum = np.r_[0.0, np.cumsum(L)] / total
         ts, gap = [], 0.0
@@ -482,15 +489,15 @@ class Task:
         # computing signed_distance everywhere, for a fraction of the work)
         x, y = np.broadcast_arrays(x, y)
         if Twin.compiled():
-            vx, vy, wy, ex, ey, L2, _, _ = self._edges
+            vx, vy, wy, ex, ey, L2, _, _ = self.edges
             out = np.empty(x.shape, dtype=np.bool_)
-            _CONTAINS_TWIN(x.reshape(-1), y.reshape(-1), vx, vy, wy, ex, ey, L2, _v.ROUNDING * self.diameter,
+            _CONTAINS_TWIN(x.reshape(-1), y.reshape(-1), vx, vy, wy, ex, ey, L2, self.inside_tolerance,
                            out.reshape(-1))
             return out
         out = self._inside(x, y)
         rest = ~out
         if rest.any():
-            out[rest] = self._distance(x[rest], y[rest]) <= _v.ROUNDING * self.diameter
+            out[rest] = self._distance(x[rest], y[rest]) <= self.inside_tolerance
         return out
 
     def signed_distance(self, x, y):
@@ -523,14 +530,14 @@ class Task:
 
     def _distance(self, x, y):
         """Distance of the points ``(x, y)`` to the polygon's boundary [unit]."""
-        vx, vy, _, ex, ey, L2, _, _ = self._edges
+        vx, vy, _, ex, ey, L2, _, _ = self.edges
         dx, dy = x[..., None] - vx, y[..., None] - vy
         s = np.clip((dx * ex + dy * ey) / L2, 0, 1)
         return np.hypot(dx - s * ex, dy - s * ey).min(-1)
 
     def _inside(self, x, y):
         """The points ``(x, y)`` inside the polygon by the even-odd rule (it is simple)."""
-        vx, vy, wy, ex, ey, _, _, _ = self._edges
+        vx, vy, wy, ex, ey, _, _, _ = self.edges
         px, py = x[..., None], y[..., None]
         with np.errstate(divide="ignore", invalid="ignore"):
             cross = ((vy > py) != (wy > py)) & (px < ex * (py - vy) / ey + vx)
@@ -751,39 +758,18 @@ def parse_task(text: str, unit: str = "mm") -> Task:
 # --- compiled twins of the polygon's hot paths (mechopt.core.jit.Twin: the same
 # operations point by point, so the same values bit for bit) -----------------------------
 def _boundary_loop(t, is_path, vx, vy, ex, ey, L, cum, bx, by):
-    """:meth:`Task.boundary_at` of a polygon or path at each ``t`` into ``bx, by``."""
-    last = vx.size - 1
+    """:meth:`Task.boundary_at` of a polygon or path at each ``t`` into ``bx, by``
+    (:func:`mechopt.core.zoom.polygon_point`)."""
     for i in range(t.size):
-        ti = min(max(t[i], 0.0), 1.0) if is_path else np.mod(t[i], 1.0)
-        k = min(max(np.searchsorted(cum, ti, side="right") - 1, 0), last)
-        s = (ti - cum[k]) / ((cum[k + 1] - cum[k]) if L[k] > 0 else 1.0)
-        bx[i] = vx[k] + s * ex[k]
-        by[i] = vy[k] + s * ey[k]
+        bx[i], by[i] = polygon_point(t[i], is_path, vx, vy, ex, ey, L, cum)
 
 
 def _contains_loop(x, y, vx, vy, wy, ex, ey, L2, tol, out):
-    """:meth:`Task.contains` of a polygon at each point into ``out``: the even-odd rule
-    of :meth:`Task._inside`, else the distance of :meth:`Task._distance` within ``tol``
-    (NaN propagating as in NumPy's clip, hypot and min)."""
+    """:meth:`Task.contains` of a polygon at each point into ``out``
+    (:func:`mechopt.core.zoom.polygon_contains`: the even-odd rule of :meth:`Task._inside`,
+    else the distance of :meth:`Task._distance` within ``tol``)."""
     for i in range(x.size):
-        px, py = x[i], y[i]
-        n = 0
-        for j in range(vx.size):
-            if ((vy[j] > py) != (wy[j] > py)) and (px < ex[j] * (py - vy[j]) / ey[j] + vx[j]):
-                n += 1
-        if n % 2 == 1:
-            out[i] = True
-            continue
-        best = np.inf
-        for j in range(vx.size):
-            dx, dy = px - vx[j], py - vy[j]
-            s = (dx * ex[j] + dy * ey[j]) / L2[j]
-            if s < 0.0:
-                s = 0.0
-            elif s > 1.0:
-                s = 1.0
-            best = np.minimum(best, np.hypot(dx - s * ex[j], dy - s * ey[j]))
-        out[i] = best <= tol
+        out[i] = polygon_contains(x[i], y[i], vx, vy, wy, ex, ey, L2, tol)
 
 
 _BOUNDARY_TWIN = Twin(_boundary_loop)

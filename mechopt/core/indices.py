@@ -27,6 +27,7 @@ import numpy as np
 from mechopt.core.jit import Twin, jitable
 
 __all__ = [
+    "lci_of_matrix",
     "two_smax_squared",
     "lci_of_entries",
     "singular_values",
@@ -177,21 +178,38 @@ def lci(J):
         return np.where(np.isfinite(out), out, 0.0)
 
 
+@jitable
+def lci_of_matrix(a, b, c, d):
+    """:func:`lci` of the one matrix ``[[a, b], [c, d]]`` (compiled kernels only):
+    :func:`_scaled_entries` (NaN magnitudes scale by ``2^-1`` as there, an infinite one by
+    ``2^0``), then :func:`lci_of_entries`, 0 where that is not finite.
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        The entries of ``J`` (``q_dot = J p_dot``).
+
+    Returns
+    -------
+    float
+        The LCI (dimensionless, Liu 2006 eq. 3), 0 for a NaN or zero matrix.
+    """
+    m = np.maximum(np.maximum(abs(a), abs(b)), np.maximum(abs(c), abs(d)))
+    if m > 0.0 and m < math.inf:
+        e = math.frexp(m)[1]
+    elif m > 0.0:
+        e = 0
+    else:  # 0 or NaN: np.frexp(1.0)
+        e = 1
+    v = lci_of_entries(math.ldexp(a, -e), math.ldexp(b, -e), math.ldexp(c, -e), math.ldexp(d, -e))
+    return v if math.isfinite(v) else 0.0
+
+
 def _lci_loop(J, out):
     """:func:`lci` of each matrix of ``J`` (shape ``(n, 2, 2)``) into ``out``, compiled
-    (:class:`mechopt.core.jit.Twin`): :func:`_scaled_entries` per matrix (NaN magnitudes
-    scale by ``2^-1`` as there, an infinite one by ``2^0``), then :func:`lci_of_entries`."""
+    (:class:`mechopt.core.jit.Twin`, :func:`lci_of_matrix`)."""
     for i in range(J.shape[0]):
-        a, b, c, d = J[i, 0, 0], J[i, 0, 1], J[i, 1, 0], J[i, 1, 1]
-        m = np.maximum(np.maximum(abs(a), abs(b)), np.maximum(abs(c), abs(d)))
-        if m > 0.0 and m < math.inf:
-            e = math.frexp(m)[1]
-        elif m > 0.0:
-            e = 0
-        else:  # 0 or NaN: np.frexp(1.0)
-            e = 1
-        v = lci_of_entries(math.ldexp(a, -e), math.ldexp(b, -e), math.ldexp(c, -e), math.ldexp(d, -e))
-        out[i] = v if math.isfinite(v) else 0.0
+        out[i] = lci_of_matrix(J[i, 0, 0], J[i, 0, 1], J[i, 1, 0], J[i, 1, 1])
 
 
 _LCI_TWIN = Twin(_lci_loop)

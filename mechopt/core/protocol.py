@@ -483,6 +483,26 @@ class PlanarMechanism(ABC):
         """
         return None
 
+    def zoom_kernel(self, quantity):
+        """The compiled zoom of :mod:`mechopt.core.zoom` for ``quantity`` at this
+        mechanism's lengths: ``"lci"`` (:meth:`lci` of :meth:`jacobian`) or ``"type2"``
+        (:meth:`type2_function`), as a :class:`~mechopt.core.zoom.ZoomKernel` whose
+        searches give the NumPy searches' minima bit for bit; None where the mechanism
+        has none (default), for an unknown quantity, or when the compiled twins do not
+        run (:meth:`mechopt.core.jit.Twin.compiled`).
+
+        Parameters
+        ----------
+        quantity : str
+            ``"lci"`` or ``"type2"``.
+
+        Returns
+        -------
+        mechopt.core.zoom.ZoomKernel or None
+            The compiled search, or None.
+        """
+        return None
+
     def _length_intervals(self, names, lengths):
         """``{name: value}`` of this mechanism's lengths ``names`` (its attributes), those
         in ``lengths`` (a :meth:`closure_enclosure`'s intervals) replacing them; ValueError

@@ -8,9 +8,7 @@ point task).
 """
 from __future__ import annotations
 
-from mechopt.core import indices as _ix
 from mechopt.core import validation as _v
-from mechopt.analysis.sampling import bad_to
 from mechopt.requirements.base import Objective, Option, Requirement
 
 __all__ = ["MinLCI", "MinLCIObjective", "MeanLCIObjective", "lci_min", "lci_mean", "MEMBERS"]
@@ -37,8 +35,7 @@ def lci_min(ctx) -> float:
         The minimum LCI over the task (dimensionless), the samples' minimum refined by
         zooming; memoised in ``ctx``.
     """
-    return ctx.memo("lci_min", lambda: ctx.region_min(
-        lambda x, y: bad_to(_ix.lci(ctx.mech.jacobian(*ctx.to_mech(x, y))), 0.0), ctx.lci))
+    return ctx.memo("lci_min", lambda: ctx.quantity_min("lci", ctx.lci))
 
 
 def lci_mean(ctx) -> float:

@@ -109,8 +109,7 @@ class Singular(Requirement):
         """
         def compute():
             s0 = self.sign(ctx)
-            return ctx.region_min(lambda x, y: bad_to(s0 * ctx.mech.type2_function(*ctx.to_mech(x, y)), -1.0),
-                                  self.samples(ctx), ctx.refines(self.name))
+            return ctx.quantity_min("type2", self.samples(ctx), s0, -1.0, ctx.refines(self.name))
         return ctx.memo("type2_min", compute)
 
     def screen(self, ctx) -> bool:

@@ -28,7 +28,9 @@ from mechopt.core.design_spec import DesignSpec
 from mechopt.core.error_spec import ErrorSpec
 from mechopt.core.jit import Twin, jitable
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
-from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
+from mechopt.core.indices import lci_of_matrix
+from mechopt.core.protocol import ASSEMBLY_MODES, POINT_MAX, Parameter, PlanarMechanism, as_points
+from mechopt.core.zoom import ZoomKernel, zoom_minimum
 
 __all__ = ["FiveBar", "FiveBarDesignSpec", "FiveBarErrorSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows",
            "legs_closure", "legs_closure_enclosure", "legs_actuator_enclosure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box",
@@ -192,9 +194,58 @@ def _ik_loop(x, y, legs, k1, k2, ok):
         k2[i] = min(max((a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2), -1.0), 1.0)
 
 
+@jitable
+def _point(v):
+    """A coordinate as :func:`mechopt.core.protocol.as_points` keeps it: NaN beyond
+    :data:`~mechopt.core.protocol.POINT_MAX` (compiled kernels only)."""
+    return np.nan if abs(v) > POINT_MAX else v
+
+
+@jitable
+def _lci_at(legs, x, y):
+    """The LCI of the Jacobian at one point, 0 where unreachable: ``FiveBar.lci`` of
+    the protocol (``J = A / b`` row by row from :func:`_closure_loop`'s ``A, b``, then
+    :func:`mechopt.core.indices.lci_of_matrix`), the zoom's point kernel
+    (:meth:`FiveBar.zoom_kernel`; ``legs = [r3, a1, c1, s1, a2, c2, s2]``)."""
+    x, y = _point(x), _point(y)
+    r3 = legs[0]
+    b1x, b1y, b2x, b2y, _ = _elbows_at(x, y, legs)
+    a1x, a1y, a2x, a2y = x - b1x, y - b1y, x - b2x, y - b2y
+    k1 = (b1x + r3) * a1y - b1y * a1x
+    k2 = (b2x - r3) * a2y - b2y * a2x
+    return lci_of_matrix(a1x / k1, a1y / k1, a2x / k2, a2y / k2)
+
+
+@jitable
+def _type2_at(legs, x, y):
+    """:meth:`FiveBar.type2_function` at one point (NaN where unreachable), the zoom's
+    point kernel (``legs = [r3, a1, c1, s1, a2, c2, s2]``, ``c1 = r2``)."""
+    x, y = _point(x), _point(y)
+    b1x, b1y, b2x, b2y, _ = _elbows_at(x, y, legs)
+    return ((x - b1x) * (y - b2y) - (y - b1y) * (x - b2x)) / (legs[2] * legs[2])
+
+
+# one entry per kernel, each naming its kernel: numba's cache keeps a function that calls
+# a global kernel, not one that receives the kernel as an argument (compiled again in
+# every process)
+def _lci_zoom_loop(legs, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
+                   in_best, px0, py0, h0, gx, gy, in_levels):
+    """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_lci_at` (compiled, :class:`Twin`)."""
+    return zoom_minimum(_lci_at, legs, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2,
+                        cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
+
+
+def _type2_zoom_loop(legs, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
+                     in_best, px0, py0, h0, gx, gy, in_levels):
+    """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_type2_at` (compiled, :class:`Twin`)."""
+    return zoom_minimum(_type2_at, legs, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2,
+                        cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
+
+
 _ELBOWS_TWIN = Twin(_elbows_loop)
 _IK_TWIN = Twin(_ik_loop)
 _CLOSURE_TWIN = Twin(_closure_loop)
+_ZOOMS = {"lci": Twin(_lci_zoom_loop), "type2": Twin(_type2_zoom_loop)}
 
 
 def legs_closure(x, y, r3, legs):
@@ -1227,6 +1278,25 @@ class FiveBar(PlanarMechanism):
             ``{joint: ndarray}`` [rad].
         """
         return legs_tree_configuration(x, y, self.r3, self._legs())
+
+    def zoom_kernel(self, quantity):
+        """The compiled zooms of the LCI and the type-II function (:func:`_lci_at`,
+        :func:`_type2_at`; the protocol's :meth:`~mechopt.core.protocol.PlanarMechanism.zoom_kernel`).
+
+        Parameters
+        ----------
+        quantity : str
+            ``"lci"`` or ``"type2"``.
+
+        Returns
+        -------
+        mechopt.core.zoom.ZoomKernel or None
+            The compiled search, or None.
+        """
+        legs = _twin_legs(self.r3, self._legs())
+        if legs is None or quantity not in _ZOOMS:
+            return None
+        return ZoomKernel(_ZOOMS[quantity], legs)
 
     def type2_function(self, x, y):
         """``(a1 x a2) / (|a1| |a2|)`` with ``a_i = P - B_i``: the sine of the angle

@@ -1,0 +1,257 @@
+"""The zoom of :mod:`mechopt.analysis.sampling` compiled: one design's minimum over a
+polygon (or path) task of one pointwise function, refined by zooming, in one call.
+
+:func:`mechopt.analysis.sampling.region_mins` refines a minimum by zooming around the
+lowest samples (boundary: levels of ``n`` arc-length offsets around each start;
+interior: levels of ``n x n`` points kept inside the task). Written with NumPy, each
+level costs a few dozen small array operations and a call of the function through the
+mechanism's methods: three quarters of a design evaluation's time. Here the same
+search runs as one compiled loop over levels, starts and points, calling a compiled
+point kernel ``f(p, x, y)`` of the mechanism (:meth:`PlanarMechanism.zoom_kernel
+<mechopt.core.protocol.PlanarMechanism.zoom_kernel>`).
+
+It gives the NumPy search's minimum bit for bit: each point's coordinates, the
+kernel's value (the operations of the NumPy path, :class:`mechopt.core.jit.Twin`) and
+each choice are those of :func:`~mechopt.analysis.sampling._boundary_search` and
+:func:`~mechopt.analysis.sampling._interior_search` (``np.argmin``: the first lowest
+value, the first NaN if any; ``min`` over a level: NaN if any value is NaN; a level's
+minimum replaces the best only when lower). The starts (the lowest samples) are chosen
+by the caller, with NumPy, as there. Tests compare the two searches bit for bit
+(tests/test_zoom.py).
+
+The polygon's boundary points and its inside test are the per-point formulas of
+:meth:`mechopt.analysis.task.Task.boundary_at` and :meth:`~mechopt.analysis.task.Task.contains`
+(:func:`polygon_point`, :func:`polygon_contains`), which that module's compiled twins
+call too. A circle's boundary needs ``cos`` and ``sin`` (NumPy's and the C library's
+differ in the last bit), so a circle task keeps the NumPy search.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechopt.core.jit import jitable
+
+__all__ = ["ZoomKernel", "polygon_point", "polygon_contains", "zoom_minimum"]
+
+
+@dataclass(frozen=True)
+class ZoomKernel:
+    """A mechanism's compiled zoom for one quantity: ``entry`` (a
+    :class:`mechopt.core.jit.Twin` whose loop calls :func:`zoom_minimum` with the
+    quantity's point kernel) and the kernel's parameters ``params`` (a float array).
+
+    Parameters
+    ----------
+    entry : mechopt.core.jit.Twin
+        The compiled search, called as ``entry(params, scale, bad, *search)``.
+    params : ndarray
+        The point kernel's parameters (lengths and signs).
+    """
+
+    entry: object
+    params: np.ndarray
+
+    def minimum(self, scale, bad, *search):
+        """``(boundary minimum, interior minimum)`` of ``scale * f``, NaN replaced by
+        ``bad`` (:func:`zoom_minimum`).
+
+        Parameters
+        ----------
+        scale, bad : float
+            The factor of the kernel's value and the replacement of a non-finite one.
+        *search
+            The remaining arguments of :func:`zoom_minimum`.
+
+        Returns
+        -------
+        tuple of float
+            The boundary's and the interior's minimum.
+        """
+        return self.entry(self.params, float(scale), float(bad), *search)
+
+
+@jitable
+def polygon_point(t, is_path, vx, vy, ex, ey, L, cum):
+    """The point at arc-length fraction ``t`` of a polygon's boundary (mod 1) or of a
+    path (clipped to [0, 1]): :meth:`mechopt.analysis.task.Task.boundary_at` at one
+    point.
+
+    Parameters
+    ----------
+    t : float
+        The arc-length fraction.
+    is_path : bool
+        A path (two ends) rather than a closed polygon.
+    vx, vy, ex, ey, L, cum : ndarray
+        The edges (:attr:`mechopt.analysis.task.Task.edges`): start points, vectors
+        [unit], lengths [unit] and the vertices' arc-length fractions.
+
+    Returns
+    -------
+    x, y : float
+        The point [unit].
+    """
+    last = vx.size - 1
+    ti = min(max(t, 0.0), 1.0) if is_path else np.mod(t, 1.0)
+    k = min(max(np.searchsorted(cum, ti, side="right") - 1, 0), last)
+    s = (ti - cum[k]) / ((cum[k + 1] - cum[k]) if L[k] > 0 else 1.0)
+    return vx[k] + s * ex[k], vy[k] + s * ey[k]
+
+
+@jitable
+def polygon_contains(px, py, vx, vy, wy, ex, ey, L2, tol):
+    """Whether ``(px, py)`` lies inside a polygon or within ``tol`` of its boundary:
+    :meth:`mechopt.analysis.task.Task.contains` at one point (the even-odd rule, then
+    the distance to the edges; NaN propagating as in NumPy's clip, hypot and min).
+
+    Parameters
+    ----------
+    px, py : float
+        The point [unit].
+    vx, vy, wy, ex, ey, L2 : ndarray
+        The edges (:attr:`mechopt.analysis.task.Task.edges`): start points, the next
+        vertex's ordinate, vectors and squared lengths [unit, unit^2].
+    tol : float
+        :attr:`mechopt.analysis.task.Task.inside_tolerance` [unit].
+
+    Returns
+    -------
+    bool
+        Inside or on the boundary.
+    """
+    n = 0
+    for j in range(vx.size):
+        if ((vy[j] > py) != (wy[j] > py)) and (px < ex[j] * (py - vy[j]) / ey[j] + vx[j]):
+            n += 1
+    if n % 2 == 1:
+        return True
+    best = np.inf
+    for j in range(vx.size):
+        dx, dy = px - vx[j], py - vy[j]
+        s = (dx * ex[j] + dy * ey[j]) / L2[j]
+        if s < 0.0:
+            s = 0.0
+        elif s > 1.0:
+            s = 1.0
+        best = np.minimum(best, np.hypot(dx - s * ex[j], dy - s * ey[j]))
+    return best <= tol
+
+
+@jitable
+def _value(f, p, scale, bad, x, y):
+    """``scale * f(p, x, y)``, ``bad`` where that is not finite (``bad_to``)."""
+    v = scale * f(p, x, y)
+    return v if np.isfinite(v) else bad
+
+
+@jitable
+def _lower(best, v):
+    """``v`` where ``v < best`` (a NaN ``v`` never replaces ``best``)."""
+    return v if v < best else best
+
+
+@jitable
+def _first_min(v, j, amin, imin, seen_nan):
+    """One step of ``np.argmin``/``np.min`` over a row: the first lowest value, the
+    first NaN once one is seen. Returns ``(amin, imin, seen_nan)``."""
+    if seen_nan:
+        return amin, imin, True
+    if np.isnan(v):
+        return v, j, True
+    if j == 0 or v < amin:
+        return v, j, False
+    return amin, imin, False
+
+
+@jitable
+def zoom_minimum(f, p, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
+                 in_best, px0, py0, h0, gx, gy, in_levels):
+    """``(boundary minimum, interior minimum)`` of ``scale * f(p, x, y)`` (non-finite
+    values replaced by ``bad``) over a polygon or path task, refined by zooming: the
+    searches of :mod:`mechopt.analysis.sampling` for one function (module doc).
+
+    Boundary: from the arc-length fractions ``t0`` of the starts, one level per row of
+    ``offsets`` (each start's ``t + offsets[level]``, the start moved to its lowest
+    point), from ``tb_best`` (the samples' minimum). Interior: from ``(px0, py0)``,
+    ``in_levels`` levels of the points ``p + h gx, p + h gy`` kept inside (``tol``),
+    ``h`` from ``h0`` divided by ``(sqrt(gx.size) - 1) / 2`` a level, from ``in_best``.
+
+    Parameters
+    ----------
+    f : callable
+        The compiled point kernel ``f(p, x, y)``.
+    p : ndarray
+        Its parameters.
+    scale, bad : float
+        The factor of its value and the replacement of a non-finite one.
+    tb_best : float
+        The boundary samples' minimum.
+    t0 : ndarray
+        The boundary starts' arc-length fractions.
+    offsets : ndarray
+        The boundary zoom's offsets, one level per row.
+    is_path : bool
+        A path (two ends) rather than a closed polygon.
+    vx, vy, wy, ex, ey, L, L2, cum : ndarray
+        The edges (:attr:`mechopt.analysis.task.Task.edges`).
+    tol : float
+        :attr:`mechopt.analysis.task.Task.inside_tolerance` [unit].
+    in_best : float
+        The interior samples' minimum.
+    px0, py0 : ndarray
+        The interior starts [unit].
+    h0 : float
+        The interior grid's step [unit].
+    gx, gy : ndarray
+        The interior zoom's offsets (in steps), an ``n x n`` grid ravelled.
+    in_levels : int
+        Interior levels.
+
+    Returns
+    -------
+    tuple of float
+        ``(boundary minimum, interior minimum)``.
+    """
+    # boundary
+    t = t0.copy()
+    best_b = tb_best
+    for lev in range(offsets.shape[0]):
+        level_min, level_nan = np.inf, False
+        for r in range(t.size):
+            amin, imin, seen_nan = np.inf, 0, False
+            for j in range(offsets.shape[1]):
+                x, y = polygon_point(t[r] + offsets[lev, j], is_path, vx, vy, ex, ey, L, cum)
+                v = _value(f, p, scale, bad, x, y)
+                amin, imin, seen_nan = _first_min(v, j, amin, imin, seen_nan)
+            if seen_nan:
+                level_nan = True
+            elif amin < level_min:
+                level_min = amin
+            t[r] = t[r] + offsets[lev, imin]
+        best_b = _lower(best_b, np.nan if level_nan else level_min)
+    # interior
+    n = int(round(np.sqrt(gx.size)))
+    px, py = px0.copy(), py0.copy()
+    h = h0
+    best_i = in_best
+    for _ in range(in_levels):
+        level_min, level_nan = np.inf, False
+        for r in range(px.size):
+            amin, imin, seen_nan = np.inf, 0, False
+            for j in range(gx.size):
+                x, y = px[r] + h * gx[j], py[r] + h * gy[j]
+                if polygon_contains(x, y, vx, vy, wy, ex, ey, L2, tol):
+                    v = _value(f, p, scale, bad, x, y)
+                else:
+                    v = np.inf
+                amin, imin, seen_nan = _first_min(v, j, amin, imin, seen_nan)
+            if seen_nan:
+                level_nan = True
+            elif amin < level_min:
+                level_min = amin
+            px[r], py[r] = px[r] + h * gx[imin], py[r] + h * gy[imin]
+        best_i = _lower(best_i, np.nan if level_nan else level_min)
+        h = 2.0 * h / (n - 1)
+    return best_b, best_i
