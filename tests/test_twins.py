@@ -137,9 +137,16 @@ def test_task_boundary_and_contains_bit_for_bit(seed, n):
             bx, by = task.boundary_at(t)
             assert_same_bits(*both(mp, lambda: task.boundary_at(t)))
             assert_same_bits(*both(mp, lambda: task.boundary_at(t[:6].reshape(2, 3))))
-            # random points, points within rounding of the boundary, vertices, NaN and inf
-            x = np.concatenate([rng.uniform(-150, 150, 300), bx + rng.normal(0, 1e-9, bx.size), [np.nan, np.inf, 0.0]])
-            y = np.concatenate([rng.uniform(50, 300, 300), by + rng.normal(0, 1e-9, by.size), [0.0, 0.0, np.nan]])
+            # random points over the task's box widened by half its size each way (the task
+            # fills a good part of its box: both verdicts occur; over a fixed box a small
+            # random triangle could hold none of them), points within rounding of the
+            # boundary, vertices, NaN and inf
+            x0, x1, y0, y1 = task.bbox
+            w, h = x1 - x0, y1 - y0
+            x = np.concatenate([rng.uniform(x0 - w / 2, x1 + w / 2, 300), bx + rng.normal(0, 1e-9, bx.size),
+                                [np.nan, np.inf, 0.0]])
+            y = np.concatenate([rng.uniform(y0 - h / 2, y1 + h / 2, 300), by + rng.normal(0, 1e-9, by.size),
+                                [0.0, 0.0, np.nan]])
             assert_same_bits(*both(mp, lambda: task.contains(x, y)))
             assert_same_bits(*both(mp, lambda: task.contains(x[:6].reshape(3, 2), 170.0)))
             if task.is_region:

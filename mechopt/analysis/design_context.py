@@ -80,6 +80,12 @@ class DesignContext:
         """Number of boundary samples (the first ones of ``allx, ally``)."""
         return self.samples["bx"].size
 
+    @property
+    def _mechanism_frame(self) -> bool:
+        """Task points are the mechanism's own (:meth:`to_mech` is the identity): its
+        compiled zoom kernels, which take mechanism points, apply."""
+        return type(self.spec).to_mech is DesignSpec.to_mech
+
     def to_mech(self, x, y):
         """Task points in the mechanism's frame.
 
@@ -183,7 +189,7 @@ class DesignContext:
             The minimum.
         """
         refine = self.refine if refine is None else refine
-        if refine and type(self.spec).to_mech is DesignSpec.to_mech:  # the kernels take mechanism points
+        if refine and self._mechanism_frame:
             kernel = self.mech.zoom_kernel(quantity)
             both = None if kernel is None else _s.compiled_region_min(self.samples, kernel, scale, bad, vals)
             if both is not None:
@@ -248,7 +254,8 @@ class DesignContext:
             return self.mech.ik(*self.to_mech(x, y))
 
         if self.refine if refine is None else refine:
-            return self.leg_ranges(angles, refine=True)
+            kernel = self.mech.zoom_kernel("ik") if self._mechanism_frame else None
+            return _s.leg_ranges(self.samples, angles, True, kernel=kernel)
         return self.memo("joint_ranges_sampled", lambda: self.leg_ranges(angles, refine=False))
 
     # --- sharing between members -----------------------------------------------------------

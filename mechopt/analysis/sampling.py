@@ -368,16 +368,20 @@ def compiled_region_min(ctx, kernel, scale, bad, vals, k=3):
         px0, py0, levels = ctx["ix"][order], ctx["iy"][order], 3
     else:
         px0, py0, levels = np.zeros(0), np.zeros(0), 0
-    return kernel.minimum(scale, bad, tb_best, t0, offsets, task.is_path, vx, vy, wy, ex, ey, L, L2, cum,
-                          task.inside_tolerance, in_best, px0, py0, float(ctx["step"]), GX, GY, levels)
+    return kernel.run(float(scale), float(bad), tb_best, t0, offsets, task.is_path, vx, vy, wy, ex, ey, L, L2, cum,
+                      task.inside_tolerance, in_best, px0, py0, float(ctx["step"]), GX, GY, levels)
 
 
-def leg_ranges(ctx, legs, refine, bad=(np.inf, np.inf)):
+def leg_ranges(ctx, legs, refine, bad=(np.inf, np.inf), kernel=None):
     """``[(lo1, hi1), (lo2, hi2)]``: the range over the task's boundary of each of the
     two values ``legs(x, y)`` returns (one per leg: actuator or link angle), NaN
     replaced by ``bad[0]`` for the minimum and ``bad[1]`` for the maximum: the
     boundary minima (:func:`_boundary_search`) of ``q1, -q1, q2, -q2``, searched
-    together (:func:`minimise`: one call of ``legs`` per round, not four).
+    together (:func:`minimise`: one call of ``legs`` per round, not four); with
+    ``kernel`` (the mechanism's compiled zoom of the same two values,
+    :class:`mechopt.core.zoom.ZoomKernel`) the refinement runs compiled
+    (:func:`mechopt.core.zoom.zoom_ranges`, the same minima bit for bit) on a polygon or
+    path task.
 
     Parameters
     ----------
@@ -389,6 +393,8 @@ def leg_ranges(ctx, legs, refine, bad=(np.inf, np.inf)):
         Refine by zooming.
     bad : tuple of float
         Replacements of NaN.
+    kernel : mechopt.core.zoom.ZoomKernel, optional
+        The compiled zoom of ``legs``.
 
     Returns
     -------
@@ -399,5 +405,14 @@ def leg_ranges(ctx, legs, refine, bad=(np.inf, np.inf)):
         q1, q2 = legs(x, y)[:2]
         return np.stack([bad_to(q1, bad[0]), bad_to(-q1, bad[1]), bad_to(q2, bad[0]), bad_to(-q2, bad[1])])
 
-    m = minimise(rows, [_boundary_search(ctx, rows(ctx["bx"], ctx["by"]), refine)], ctx["task"])[0]
+    vals = rows(ctx["bx"], ctx["by"])
+    task = ctx["task"]
+    if kernel is not None and refine and ctx["tb"].size and vals.shape[1] and task.kind != "circle":
+        vx, vy, _, ex, ey, _, L, cum = task.edges
+        t0 = ctx["tb"][np.concatenate([_lowest(v, 3) for v in vals])]  # as _boundary_search
+        m = [float(v) for v in kernel.run(float(bad[0]), float(bad[1]), vals.min(axis=1), t0,
+                                          _boundary_offset_rows(ctx["tb"].size, 4, 17), task.is_path,
+                                          vx, vy, ex, ey, L, cum)]
+    else:
+        m = minimise(rows, [_boundary_search(ctx, vals, refine)], task)[0]
     return [(m[0], -m[1]), (m[2], -m[3])]

@@ -172,10 +172,12 @@ def lci(J):
         _LCI_TWIN(flat, out)
         return out.reshape(J.shape[:-2])
     with Twin.numpy_timer():
-        a, b, c, d, _ = _scaled_entries(J)
+        # on arrays even for one matrix: NumPy's scalar arithmetic (a 2 x 2 J gives
+        # scalar entries) differs from its array arithmetic in the last bit at times
+        a, b, c, d, _ = _scaled_entries(J[None] if J.shape == (2, 2) else J)
         with np.errstate(invalid="ignore", divide="ignore"):
             out = lci_of_entries(a, b, c, d)
-        return np.where(np.isfinite(out), out, 0.0)
+        return np.where(np.isfinite(out), out, 0.0).reshape(J.shape[:-2])
 
 
 @jitable

@@ -25,6 +25,7 @@ lives in a directory named by a digest of every source file of the package
 """
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import importlib.util
 import os
@@ -34,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["HAVE_NUMBA", "numba_wanted", "load_numba", "use_numba", "njit", "jitable", "select", "cache_dir",
-           "Twin", "TWIN_AFTER_SECONDS"]
+           "Twin", "TWIN_AFTER_SECONDS", "objmode"]
 
 #: the environment variable that disables numba
 ENV_VAR = "MECHOPT_NO_NUMBA"
@@ -112,6 +113,8 @@ def load_numba():
             return impl
 
         _numba = numba
+        global objmode
+        objmode = numba.objmode
         for fn, options in _pending:
             register_jitable(**options)(fn)
         _pending.clear()
@@ -161,6 +164,27 @@ def select(cond, a, b):
         The selection.
     """
     return np.where(cond, a, b)
+
+
+def objmode(**types):
+    """A block of a compiled kernel that the interpreter runs (numba's ``objmode``,
+    the variables it assigns typed by ``types``, e.g. ``a="float64[:]"``): where a
+    kernel needs NumPy's own functions (its ``arccos`` and ``arctan2`` differ from the
+    C library's in the last bit, :class:`Twin`). Before numba is loaded, and in plain
+    Python, an empty context. Compiled code refers to it as ``jit.objmode`` (the name is
+    looked up when a kernel compiles, after :func:`load_numba`).
+
+    Parameters
+    ----------
+    **types
+        numba type strings of the variables the block assigns.
+
+    Returns
+    -------
+    contextlib.AbstractContextManager
+        An empty context.
+    """
+    return contextlib.nullcontext()
 
 
 def jitable(fn):

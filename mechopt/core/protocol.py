@@ -486,15 +486,17 @@ class PlanarMechanism(ABC):
     def zoom_kernel(self, quantity):
         """The compiled zoom of :mod:`mechopt.core.zoom` for ``quantity`` at this
         mechanism's lengths: ``"lci"`` (:meth:`lci` of :meth:`jacobian`) or ``"type2"``
-        (:meth:`type2_function`), as a :class:`~mechopt.core.zoom.ZoomKernel` whose
-        searches give the NumPy searches' minima bit for bit; None where the mechanism
-        has none (default), for an unknown quantity, or when the compiled twins do not
-        run (:meth:`mechopt.core.jit.Twin.compiled`).
+        (:meth:`type2_function`), minima by :func:`~mechopt.core.zoom.zoom_minimum`;
+        ``"ik"`` (the two actuator coordinates of :meth:`ik`), ranges by
+        :func:`~mechopt.core.zoom.zoom_ranges`; as a :class:`~mechopt.core.zoom.ZoomKernel`
+        whose searches give the NumPy searches' results bit for bit. None where the
+        mechanism has none (default), for an unknown quantity, or when the compiled
+        twins do not run (:meth:`mechopt.core.jit.Twin.compiled`).
 
         Parameters
         ----------
         quantity : str
-            ``"lci"`` or ``"type2"``.
+            ``"lci"``, ``"type2"`` or ``"ik"``.
 
         Returns
         -------

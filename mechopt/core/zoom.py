@@ -31,9 +31,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mechopt.core import jit
 from mechopt.core.jit import jitable
 
-__all__ = ["ZoomKernel", "polygon_point", "polygon_contains", "zoom_minimum"]
+__all__ = ["ZoomKernel", "polygon_point", "polygon_contains", "zoom_minimum", "zoom_ranges"]
 
 
 @dataclass(frozen=True)
@@ -45,7 +46,7 @@ class ZoomKernel:
     Parameters
     ----------
     entry : mechopt.core.jit.Twin
-        The compiled search, called as ``entry(params, scale, bad, *search)``.
+        The compiled search, called as ``entry(params, *search)``.
     params : ndarray
         The point kernel's parameters (lengths and signs).
     """
@@ -53,23 +54,22 @@ class ZoomKernel:
     entry: object
     params: np.ndarray
 
-    def minimum(self, scale, bad, *search):
-        """``(boundary minimum, interior minimum)`` of ``scale * f``, NaN replaced by
-        ``bad`` (:func:`zoom_minimum`).
+    def run(self, *search):
+        """The compiled search with this kernel's parameters: :func:`zoom_minimum`'s or
+        :func:`zoom_ranges`' result (the quantity's, :meth:`PlanarMechanism.zoom_kernel
+        <mechopt.core.protocol.PlanarMechanism.zoom_kernel>`).
 
         Parameters
         ----------
-        scale, bad : float
-            The factor of the kernel's value and the replacement of a non-finite one.
         *search
-            The remaining arguments of :func:`zoom_minimum`.
+            The arguments of :func:`zoom_minimum` or :func:`zoom_ranges` after ``p``.
 
         Returns
         -------
-        tuple of float
-            The boundary's and the interior's minimum.
+        tuple of float or ndarray
+            The search's minima.
         """
-        return self.entry(self.params, float(scale), float(bad), *search)
+        return self.entry(self.params, *search)
 
 
 @jitable
@@ -255,3 +255,75 @@ def zoom_minimum(f, p, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex
         best_i = _lower(best_i, np.nan if level_nan else level_min)
         h = 2.0 * h / (n - 1)
     return best_b, best_i
+
+
+@jitable
+def zoom_ranges(arguments, angles, p, bad_lo, bad_hi, best, t0, offsets, is_path, vx, vy, ex, ey, L, cum):
+    """The boundary minima of ``q1, -q1, q2, -q2`` (rows 0 to 3; NaN replaced by
+    ``bad_lo`` in the minima of ``q_i``, ``bad_hi`` in those of ``-q_i``), ``q_i`` two
+    angles whose formulas need NumPy's ``arccos`` and ``arctan2``, refined by zooming:
+    :func:`mechopt.analysis.sampling.leg_ranges`' search bit for bit (module doc).
+
+    Each level's points are computed here, ``arguments(p, x, y) -> (k1, k2, y1, x1, y2,
+    x2, ok)`` at each of them, then NumPy's ``arccos(k_i)`` and ``arctan2(y_i, x_i)`` of
+    all of them in one block run by the interpreter (:func:`mechopt.core.jit.objmode`;
+    NumPy's value at a point does not depend on the array around it), then
+    ``angles(p, alpha1, alpha2, beta1, beta2, ok) -> (q1, q2)``.
+
+    Parameters
+    ----------
+    arguments, angles : callable
+        The compiled point kernels (above).
+    p : ndarray
+        Their parameters.
+    bad_lo, bad_hi : float
+        Replacements of NaN in the minima of ``q_i`` and of ``-q_i``.
+    best : ndarray
+        The four rows' minima over the boundary samples.
+    t0 : ndarray
+        The starts' arc-length fractions, the same number per row, row after row.
+    offsets : ndarray
+        The boundary zoom's offsets, one level per row.
+    is_path : bool
+        A path (two ends) rather than a closed polygon.
+    vx, vy, ex, ey, L, cum : ndarray
+        The edges (:attr:`mechopt.analysis.task.Task.edges`).
+
+    Returns
+    -------
+    ndarray
+        The four minima.
+    """
+    t = t0.copy()
+    best = best.copy()
+    k = t.size // 4
+    n = offsets.shape[1]
+    m = t.size * n
+    k1, k2, y1, x1, y2, x2 = np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m)
+    ok = np.empty(m, dtype=np.bool_)
+    for lev in range(offsets.shape[0]):
+        for s in range(t.size):
+            for j in range(n):
+                i = s * n + j
+                x, y = polygon_point(t[s] + offsets[lev, j], is_path, vx, vy, ex, ey, L, cum)
+                k1[i], k2[i], y1[i], x1[i], y2[i], x2[i], ok[i] = arguments(p, x, y)
+        with jit.objmode(a1="float64[:]", a2="float64[:]", b1="float64[:]", b2="float64[:]"):
+            a1, a2, b1, b2 = np.arccos(k1), np.arccos(k2), np.arctan2(y1, x1), np.arctan2(y2, x2)
+        for r in range(4):
+            level_min, level_nan = np.inf, False
+            for s in range(r * k, (r + 1) * k):
+                amin, imin, seen_nan = np.inf, 0, False
+                for j in range(n):
+                    i = s * n + j
+                    q1, q2 = angles(p, a1[i], a2[i], b1[i], b2[i], ok[i])
+                    q = q1 if r < 2 else q2
+                    v = (q if r % 2 == 0 else -q)
+                    v = v if np.isfinite(v) else (bad_lo if r % 2 == 0 else bad_hi)
+                    amin, imin, seen_nan = _first_min(v, j, amin, imin, seen_nan)
+                if seen_nan:
+                    level_nan = True
+                elif amin < level_min:
+                    level_min = amin
+                t[s] = t[s] + offsets[lev, imin]
+            best[r] = _lower(best[r], np.nan if level_nan else level_min)
+    return best

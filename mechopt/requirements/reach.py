@@ -65,7 +65,11 @@ class Reach(Requirement):
             return float(clr.min())
         D = ctx.diameter
         margin = min(float(clr[:ctx.n_boundary].min()) - 0.5 * ctx.samples["gap"], float(clr.min()))
+        x0, x1, y0, y1 = ctx.task.bbox
+        far = 2.0 * _v.ROUNDING * D
         for hx, hy in ctx.spec.holes(ctx.mech):
+            if hx < x0 - far or hx > x1 + far or hy < y0 - far or hy > y1 + far:
+                continue  # farther than 2 ROUNDING D from the task's box: depth < -ROUNDING D below
             depth = float(ctx.task.signed_distance(hx, hy))
             if depth >= -_v.ROUNDING * D:
                 margin = min(margin, -max(depth, _v.RESOLUTION * D))

@@ -26,11 +26,11 @@ from mechopt.core import validation as _v
 from mechopt.core.bodies import GROUND, Body, Shapes
 from mechopt.core.design_spec import DesignSpec
 from mechopt.core.error_spec import ErrorSpec
-from mechopt.core.jit import Twin, jitable
+from mechopt.core.jit import Twin, jitable, select
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.indices import lci_of_matrix
 from mechopt.core.protocol import ASSEMBLY_MODES, POINT_MAX, Parameter, PlanarMechanism, as_points
-from mechopt.core.zoom import ZoomKernel, zoom_minimum
+from mechopt.core.zoom import ZoomKernel, zoom_minimum, zoom_ranges
 
 __all__ = ["FiveBar", "FiveBarDesignSpec", "FiveBarErrorSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows",
            "legs_closure", "legs_closure_enclosure", "legs_actuator_enclosure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box",
@@ -117,10 +117,11 @@ def _twin_legs(r3, legs):
     if not Twin.compiled():
         return None
     (a1, c1, s1), (a2, c2, s2) = legs
-    v = (r3, a1, c1, s1, a2, c2, s2)
-    if any(np.ndim(t) for t in v):
+    try:  # an array among them makes a 2-d array, or a ragged one (ValueError)
+        p = np.array((r3, a1, c1, s1, a2, c2, s2), float)
+    except ValueError:
         return None
-    return np.array(v, float)
+    return p if p.ndim == 1 else None
 
 
 @jitable
@@ -174,24 +175,54 @@ def _closure_loop(x, y, legs, A, b, ok):
         b[i, 1] = (b2x - r3) * a2y - b2y * a2x
 
 
+@jitable
+def _ik_cosines_at(legs, x, y):
+    """:func:`legs_ik` at one point up to its angles (``legs = [r3, a1, c1, s1, a2, c2,
+    s2]``): ``(k1, k2, ok)``, the clipped cosines of ``alpha_i`` (0 where a leg does
+    not assemble) and :func:`legs_reachable`. ``arccos`` and ``arctan2`` stay with NumPy
+    (:func:`_ik_angles`): its vectorised versions (SIMD, where the CPU has them) differ
+    from the C library's, which a compiled loop calls, in the last bit at about one
+    point in ten."""
+    r3, a1, c1, a2, c2 = legs[0], legs[1], legs[2], legs[4], legs[5]
+    d1, d2 = np.hypot(x + r3, y), np.hypot(x - r3, y)
+    ok = ((d1 >= abs(a1 - c1)) and (d1 <= a1 + c1) and (d2 >= abs(a2 - c2)) and (d2 <= a2 + c2)
+          and d1 > 0 and d2 > 0)
+    if not ok:
+        return 0.0, 0.0, False
+    return (min(max((a1 * a1 + d1 * d1 - c1 * c1) / (2 * a1 * d1), -1.0), 1.0),
+            min(max((a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2), -1.0), 1.0), True)
+
+
+@jitable
+def _ik_angles(s1, s2, alpha1, alpha2, beta1, beta2, ok):
+    """``theta1 = beta1 + s1 alpha1``, ``theta2 = pi - beta2 + s2 alpha2`` (Le eq.
+    13-18; NaN where not ``ok``): :func:`legs_ik`'s last step, on arrays or (compiled)
+    on floats."""
+    return (select(ok, beta1 + s1 * alpha1, np.nan), select(ok, np.pi - beta2 + s2 * alpha2, np.nan))
+
+
+@jitable
+def _ik_arguments(legs, x, y):
+    """What the five-bar's crank angles need from NumPy at one point (compiled zooms,
+    :func:`mechopt.core.zoom.zoom_ranges`): ``(k1, k2, y, x + r3, y, r3 - x, ok)``, the
+    ``arccos`` arguments and the ``arctan2`` ones of :func:`legs_ik`."""
+    x, y = _point(x), _point(y)
+    k1, k2, ok = _ik_cosines_at(legs, x, y)
+    return k1, k2, y, x + legs[0], y, legs[0] - x, ok
+
+
+@jitable
+def _ik_from(legs, alpha1, alpha2, beta1, beta2, ok):
+    """The crank angles from NumPy's ``arccos``/``arctan2`` of :func:`_ik_arguments`
+    (:func:`_ik_angles`)."""
+    return _ik_angles(legs[3], legs[6], alpha1, alpha2, beta1, beta2, ok)
+
+
 def _ik_loop(x, y, legs, k1, k2, ok):
     """:func:`legs_ik` up to its angles, point by point (compiled, :class:`mechopt.core.jit.Twin`;
-    ``legs = [r3, a1, c1, s1, a2, c2, s2]``): the clipped cosines of ``alpha_i`` into
-    ``k1, k2`` (0 where a leg does not assemble), :func:`legs_reachable` into ``ok``.
-    ``arccos`` and ``arctan2`` stay with NumPy (:func:`legs_ik`): its vectorised
-    versions (SIMD, where the CPU has them) differ from the C library's, which a
-    compiled loop calls, in the last bit at about one point in ten."""
-    r3, a1, c1, a2, c2 = legs[0], legs[1], legs[2], legs[4], legs[5]
+    :func:`_ik_cosines_at`): the clipped cosines into ``k1, k2``, the reachability into ``ok``."""
     for i in range(x.size):
-        px, py = x[i], y[i]
-        d1, d2 = np.hypot(px + r3, py), np.hypot(px - r3, py)
-        ok[i] = ((d1 >= abs(a1 - c1)) and (d1 <= a1 + c1) and (d2 >= abs(a2 - c2)) and (d2 <= a2 + c2)
-                 and d1 > 0 and d2 > 0)
-        if not ok[i]:
-            k1[i], k2[i] = 0.0, 0.0
-            continue
-        k1[i] = min(max((a1 * a1 + d1 * d1 - c1 * c1) / (2 * a1 * d1), -1.0), 1.0)
-        k2[i] = min(max((a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2), -1.0), 1.0)
+        k1[i], k2[i], ok[i] = _ik_cosines_at(legs, x[i], y[i])
 
 
 @jitable
@@ -242,10 +273,17 @@ def _type2_zoom_loop(legs, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy
                         cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
 
 
+def _ik_ranges_loop(legs, bad_lo, bad_hi, best, t0, offsets, is_path, vx, vy, ex, ey, L, cum):
+    """:func:`mechopt.core.zoom.zoom_ranges` of the crank angles (:func:`_ik_arguments`,
+    :func:`_ik_from`; compiled, :class:`Twin`)."""
+    return zoom_ranges(_ik_arguments, _ik_from, legs, bad_lo, bad_hi, best, t0, offsets, is_path, vx, vy, ex, ey,
+                       L, cum)
+
+
 _ELBOWS_TWIN = Twin(_elbows_loop)
 _IK_TWIN = Twin(_ik_loop)
 _CLOSURE_TWIN = Twin(_closure_loop)
-_ZOOMS = {"lci": Twin(_lci_zoom_loop), "type2": Twin(_type2_zoom_loop)}
+_ZOOMS = {"lci": Twin(_lci_zoom_loop), "type2": Twin(_type2_zoom_loop), "ik": Twin(_ik_ranges_loop)}
 
 
 def legs_closure(x, y, r3, legs):
@@ -514,13 +552,8 @@ def legs_ik(x, y, r3, legs):
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # clipped below
             k1 = np.clip((a1 * a1 + d1 * d1 - c1 * c1) / (2 * a1 * d1), -1.0, 1.0)
             k2 = np.clip((a2 * a2 + d2 * d2 - c2 * c2) / (2 * a2 * d2), -1.0, 1.0)
-    alpha1 = np.arccos(k1)
-    alpha2 = np.arccos(k2)
-    beta1 = np.arctan2(y, x + r3)
-    beta2 = np.arctan2(y, r3 - x)
-    th1 = beta1 + s1 * alpha1
-    th2 = np.pi - beta2 + s2 * alpha2
-    return np.where(ok, th1, np.nan), np.where(ok, th2, np.nan), ok
+    th1, th2 = _ik_angles(s1, s2, np.arccos(k1), np.arccos(k2), np.arctan2(y, x + r3), np.arctan2(y, r3 - x), ok)
+    return th1, th2, ok
 
 
 def legs_fk(theta1, theta2, r3, legs, assembly: str = "up"):
@@ -1280,13 +1313,14 @@ class FiveBar(PlanarMechanism):
         return legs_tree_configuration(x, y, self.r3, self._legs())
 
     def zoom_kernel(self, quantity):
-        """The compiled zooms of the LCI and the type-II function (:func:`_lci_at`,
-        :func:`_type2_at`; the protocol's :meth:`~mechopt.core.protocol.PlanarMechanism.zoom_kernel`).
+        """The compiled zooms of the LCI, the type-II function and the crank angles
+        (:func:`_lci_at`, :func:`_type2_at`, :func:`_ik_arguments`; the protocol's
+        :meth:`~mechopt.core.protocol.PlanarMechanism.zoom_kernel`).
 
         Parameters
         ----------
         quantity : str
-            ``"lci"`` or ``"type2"``.
+            ``"lci"``, ``"type2"`` or ``"ik"``.
 
         Returns
         -------
