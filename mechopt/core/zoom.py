@@ -166,6 +166,15 @@ def _first_min(v, j, amin, imin, seen_nan):
 
 
 @jitable
+def _level(level_min, level_nan, amin, seen_nan):
+    """A level's ``min`` over its starts' rows (NaN if any value is NaN): with one
+    start's ``(amin, seen_nan)`` of :func:`_first_min`. Returns ``(level_min, level_nan)``."""
+    if seen_nan:
+        return level_min, True
+    return (amin if amin < level_min else level_min), level_nan
+
+
+@jitable
 def zoom_minimum(f, p, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
                  in_best, px0, py0, h0, gx, gy, in_levels):
     """``(boundary minimum, interior minimum)`` of ``scale * f(p, x, y)`` (non-finite
@@ -225,10 +234,7 @@ def zoom_minimum(f, p, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex
                 x, y = polygon_point(t[r] + offsets[lev, j], is_path, vx, vy, ex, ey, L, cum)
                 v = _value(f, p, scale, bad, x, y)
                 amin, imin, seen_nan = _first_min(v, j, amin, imin, seen_nan)
-            if seen_nan:
-                level_nan = True
-            elif amin < level_min:
-                level_min = amin
+            level_min, level_nan = _level(level_min, level_nan, amin, seen_nan)
             t[r] = t[r] + offsets[lev, imin]
         best_b = _lower(best_b, np.nan if level_nan else level_min)
     # interior
@@ -247,10 +253,7 @@ def zoom_minimum(f, p, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex
                 else:
                     v = np.inf
                 amin, imin, seen_nan = _first_min(v, j, amin, imin, seen_nan)
-            if seen_nan:
-                level_nan = True
-            elif amin < level_min:
-                level_min = amin
+            level_min, level_nan = _level(level_min, level_nan, amin, seen_nan)
             px[r], py[r] = px[r] + h * gx[imin], py[r] + h * gy[imin]
         best_i = _lower(best_i, np.nan if level_nan else level_min)
         h = 2.0 * h / (n - 1)
@@ -320,10 +323,7 @@ def zoom_ranges(arguments, angles, p, bad_lo, bad_hi, best, t0, offsets, is_path
                     v = (q if r % 2 == 0 else -q)
                     v = v if np.isfinite(v) else (bad_lo if r % 2 == 0 else bad_hi)
                     amin, imin, seen_nan = _first_min(v, j, amin, imin, seen_nan)
-                if seen_nan:
-                    level_nan = True
-                elif amin < level_min:
-                    level_min = amin
+                level_min, level_nan = _level(level_min, level_nan, amin, seen_nan)
                 t[s] = t[s] + offsets[lev, imin]
             best[r] = _lower(best[r], np.nan if level_nan else level_min)
     return best
