@@ -42,3 +42,28 @@ def test_contains_agrees_with_matplotlib_away_from_the_boundary_and_with_its_def
     # the boundary itself is inside, and shapes broadcast
     assert task.contains(bx, by).all()
     assert task.contains(x[:600].reshape(3, 200), y[:600].reshape(3, 200)).shape == (3, 200)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 10**6), st.integers(3, 12), st.integers(8, 3000), st.booleans())
+def test_boundary_params_are_their_definition_bit_for_bit(seed, n, count, path):
+    """``Task.boundary_params(count)`` (vectorised) against its definition edge by edge:
+    ``m_i = max(1, ceil(count L_i / total))`` samples on edge ``i`` at the fractions
+    ``cum_i + (cum_{i+1} - cum_i) k / m_i``, ``k < m_i`` (a path's last point too), and
+    the largest gap ``max_i L_i / m_i``: the same floats bit for bit."""
+    V = _star(seed, n)
+    task = Task.path(V) if path else Task.polygon(V)
+    pts = V if path else np.vstack([V, V[:1]])
+    L = np.hypot(*np.diff(pts, axis=0).T)
+    total = L.sum()
+    cum = np.r_[0.0, np.cumsum(L)] / total
+    ref, gap = [], 0.0
+    for i, li in enumerate(L):
+        m = max(1, int(np.ceil(count * li / total)))
+        ref.append(cum[i] + (cum[i + 1] - cum[i]) * np.arange(m) / m)
+        gap = max(gap, li / m)
+    if path:
+        ref.append(np.ones(1))
+    t, g = task.boundary_params(count)
+    assert t.tobytes() == np.concatenate(ref).tobytes()
+    assert float(g) == float(gap)

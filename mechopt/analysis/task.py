@@ -296,7 +296,7 @@ class Task:
         """An open polyline (:meth:`path`): sampled along its length like a boundary."""
         return self.kind == "path"
 
-    @property
+    @cached_property
     def bbox(self):
         if self.kind == "circle":
             (cx, cy), r = self.center, self.radius
@@ -452,17 +452,15 @@ class Task:
         if self.kind == "circle":
             t = np.arange(n) / n
             return t, 2 * self.radius * math.sin(math.pi / n)
-        L = self.edges[6]
+        L, cum = self.edges[6], self.edges[7]
         total = L.sum()
-        cum = np.r_[0.0, np.cumsum(L)] / total
-        ts, gap = [], 0.0
-        for i, li in enumerate(L):
-            m = max(1, int(math.ceil(n * li / total)))
-            ts.append(cum[i] + (cum[i + 1] - cum[i]) * np.arange(m) / m)
-            gap = max(gap, li / m)
+        # m_i samples on edge i at fractions cum_i + (cum_{i+1} - cum_i) k / m_i, k < m_i
+        m = np.maximum(1, np.ceil(n * L / total).astype(int))
+        k = np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m)
+        t = np.repeat(cum[:-1], m) + np.repeat(np.diff(cum), m) * k / np.repeat(m, m)
         if self.is_path:  # its last point too (a polygon's is its first)
-            ts.append(np.ones(1))
-        return np.concatenate(ts), gap
+            t = np.r_[t, 1.0]
+        return t, max(0.0, float((L / m).max()))
 
     def contains(self, x, y):
         """Points inside or on the boundary (to rounding).

@@ -127,6 +127,11 @@ def polygon_contains(px, py, vx, vy, wy, ex, ey, L2, tol):
             n += 1
     if n % 2 == 1:
         return True
+    # no NaN can arise (a finite point, edges of positive length): the first edge within
+    # tol decides, as the minimum over all would
+    early = np.isfinite(px) and np.isfinite(py)
+    for j in range(vx.size):
+        early = early and L2[j] > 0.0
     best = np.inf
     for j in range(vx.size):
         dx, dy = px - vx[j], py - vy[j]
@@ -135,7 +140,10 @@ def polygon_contains(px, py, vx, vy, wy, ex, ey, L2, tol):
             s = 0.0
         elif s > 1.0:
             s = 1.0
-        best = np.minimum(best, np.hypot(dx - s * ex[j], dy - s * ey[j]))
+        d = np.hypot(dx - s * ex[j], dy - s * ey[j])
+        if early and d <= tol:
+            return True
+        best = np.minimum(best, d)
     return best <= tol
 
 
