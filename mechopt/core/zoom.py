@@ -128,12 +128,21 @@ def polygon_contains(px, py, vx, vy, wy, ex, ey, L2, tol):
     if n % 2 == 1:
         return True
     # no NaN can arise (a finite point, edges of positive length): the first edge within
-    # tol decides, as the minimum over all would
+    # tol decides, as the minimum over all would; and an edge whose box, widened by 2 tol
+    # and by 1e-14 times the magnitudes involved (~45 ulps: more than the rounding of
+    # the distance computed below and of the box's corner v + e), does not hold the
+    # point is farther than tol in computed distance too, so it cannot decide
     early = np.isfinite(px) and np.isfinite(py)
     for j in range(vx.size):
         early = early and L2[j] > 0.0
     best = np.inf
     for j in range(vx.size):
+        if early:
+            wx = vx[j] + ex[j]
+            m = 2.0 * tol + 1e-14 * (abs(px) + abs(py) + abs(vx[j]) + abs(vy[j]) + abs(ex[j]) + abs(ey[j]))
+            if (px < min(vx[j], wx) - m or px > max(vx[j], wx) + m
+                    or py < min(vy[j], wy[j]) - m or py > max(vy[j], wy[j]) + m):
+                continue
         dx, dy = px - vx[j], py - vy[j]
         s = (dx * ex[j] + dy * ey[j]) / L2[j]
         if s < 0.0:
