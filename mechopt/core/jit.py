@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["HAVE_NUMBA", "numba_wanted", "load_numba", "use_numba", "njit", "jitable", "select", "cache_dir",
-           "Twin", "TWIN_AFTER_SECONDS", "objmode"]
+           "Twin", "TWIN_AFTER_SECONDS", "objmode", "twin_params"]
 
 #: the environment variable that disables numba
 ENV_VAR = "MECHOPT_NO_NUMBA"
@@ -307,6 +307,30 @@ class Twin:
             The timer.
         """
         return _NumpyTimer()
+
+
+def twin_params(values):
+    """``values`` as the float array a compiled twin takes, when the twins run
+    (:meth:`Twin.compiled`) and every value is a number; None otherwise (lengths as
+    arrays, a caller broadcasting designs: the NumPy path).
+
+    Parameters
+    ----------
+    values : sequence
+        Numbers (lengths, signs), or some arrays.
+
+    Returns
+    -------
+    ndarray or None
+        The 1-d float array, or None.
+    """
+    if not Twin.compiled():
+        return None
+    try:  # an array among them makes a 2-d array, or a ragged one (ValueError)
+        p = np.array(values, float)
+    except ValueError:
+        return None
+    return p if p.ndim == 1 else None
 
 
 class _NumpyTimer:

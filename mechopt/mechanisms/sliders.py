@@ -72,7 +72,7 @@ from mechopt.core import rigid_bodies as _b
 from mechopt.core import geometry as _g
 from mechopt.core import interval as _iv
 from mechopt.core import validation as _v
-from mechopt.core.jit import Twin
+from mechopt.core.jit import Twin, twin_params
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.error_spec import ErrorSpec
 from mechopt.core.protocol import ASSEMBLY_MODES, PlanarMechanism, as_points
@@ -549,10 +549,8 @@ class TwoSliderMechanism(PlanarMechanism):
         otherwise (the NumPy path)."""
         (lo1, hi1), (lo2, hi2) = self._lims
         t = self._stroke_tol
-        v = (self._g[0], self._g[1], self._L, self._s[0], self._s[1], self._e, lo1 - t, hi1 + t, lo2 - t, hi2 + t)
-        if not Twin.compiled() or any(np.ndim(u) for u in v):
-            return None
-        return np.array(v, float)
+        return twin_params((self._g[0], self._g[1], self._L, self._s[0], self._s[1], self._e,
+                            lo1 - t, hi1 + t, lo2 - t, hi2 + t))
 
     def closure_enclosure(self, x, y, lengths=None):
         """Interval enclosure of :meth:`closure` over boxes: with ``u_i = x - g_i`` and

@@ -26,7 +26,7 @@ from mechopt.core import validation as _v
 from mechopt.core.bodies import GROUND, Body, Shapes
 from mechopt.core.design_spec import DesignSpec
 from mechopt.core.error_spec import ErrorSpec
-from mechopt.core.jit import Twin, jitable, select
+from mechopt.core.jit import Twin, jitable, select, twin_params
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.indices import lci_of_matrix
 from mechopt.core.protocol import ASSEMBLY_MODES, POINT_MAX, Parameter, PlanarMechanism, as_points
@@ -114,14 +114,8 @@ def _twin_legs(r3, legs):
     """``[r3, a1, c1, s1, a2, c2, s2]`` for the compiled twins when they run
     (:meth:`mechopt.core.jit.Twin.compiled`) and every length is a number; None otherwise
     (lengths as arrays, a caller broadcasting designs: the NumPy path)."""
-    if not Twin.compiled():
-        return None
     (a1, c1, s1), (a2, c2, s2) = legs
-    try:  # an array among them makes a 2-d array, or a ragged one (ValueError)
-        p = np.array((r3, a1, c1, s1, a2, c2, s2), float)
-    except ValueError:
-        return None
-    return p if p.ndim == 1 else None
+    return twin_params((r3, a1, c1, s1, a2, c2, s2))
 
 
 @jitable
