@@ -24,6 +24,7 @@ from mechopt.core import indices as ix
 from mechopt.core import jit
 from mechopt.mechanisms.five_bar.model import MODES
 from mechopt.requirements import Requirements
+from mechopt.requirements.speed import _box_rows
 
 pytestmark = pytest.mark.skipif(not jit.HAVE_NUMBA, reason="the compiled zoom is a numba loop (the fast extra)")
 
@@ -164,3 +165,63 @@ def test_compiled_crank_ranges_refine():
     got = _s.leg_ranges(ctx.samples, ctx.mech.ik, True, kernel=ctx.mech.zoom_kernel("ik"))
     assert sum(g[1] - g[0] - (s[1] - s[0]) for g, s in zip(got, sampled)) > 0.01
     assert all(g[0] <= s[0] and g[1] >= s[1] for g, s in zip(got, sampled))
+
+
+SLIDER_CASES = [("biglide", ("l1", "l2")), ("gantry", ("d1", "l"))]
+
+
+def _slider_parts(ev, v, sampling):
+    """The two-slider mechanisms' LCI, type-II (times +1 and -1) and box speed/force rows:
+    boundary and interior minima of the NumPy searches over the mechanism's public
+    methods and of the compiled zoom (None where no kernel)."""
+    jit.load_numba()
+    ctx = ev.context(v, sampling)
+    m = ctx.mech
+    box = _box_rows(ctx.jacobian)
+    cases = [(m.zoom_kernel("lci"), 1.0, 0.0, lambda x, y: bad_to(ix.lci(m.jacobian(x, y)), 0.0), ctx.lci)]
+    for s0 in (1.0, -1.0):
+        cases.append((m.zoom_kernel("type2"), s0, -1.0, lambda x, y, s0=s0: bad_to(s0 * m.type2_function(x, y), -1.0),
+                      bad_to(s0 * ctx.type2_raw, -1.0)))
+    for r in range(4):
+        cases.append((m.zoom_kernel("box").with_row(r), 1.0, 0.0,
+                      lambda x, y, r=r: _box_rows(m.jacobian(x, y))[r], box[r]))
+    ref, got = [], []
+    for kernel, scale, bad, F, vals in cases:
+        ref.append(_numpy_parts(ctx, F, np.ascontiguousarray(vals)))
+        got.append(_s.compiled_region_min(ctx.samples, kernel, scale, bad, np.ascontiguousarray(vals)))
+    return ref, got
+
+
+@pytest.mark.parametrize("mech,names", SLIDER_CASES)
+@pytest.mark.parametrize("task", ["rect", "star", "path"])
+@settings(max_examples=15, deadline=None)
+@given(a=st.floats(0.05, 1.5), b=st.floats(0.05, 3.0), mode=st.integers(0, 3), fine=st.booleans())
+def test_two_slider_kernels_give_the_numpy_minima_bit_for_bit(mech, names, task, a, b, mode, fine):
+    """Biglide and gantry (their strokes derived from the task), the guide distance ``a``
+    times the task's size and the link ``1 + b`` times that (longer, so that the links
+    meet): the LCI, the type-II function and the four box speed/force factors."""
+    ev = DesignEvaluator(mech, TASKS[task], Requirements(min_lci=0.3), ("size", "min-lci"), max_length=2000.0)
+    x, y = ev.task.reference
+    D = ev.task.diameter
+    v = {names[0]: a * D, names[1]: (1.0 + b) * a * D, "mode": ev.spec.modes[mode], "task_x": float(x),
+         "task_y": float(y)}
+    ref, got = _slider_parts(ev, v, Sampling.fine() if fine else Sampling())
+    assert [[bits(a) for a in g] for g in got] == [[bits(b) for b in r] for r in ref], (ref, got)
+
+
+def test_a_wrong_box_row_is_caught():
+    """The comparison can fail: row 0's kernel searching row 2's samples (the force
+    factor ``|det J| / ||row_1||`` of a gantry) refines to another minimum (0.7189
+    against 0.7633 inside); the right row gives the NumPy search's."""
+    jit.load_numba()
+    ev = DesignEvaluator("gantry", TASKS["rect"], Requirements(min_lci=0.3), ("size", "min-lci"), max_length=2000.0)
+    x, y = ev.task.reference
+    ctx = ev.context({"d1": 60.0, "l": 150.0, "mode": "--", "task_x": float(x), "task_y": float(y)}, Sampling())
+    box = np.ascontiguousarray(_box_rows(ctx.jacobian))
+    kernel = ctx.mech.zoom_kernel("box")
+    assert kernel is not None
+    right = _s.compiled_region_min(ctx.samples, kernel.with_row(2), 1.0, 0.0, box[2])
+    wrong = _s.compiled_region_min(ctx.samples, kernel.with_row(0), 1.0, 0.0, box[2])
+    ref = _numpy_parts(ctx, lambda x, y: _box_rows(ctx.mech.jacobian(x, y))[2], box[2])
+    assert [bits(a) for a in right] == [bits(b) for b in ref]
+    assert [bits(a) for a in wrong] != [bits(b) for b in ref]

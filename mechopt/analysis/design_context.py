@@ -197,6 +197,36 @@ class DesignContext:
         raw = {"lci": lambda x, y: _ix.lci(self.mech.jacobian(x, y)), "type2": self.mech.type2_function}[quantity]
         return self.region_min(lambda x, y: _s.bad_to(scale * raw(*self.to_mech(x, y)), bad), vals, refine)
 
+    def quantity_mins(self, quantity, F, vals, refine=None) -> list:
+        """:meth:`region_mins` of ``F``, the rows of the mechanism's quantity
+        ``quantity`` (``"box"``: the per-actuator speed and force factors of its Jacobian,
+        :func:`mechopt.core.indices.box_rows_of_matrix`), each row by the mechanism's
+        compiled zoom where it has one (:meth:`quantity_min`), the same minima bit for bit.
+
+        Parameters
+        ----------
+        quantity : str
+            The quantity ``F`` computes.
+        F : callable
+            ``F(x, y)`` -> shape ``(m, N)``.
+        vals : ndarray
+            ``F`` at the samples.
+        refine : bool, optional
+            Refine by zooming (default :attr:`refine`).
+
+        Returns
+        -------
+        list of float
+            The minimum of each row.
+        """
+        refine = self.refine if refine is None else refine
+        kernel = self.mech.zoom_kernel(quantity) if refine and self._mechanism_frame else None
+        if kernel is not None:
+            rows = [_s.compiled_region_min(self.samples, kernel.with_row(r), 1.0, 0.0, v) for r, v in enumerate(vals)]
+            if all(b is not None for b in rows):
+                return [min(b) for b in rows]  # region_mins' min(boundary, interior)
+        return self.region_mins(F, vals, refine)
+
     def region_mins(self, F, vals, refine=None) -> list:
         """Minima over the task of the rows of ``F(x, y)`` (values ``vals`` at the samples).
 

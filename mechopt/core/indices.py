@@ -28,6 +28,7 @@ from mechopt.core.jit import Twin, jitable
 
 __all__ = [
     "lci_of_matrix",
+    "box_rows_of_matrix",
     "two_smax_squared",
     "lci_of_entries",
     "singular_values",
@@ -205,6 +206,29 @@ def lci_of_matrix(a, b, c, d):
         e = 1
     v = lci_of_entries(math.ldexp(a, -e), math.ldexp(b, -e), math.ldexp(c, -e), math.ldexp(d, -e))
     return v if math.isfinite(v) else 0.0
+
+
+@jitable
+def box_rows_of_matrix(a, b, c, d):
+    """``1/||row_1||, 1/||row_2||, |det J|/||row_1||, |det J|/||row_2||`` of the one
+    matrix ``J = [[a, b], [c, d]]``, 0 where not finite (compiled kernels): the
+    per-actuator (box) speed and force factors of :mod:`mechopt.core.actuators`.
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        The entries of ``J`` (``q_dot = J p_dot``).
+
+    Returns
+    -------
+    tuple of float
+        The four factors.
+    """
+    n1, n2 = np.hypot(a, b), np.hypot(c, d)
+    det = abs(a * d - b * c)
+    v0, v1, v2, v3 = 1.0 / n1, 1.0 / n2, det / n1, det / n2
+    return (v0 if np.isfinite(v0) else 0.0, v1 if np.isfinite(v1) else 0.0, v2 if np.isfinite(v2) else 0.0,
+            v3 if np.isfinite(v3) else 0.0)
 
 
 def _lci_loop(J, out):

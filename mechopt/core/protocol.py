@@ -487,7 +487,10 @@ class PlanarMechanism(ABC):
         """The compiled zoom of :mod:`mechopt.core.zoom` for ``quantity`` at this
         mechanism's lengths: ``"lci"`` (:meth:`lci` of :meth:`jacobian`) or ``"type2"``
         (:meth:`type2_function`), minima by :func:`~mechopt.core.zoom.zoom_minimum`;
-        ``"ik"`` (the two actuator coordinates of :meth:`ik`), ranges by
+        ``"box"`` (the per-actuator speed and force factors of :meth:`jacobian`,
+        :func:`~mechopt.core.indices.box_rows_of_matrix`, a row per
+        :meth:`~mechopt.core.zoom.ZoomKernel.with_row`), minima too; ``"ik"`` (the two
+        actuator coordinates of :meth:`ik`), ranges by
         :func:`~mechopt.core.zoom.zoom_ranges`; as a :class:`~mechopt.core.zoom.ZoomKernel`
         whose searches give the NumPy searches' results bit for bit. None where the
         mechanism has none (default), for an unknown quantity, or when the compiled
@@ -496,7 +499,7 @@ class PlanarMechanism(ABC):
         Parameters
         ----------
         quantity : str
-            ``"lci"``, ``"type2"`` or ``"ik"``.
+            ``"lci"``, ``"type2"``, ``"box"`` or ``"ik"``.
 
         Returns
         -------

@@ -33,8 +33,9 @@ import numpy as np
 
 from mechopt.core import jit
 from mechopt.core.jit import jitable
+from mechopt.core.protocol import POINT_MAX
 
-__all__ = ["ZoomKernel", "polygon_point", "polygon_contains", "zoom_minimum", "zoom_ranges"]
+__all__ = ["ZoomKernel", "point_in_reach", "polygon_point", "polygon_contains", "zoom_minimum", "zoom_ranges"]
 
 
 @dataclass(frozen=True)
@@ -70,6 +71,42 @@ class ZoomKernel:
             The search's minima.
         """
         return self.entry(self.params, *search)
+
+    def with_row(self, row):
+        """The same kernel for row ``row`` of a quantity of several rows (which takes the
+        row in its last parameter).
+
+        Parameters
+        ----------
+        row : int
+            The row.
+
+        Returns
+        -------
+        ZoomKernel
+            The kernel of that row.
+        """
+        params = self.params.copy()
+        params[-1] = row
+        return ZoomKernel(self.entry, params)
+
+
+@jitable
+def point_in_reach(v):
+    """A coordinate as :func:`mechopt.core.protocol.as_points` keeps it (compiled
+    kernels): NaN beyond :data:`~mechopt.core.protocol.POINT_MAX`.
+
+    Parameters
+    ----------
+    v : float
+        A coordinate [L].
+
+    Returns
+    -------
+    float
+        ``v``, or NaN.
+    """
+    return np.nan if abs(v) > POINT_MAX else v
 
 
 @jitable

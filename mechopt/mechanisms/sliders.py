@@ -72,7 +72,9 @@ from mechopt.core import rigid_bodies as _b
 from mechopt.core import geometry as _g
 from mechopt.core import interval as _iv
 from mechopt.core import validation as _v
-from mechopt.core.jit import Twin, twin_params
+from mechopt.core.indices import box_rows_of_matrix, lci_of_matrix
+from mechopt.core.jit import Twin, jitable, twin_params
+from mechopt.core.zoom import ZoomKernel, point_in_reach, zoom_minimum
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.error_spec import ErrorSpec
 from mechopt.core.protocol import ASSEMBLY_MODES, PlanarMechanism, as_points
@@ -98,29 +100,93 @@ GAUSS_ORDER_TQI = 128
 GAUSS_ORDER_KAV = 64
 
 
+@jitable
+def _closure_at(p, via_positions, px, py):
+    """:meth:`TwoSliderMechanism.closure` at one point (compiled kernels): ``(u1, c1, u2,
+    c2, ok)`` with ``A = [[u1, c1], [u2, c2]]`` and ``b = (c1, c2)``, each by the NumPy
+    path's operations (:meth:`~TwoSliderMechanism.legs`, :func:`_w`), NaN where a leg does
+    not assemble; ``p = [g1, g2, L, s1, s2, e, lo1, hi1, lo2, hi2]`` (the strokes widened
+    by their tolerance)."""
+    g1, g2, L, s1, s2, e = p[0], p[1], p[2], p[3], p[4], p[5]
+    u1, u2 = px - g1, px - g2
+    c1 = -s1 * np.sqrt(L * L - u1 * u1)
+    c2 = -s2 * np.sqrt(L * L - u2 * u2)
+    y_a = py - e
+    q1, q2 = y_a - c1, y_a - c2
+    ok = (q1 >= p[6]) and (q1 <= p[7]) and (q2 >= p[8]) and (q2 <= p[9])
+    if via_positions:
+        c1, c2 = y_a - q1, y_a - q2
+    if not ok:
+        return np.nan, np.nan, np.nan, np.nan, False
+    return u1, c1, u2, c2, True
+
+
 def _closure_loop(x, y, p, via_positions, A, b, ok):
     """:meth:`TwoSliderMechanism.closure` point by point (compiled,
-    :class:`mechopt.core.jit.Twin`): ``p = [g1, g2, L, s1, s2, e, lo1, hi1, lo2, hi2]``
-    (the strokes widened by their tolerance), each entry by the NumPy path's operations
-    (:meth:`~TwoSliderMechanism.legs`, :func:`_w`), NaN where a leg does not assemble."""
-    g1, g2, L, s1, s2, e = p[0], p[1], p[2], p[3], p[4], p[5]
+    :class:`mechopt.core.jit.Twin`; :func:`_closure_at`)."""
     for i in range(x.size):
-        px, py = x[i], y[i]
-        u1, u2 = px - g1, px - g2
-        c1 = -s1 * np.sqrt(L * L - u1 * u1)
-        c2 = -s2 * np.sqrt(L * L - u2 * u2)
-        y_a = py - e
-        q1, q2 = y_a - c1, y_a - c2
-        ok[i] = (q1 >= p[6]) and (q1 <= p[7]) and (q2 >= p[8]) and (q2 <= p[9])
-        if via_positions:
-            c1, c2 = y_a - q1, y_a - q2
-        if not ok[i]:
-            u1 = c1 = u2 = c2 = np.nan
+        u1, c1, u2, c2, ok[i] = _closure_at(p, via_positions, x[i], y[i])
         A[i, 0, 0], A[i, 0, 1], A[i, 1, 0], A[i, 1, 1] = u1, c1, u2, c2
         b[i, 0], b[i, 1] = c1, c2
 
 
+@jitable
+def _closure_of(kp, x, y):
+    """:func:`_closure_at` of a zoom kernel's parameters ``kp`` (:meth:`TwoSliderMechanism.zoom_kernel`:
+    the closure's, then the closure-via-positions flag and a row) at a point kept as
+    ``as_points`` keeps it."""
+    return _closure_at(kp, kp[10] != 0.0, point_in_reach(x), point_in_reach(y))
+
+
+@jitable
+def _lci_at(kp, x, y):
+    """The protocol's LCI of ``J = A / b`` (row by row) at one point (a zoom kernel)."""
+    u1, c1, u2, c2, _ = _closure_of(kp, x, y)
+    return lci_of_matrix(u1 / c1, c1 / c1, u2 / c2, c2 / c2)
+
+
+@jitable
+def _type2_at(kp, x, y):
+    """The protocol's type-II function ``det A / (|a1| |a2|)`` at one point (a zoom kernel)."""
+    u1, c1, u2, c2, _ = _closure_of(kp, x, y)
+    return (u1 * c2 - c1 * u2) / (np.hypot(u1, c1) * np.hypot(u2, c2))
+
+
+@jitable
+def _box_at(kp, x, y):
+    """Row ``kp[11]`` of :func:`mechopt.core.indices.box_rows_of_matrix` of ``J = A / b``
+    at one point (a zoom kernel)."""
+    u1, c1, u2, c2, _ = _closure_of(kp, x, y)
+    v0, v1, v2, v3 = box_rows_of_matrix(u1 / c1, c1 / c1, u2 / c2, c2 / c2)
+    r = kp[11]
+    return v0 if r == 0.0 else (v1 if r == 1.0 else (v2 if r == 2.0 else v3))
+
+
+# one entry per kernel, each naming its kernel (numba caches a function that calls a
+# global kernel, not one that receives it as an argument)
+def _lci_zoom_loop(kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
+                   in_best, px0, py0, h0, gx, gy, in_levels):
+    """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_lci_at` (compiled, :class:`Twin`)."""
+    return zoom_minimum(_lci_at, kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2,
+                        cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
+
+
+def _type2_zoom_loop(kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
+                     in_best, px0, py0, h0, gx, gy, in_levels):
+    """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_type2_at` (compiled, :class:`Twin`)."""
+    return zoom_minimum(_type2_at, kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2,
+                        cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
+
+
+def _box_zoom_loop(kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
+                   in_best, px0, py0, h0, gx, gy, in_levels):
+    """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_box_at` (compiled, :class:`Twin`)."""
+    return zoom_minimum(_box_at, kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2,
+                        cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
+
+
 _CLOSURE_TWIN = Twin(_closure_loop)
+_ZOOMS = {"lci": Twin(_lci_zoom_loop), "type2": Twin(_type2_zoom_loop), "box": Twin(_box_zoom_loop)}
 
 
 def _w(u, l):
@@ -541,6 +607,27 @@ class TwoSliderMechanism(PlanarMechanism):
         A = np.where(ok[..., None, None], A, np.nan)
         b = np.where(ok[..., None], b, np.nan)
         return A, b, ok
+
+    def zoom_kernel(self, quantity):
+        """The compiled zooms of the LCI, the type-II function and the four per-actuator
+        (box) speed and force factors (``"box"``, a row per :meth:`ZoomKernel.with_row
+        <mechopt.core.zoom.ZoomKernel.with_row>`) of the protocol's Jacobian (the
+        protocol's :meth:`~mechopt.core.protocol.PlanarMechanism.zoom_kernel`).
+
+        Parameters
+        ----------
+        quantity : str
+            ``"lci"``, ``"type2"`` or ``"box"``.
+
+        Returns
+        -------
+        mechopt.core.zoom.ZoomKernel or None
+            The compiled search, or None.
+        """
+        p = self._twin_params()
+        if p is None or quantity not in _ZOOMS:
+            return None
+        return ZoomKernel(_ZOOMS[quantity], np.r_[p, float(self._closure_via_positions), 0.0])
 
     def _twin_params(self):
         """``[g1, g2, L, s1, s2, e, lo1, hi1, lo2, hi2]`` (the strokes widened by their

@@ -29,6 +29,7 @@ import math
 import numpy as np
 
 from mechopt.core import indices as _ix
+from mechopt.core.indices import box_rows_of_matrix
 from mechopt.core.jit import Twin
 from mechopt.analysis.sampling import bad_to
 from mechopt.requirements.base import Objective, Option, Requirement
@@ -165,12 +166,10 @@ def _box_rows(J):
 
 
 def _box_rows_loop(J, out):
-    """:func:`_box_rows` matrix by matrix (compiled, :class:`mechopt.core.jit.Twin`)."""
+    """:func:`_box_rows` matrix by matrix (compiled, :class:`mechopt.core.jit.Twin`;
+    :func:`mechopt.core.indices.box_rows_of_matrix`)."""
     for i in range(J.shape[0]):
-        a, b = np.hypot(J[i, 0, 0], J[i, 0, 1]), np.hypot(J[i, 1, 0], J[i, 1, 1])
-        det = abs(J[i, 0, 0] * J[i, 1, 1] - J[i, 0, 1] * J[i, 1, 0])
-        for r, v in enumerate((1.0 / a, 1.0 / b, det / a, det / b)):
-            out[r, i] = v if np.isfinite(v) else 0.0
+        out[0, i], out[1, i], out[2, i], out[3, i] = box_rows_of_matrix(J[i, 0, 0], J[i, 0, 1], J[i, 1, 0], J[i, 1, 1])
 
 
 _BOX_ROWS_TWIN = Twin(_box_rows_loop)
@@ -196,8 +195,8 @@ def box_extremes(ctx, refine=None) -> np.ndarray:
         [the unit of ``J``], 0 where unreachable; memoised in ``ctx``.
     """
     def compute():
-        return np.array(ctx.region_mins(lambda x, y: _box_rows(ctx.mech.jacobian(*ctx.to_mech(x, y))),
-                                        _box_rows(ctx.jacobian), refine))
+        return np.array(ctx.quantity_mins("box", lambda x, y: _box_rows(ctx.mech.jacobian(*ctx.to_mech(x, y))),
+                                          _box_rows(ctx.jacobian), refine))
     return ctx.memo(_key("box_extremes", refine), compute)
 
 

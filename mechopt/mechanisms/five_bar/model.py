@@ -29,8 +29,8 @@ from mechopt.core.error_spec import ErrorSpec
 from mechopt.core.jit import Twin, jitable, select, twin_params
 from mechopt.core.kinematic_tree import BASE, CLOSURE_NAMES, ClosureFrame, KinematicTree, TreeJoint
 from mechopt.core.indices import lci_of_matrix
-from mechopt.core.protocol import ASSEMBLY_MODES, POINT_MAX, Parameter, PlanarMechanism, as_points
-from mechopt.core.zoom import ZoomKernel, zoom_minimum, zoom_ranges
+from mechopt.core.protocol import ASSEMBLY_MODES, Parameter, PlanarMechanism, as_points
+from mechopt.core.zoom import ZoomKernel, point_in_reach, zoom_minimum, zoom_ranges
 
 __all__ = ["FiveBar", "FiveBarDesignSpec", "FiveBarErrorSpec", "MODES", "ASSEMBLY_MODES", "elbow_signs", "legs_elbows",
            "legs_closure", "legs_closure_enclosure", "legs_actuator_enclosure", "legs_reachable", "legs_serial_clearance", "legs_bounding_box",
@@ -200,7 +200,7 @@ def _ik_arguments(legs, x, y):
     """What the five-bar's crank angles need from NumPy at one point (compiled zooms,
     :func:`mechopt.core.zoom.zoom_ranges`): ``(k1, k2, y, x + r3, y, r3 - x, ok)``, the
     ``arccos`` arguments and the ``arctan2`` ones of :func:`legs_ik`."""
-    x, y = _point(x), _point(y)
+    x, y = point_in_reach(x), point_in_reach(y)
     k1, k2, ok = _ik_cosines_at(legs, x, y)
     return k1, k2, y, x + legs[0], y, legs[0] - x, ok
 
@@ -220,19 +220,12 @@ def _ik_loop(x, y, legs, k1, k2, ok):
 
 
 @jitable
-def _point(v):
-    """A coordinate as :func:`mechopt.core.protocol.as_points` keeps it: NaN beyond
-    :data:`~mechopt.core.protocol.POINT_MAX` (compiled kernels only)."""
-    return np.nan if abs(v) > POINT_MAX else v
-
-
-@jitable
 def _lci_at(legs, x, y):
     """The LCI of the Jacobian at one point, 0 where unreachable: ``FiveBar.lci`` of
     the protocol (``J = A / b`` row by row from :func:`_closure_loop`'s ``A, b``, then
     :func:`mechopt.core.indices.lci_of_matrix`), the zoom's point kernel
     (:meth:`FiveBar.zoom_kernel`; ``legs = [r3, a1, c1, s1, a2, c2, s2]``)."""
-    x, y = _point(x), _point(y)
+    x, y = point_in_reach(x), point_in_reach(y)
     r3 = legs[0]
     b1x, b1y, b2x, b2y, _ = _elbows_at(x, y, legs)
     a1x, a1y, a2x, a2y = x - b1x, y - b1y, x - b2x, y - b2y
@@ -245,7 +238,7 @@ def _lci_at(legs, x, y):
 def _type2_at(legs, x, y):
     """:meth:`FiveBar.type2_function` at one point (NaN where unreachable), the zoom's
     point kernel (``legs = [r3, a1, c1, s1, a2, c2, s2]``, ``c1 = r2``)."""
-    x, y = _point(x), _point(y)
+    x, y = point_in_reach(x), point_in_reach(y)
     b1x, b1y, b2x, b2y, _ = _elbows_at(x, y, legs)
     return ((x - b1x) * (y - b2y) - (y - b1y) * (x - b2x)) / (legs[2] * legs[2])
 
