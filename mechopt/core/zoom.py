@@ -47,7 +47,8 @@ class ZoomKernel:
     Parameters
     ----------
     entry : mechopt.core.jit.Twin
-        The compiled search, called as ``entry(params, *search)``.
+        The compiled search, called as ``entry(params, search)`` (``search`` the tuple of
+        the remaining arguments of :func:`zoom_minimum` or :func:`zoom_ranges`).
     params : ndarray
         The point kernel's parameters (lengths and signs).
     """
@@ -58,7 +59,8 @@ class ZoomKernel:
     def run(self, *search):
         """The compiled search with this kernel's parameters: :func:`zoom_minimum`'s or
         :func:`zoom_ranges`' result (the quantity's, :meth:`PlanarMechanism.zoom_kernel
-        <mechopt.core.protocol.PlanarMechanism.zoom_kernel>`).
+        <mechopt.core.protocol.PlanarMechanism.zoom_kernel>`); the entry receives the
+        arguments as one tuple.
 
         Parameters
         ----------
@@ -70,7 +72,7 @@ class ZoomKernel:
         tuple of float or ndarray
             The search's minima.
         """
-        return self.entry(self.params, *search)
+        return self.entry(self.params, search)
 
     def with_row(self, row):
         """The same kernel for row ``row`` of a quantity of several rows (which takes the

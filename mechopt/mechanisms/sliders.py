@@ -164,25 +164,19 @@ def _box_at(kp, x, y):
 
 # one entry per kernel, each naming its kernel (numba caches a function that calls a
 # global kernel, not one that receives it as an argument)
-def _lci_zoom_loop(kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
-                   in_best, px0, py0, h0, gx, gy, in_levels):
+def _lci_zoom_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_lci_at` (compiled, :class:`Twin`)."""
-    return zoom_minimum(_lci_at, kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2,
-                        cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
+    return zoom_minimum(_lci_at, p, *search)
 
 
-def _type2_zoom_loop(kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
-                     in_best, px0, py0, h0, gx, gy, in_levels):
+def _type2_zoom_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_type2_at` (compiled, :class:`Twin`)."""
-    return zoom_minimum(_type2_at, kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2,
-                        cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
+    return zoom_minimum(_type2_at, p, *search)
 
 
-def _box_zoom_loop(kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
-                   in_best, px0, py0, h0, gx, gy, in_levels):
+def _box_zoom_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_box_at` (compiled, :class:`Twin`)."""
-    return zoom_minimum(_box_at, kp, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2,
-                        cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
+    return zoom_minimum(_box_at, p, *search)
 
 
 _CLOSURE_TWIN = Twin(_closure_loop)

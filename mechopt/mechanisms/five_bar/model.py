@@ -246,25 +246,20 @@ def _type2_at(legs, x, y):
 # one entry per kernel, each naming its kernel: numba's cache keeps a function that calls
 # a global kernel, not one that receives the kernel as an argument (compiled again in
 # every process)
-def _lci_zoom_loop(legs, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
-                   in_best, px0, py0, h0, gx, gy, in_levels):
+def _lci_zoom_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_lci_at` (compiled, :class:`Twin`)."""
-    return zoom_minimum(_lci_at, legs, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2,
-                        cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
+    return zoom_minimum(_lci_at, p, *search)
 
 
-def _type2_zoom_loop(legs, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2, cum, tol,
-                     in_best, px0, py0, h0, gx, gy, in_levels):
+def _type2_zoom_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_type2_at` (compiled, :class:`Twin`)."""
-    return zoom_minimum(_type2_at, legs, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex, ey, L, L2,
-                        cum, tol, in_best, px0, py0, h0, gx, gy, in_levels)
+    return zoom_minimum(_type2_at, p, *search)
 
 
-def _ik_ranges_loop(legs, bad_lo, bad_hi, best, t0, offsets, is_path, vx, vy, ex, ey, L, cum):
+def _ik_ranges_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_ranges` of the crank angles (:func:`_ik_arguments`,
     :func:`_ik_from`; compiled, :class:`Twin`)."""
-    return zoom_ranges(_ik_arguments, _ik_from, legs, bad_lo, bad_hi, best, t0, offsets, is_path, vx, vy, ex, ey,
-                       L, cum)
+    return zoom_ranges(_ik_arguments, _ik_from, p, *search)
 
 
 _ELBOWS_TWIN = Twin(_elbows_loop)
