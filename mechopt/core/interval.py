@@ -14,6 +14,11 @@ An :class:`Interval` holds two float arrays ``lo <= hi`` of one shape: the set o
   argument), so the enclosure holds in floating point (a rounding of one ulp is more
   than the half ulp the rounding can lose; overflow gives an infinite endpoint, still an
   enclosure).
+* For arrays of at least 256 elements, once mechopt's compiled twins run
+  (:class:`mechopt.core.jit.Twin`), ``+ - * /``, ``sqr`` and ``sqrt`` run as one compiled
+  loop per operation that performs each element's operations of the NumPy path in its
+  order and rounds by the same arithmetic (:func:`_round_down`): the same endpoints bit
+  for bit, so the same argument (tests/test_interval_loops.py compares the two).
 * ``abs``, ``min``, ``max`` and negation are exact in floating point: no rounding.
 * division by an interval that contains 0 gives ``(-inf, inf)`` (unbounded); a NaN
   endpoint (``inf - inf``, ``0 * inf``) is replaced by the infinite endpoint on its
@@ -36,6 +41,8 @@ Analysis*, SIAM 2009, ch. 5-6).
 from __future__ import annotations
 
 import numpy as np
+
+from mechopt.core.jit import Twin, jitable
 
 __all__ = ["Interval", "Gradient", "as_interval", "hypot", "minimum", "maximum", "atan2", "acos", "PI",
            "LIBM_ULPS"]
@@ -193,16 +200,14 @@ class Interval:
     def __add__(self, other):
         if isinstance(other, Gradient):  # its reflected operation keeps the derivatives
             return NotImplemented
-        o = as_interval(other)
-        return _make(_down(self.lo + o.lo), _up(self.hi + o.hi))
+        return _binary(_ADD, self, as_interval(other))
 
     __radd__ = __add__
 
     def __sub__(self, other):
         if isinstance(other, Gradient):  # its reflected operation keeps the derivatives
             return NotImplemented
-        o = as_interval(other)
-        return _make(_down(self.lo - o.hi), _up(self.hi - o.lo))
+        return _binary(_SUB, self, as_interval(other))
 
     def __rsub__(self, other):
         return as_interval(other) - self
@@ -210,29 +215,14 @@ class Interval:
     def __mul__(self, other):
         if isinstance(other, Gradient):  # its reflected operation keeps the derivatives
             return NotImplemented
-        o = as_interval(other)
-        with np.errstate(invalid="ignore", over="ignore"):
-            if o.lo is o.hi:  # a constant: two products
-                p, q = self.lo * o.lo, self.hi * o.lo
-                lo, hi = np.minimum(p, q), np.maximum(p, q)
-            else:
-                p, q, r, t = self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi
-                lo = np.minimum(np.minimum(p, q), np.minimum(r, t))  # NaN (0 * inf) propagates
-                hi = np.maximum(np.maximum(p, q), np.maximum(r, t))
-        return _make(_down(lo), _up(hi))
+        return _binary(_MUL, self, as_interval(other))
 
     __rmul__ = __mul__
 
     def __truediv__(self, other):
         if isinstance(other, Gradient):  # its reflected operation keeps the derivatives
             return NotImplemented
-        o = as_interval(other)
-        zero = (o.lo <= 0.0) & (o.hi >= 0.0)
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            p, q, r, t = self.lo / o.lo, self.lo / o.hi, self.hi / o.lo, self.hi / o.hi
-            lo = np.minimum(np.minimum(p, q), np.minimum(r, t))
-            hi = np.maximum(np.maximum(p, q), np.maximum(r, t))
-        return _make(np.where(zero, _NINF, _down(lo)), np.where(zero, _PINF, _up(hi)))
+        return _binary(_DIV, self, as_interval(other))
 
     def __rtruediv__(self, other):
         return as_interval(other) / self
@@ -245,11 +235,7 @@ class Interval:
         Interval
             The squares.
         """
-        with np.errstate(over="ignore"):
-            a, b = self.lo * self.lo, self.hi * self.hi
-        straddle = (self.lo <= 0.0) & (self.hi >= 0.0)
-        lo = np.where(straddle, 0.0, np.maximum(_down(np.minimum(a, b)), 0.0))
-        return _make(lo, _up(np.maximum(a, b)))
+        return _unary(_SQR, self)
 
     def sqrt(self):
         """``sqrt(x)`` of the non-negative part, and where ``lo < 0``.
@@ -262,14 +248,223 @@ class Interval:
             Where the argument may be negative (``lo < 0``): the root encloses only its
             non-negative part there.
         """
-        neg = self.lo < 0.0
-        lo = np.maximum(_down(np.sqrt(np.maximum(self.lo, 0.0))), 0.0)
-        return _make(lo, _up(np.sqrt(np.maximum(self.hi, 0.0)))), neg
+        return _unary(_SQRT, self), self.lo < 0.0
 
     def __abs__(self):
         straddle = (self.lo <= 0.0) & (self.hi >= 0.0)
         alo, ahi = np.abs(self.lo), np.abs(self.hi)
         return _make(np.where(straddle, 0.0, np.minimum(alo, ahi)), np.maximum(alo, ahi))
+
+
+# ------------------------------------------------------------------ the NumPy paths
+def _add(a, o):
+    return _make(_down(a.lo + o.lo), _up(a.hi + o.hi))
+
+
+def _sub(a, o):
+    return _make(_down(a.lo - o.hi), _up(a.hi - o.lo))
+
+
+def _mul(a, o):
+    with np.errstate(invalid="ignore", over="ignore"):
+        if o.lo is o.hi:  # a constant: two products
+            p, q = a.lo * o.lo, a.hi * o.lo
+            lo, hi = np.minimum(p, q), np.maximum(p, q)
+        else:
+            p, q, r, t = a.lo * o.lo, a.lo * o.hi, a.hi * o.lo, a.hi * o.hi
+            lo = np.minimum(np.minimum(p, q), np.minimum(r, t))  # NaN (0 * inf) propagates
+            hi = np.maximum(np.maximum(p, q), np.maximum(r, t))
+    return _make(_down(lo), _up(hi))
+
+
+def _div(a, o):
+    zero = (o.lo <= 0.0) & (o.hi >= 0.0)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        p, q, r, t = a.lo / o.lo, a.lo / o.hi, a.hi / o.lo, a.hi / o.hi
+        lo = np.minimum(np.minimum(p, q), np.minimum(r, t))
+        hi = np.maximum(np.maximum(p, q), np.maximum(r, t))
+    return _make(np.where(zero, _NINF, _down(lo)), np.where(zero, _PINF, _up(hi)))
+
+
+def _sqr(x):
+    with np.errstate(over="ignore"):
+        a, b = x.lo * x.lo, x.hi * x.hi
+    straddle = (x.lo <= 0.0) & (x.hi >= 0.0)
+    lo = np.where(straddle, 0.0, np.maximum(_down(np.minimum(a, b)), 0.0))
+    return _make(lo, _up(np.maximum(a, b)))
+
+
+def _sqrt(x):
+    lo = np.maximum(_down(np.sqrt(np.maximum(x.lo, 0.0))), 0.0)
+    return _make(lo, _up(np.sqrt(np.maximum(x.hi, 0.0))))
+
+# ------------------------------------------------------------------ compiled loops
+# For arrays of at least _FEW elements, once the compiled twins run
+# (:meth:`mechopt.core.jit.Twin.compiled`), ``+ - * /``, :meth:`Interval.sqr` and
+# :meth:`Interval.sqrt` run as one loop per operation: per element the same
+# correctly-rounded operations as the NumPy path, in its order, then the same outward
+# rounding (the arithmetic of :func:`_down`, which the NumPy path uses at this size), so
+# the endpoints are the NumPy path's bit for bit (tests/test_interval_loops.py) without
+# its temporary arrays. NaN, which NumPy's minimum and maximum propagate to ``_down`` and
+# ``_up`` (-> -inf, +inf), is tested for explicitly; otherwise the smallest and largest
+# of the products differ from NumPy's at most in the sign of a zero, which the rounding
+# erases (``+-0`` rounds to ``-+2^-1074`` either way).
+
+@jitable
+def _round_down(v):
+    """:func:`_down` of one float of an array of at least :data:`_FEW` elements."""
+    if v != v:
+        return _NINF
+    a = abs(v)
+    if a > _MAX:
+        a = _MAX
+    e = a * _PHI
+    e = e + _ETA
+    r = v - e
+    return _MAX if r > _MAX else r
+
+
+@jitable
+def _round_up(v):
+    """:func:`_up` of one float of an array of at least :data:`_FEW` elements."""
+    if v != v:
+        return _PINF
+    a = abs(v)
+    if a > _MAX:
+        a = _MAX
+    e = a * _PHI
+    e = e + _ETA
+    r = v + e
+    return -_MAX if r < -_MAX else r
+
+
+#: operation codes of :func:`_binary_loop`
+_ADD, _SUB, _MUL, _DIV = 0, 1, 2, 3
+
+
+def _binary_loop(op, alo, ahi, blo, bhi, lo, hi):
+    """``[alo, ahi] op [blo, bhi]`` into ``lo``, ``hi`` (each operand of ``len(lo)``
+    elements or of one, broadcast): :meth:`Interval.__add__`, ``__sub__``, ``__mul__``
+    and ``__truediv__`` element by element (compiled, :class:`mechopt.core.jit.Twin`)."""
+    n = lo.shape[0]
+    k0 = 1 if alo.shape[0] > 1 else 0
+    k1 = 1 if ahi.shape[0] > 1 else 0
+    k2 = 1 if blo.shape[0] > 1 else 0
+    k3 = 1 if bhi.shape[0] > 1 else 0
+    for i in range(n):
+        a0, a1, b0, b1 = alo[i * k0], ahi[i * k1], blo[i * k2], bhi[i * k3]
+        if op == _ADD:
+            low, high = a0 + b0, a1 + b1
+        elif op == _SUB:
+            low, high = a0 - b1, a1 - b0
+        else:
+            if op == _MUL:
+                p, q, r, t = a0 * b0, a0 * b1, a1 * b0, a1 * b1
+            else:
+                if b0 <= 0.0 and b1 >= 0.0:  # the divisor may vanish: unbounded
+                    lo[i], hi[i] = _NINF, _PINF
+                    continue
+                p, q, r, t = a0 / b0, a0 / b1, a1 / b0, a1 / b1
+            if p != p or q != q or r != r or t != t:  # NaN: unbounded (NumPy's minimum propagates it)
+                lo[i], hi[i] = _NINF, _PINF
+                continue
+            low = min(min(p, q), min(r, t))
+            high = max(max(p, q), max(r, t))
+        lo[i] = _round_down(low)
+        hi[i] = _round_up(high)
+
+
+#: operation codes of :func:`_unary_loop`
+_SQR, _SQRT = 0, 1
+
+
+def _unary_loop(op, xlo, xhi, lo, hi):
+    """:meth:`Interval.sqr` (``op`` :data:`_SQR`) or the root of :meth:`Interval.sqrt`
+    (:data:`_SQRT`) element by element, into ``lo``, ``hi`` (compiled,
+    :class:`mechopt.core.jit.Twin`)."""
+    for i in range(lo.shape[0]):
+        x0, x1 = xlo[i], xhi[i]
+        if op == _SQR:
+            a, b = x0 * x0, x1 * x1
+            if a != a or b != b:  # NaN: unbounded above, 0 below (the NumPy path's max(-inf, 0))
+                lo[i], hi[i] = 0.0, _PINF
+                continue
+            d = _round_down(min(a, b))
+            lo[i] = 0.0 if (x0 <= 0.0 and x1 >= 0.0) or not d > 0.0 else d
+            hi[i] = _round_up(max(a, b))
+        else:  # max(x, 0) keeps NaN, as np.maximum
+            d = _round_down(np.sqrt(0.0 if x0 < 0.0 else x0))
+            lo[i] = d if d > 0.0 else 0.0
+            hi[i] = _round_up(np.sqrt(0.0 if x1 < 0.0 else x1))
+
+
+_BINARY_TWIN = Twin(_binary_loop)
+_UNARY_TWIN = Twin(_unary_loop)
+#: the NumPy paths of the operation codes
+_BINARY_NUMPY = {_ADD: _add, _SUB: _sub, _MUL: _mul, _DIV: _div}
+_UNARY_NUMPY = {_SQR: _sqr, _SQRT: _sqrt}
+
+
+def _loop_operands(arrays):
+    """``(shape, flat)``: the endpoint arrays as 1-d float arrays for the loops, each of
+    the result's ``shape`` (C-ordered) or of one element; None where the NumPy path runs
+    (fewer than :data:`_FEW` elements: ``np.nextafter``'s rounding; other dtypes or
+    layouts); ``(shape, None)`` where it runs because the loops do not run yet."""
+    shape = None
+    for v in arrays:
+        if np.size(v) >= _FEW:
+            shape = np.shape(v)
+            break
+    if shape is None:
+        return None
+    if not Twin.compiled():
+        return shape, None
+    flat = []
+    for v in arrays:
+        if type(v) is not np.ndarray:
+            v = np.asarray(v)
+        if v.dtype != np.float64:
+            return None
+        if v.shape == shape:
+            if not v.flags.c_contiguous:
+                return None
+            flat.append(v.reshape(-1))
+        elif v.size == 1 and v.ndim <= len(shape):
+            flat.append(v.reshape(1))
+        else:
+            return None
+    return shape, flat
+
+
+def _binary(op, a, b):
+    """``a op b`` (intervals) by :func:`_binary_loop` or by the NumPy path (the same
+    endpoints)."""
+    got = _loop_operands((a.lo, a.hi, b.lo, b.hi))
+    if got is None:
+        return _BINARY_NUMPY[op](a, b)
+    shape, flat = got
+    if flat is None:  # many elements, the loops not yet running: the twins' NumPy time
+        with Twin.numpy_timer():
+            return _BINARY_NUMPY[op](a, b)
+    n = max(f.size for f in flat)
+    lo, hi = np.empty(n), np.empty(n)
+    _BINARY_TWIN(op, *flat, lo, hi)
+    return _make(lo.reshape(shape), hi.reshape(shape))
+
+
+def _unary(op, x):
+    """``op`` of the interval ``x`` (:data:`_SQR`, :data:`_SQRT`) by :func:`_unary_loop`
+    or by the NumPy path (the same endpoints)."""
+    got = _loop_operands((x.lo, x.hi))
+    if got is None:
+        return _UNARY_NUMPY[op](x)
+    shape, flat = got
+    if flat is None or flat[0].size != flat[1].size:
+        with Twin.numpy_timer():
+            return _UNARY_NUMPY[op](x)
+    lo, hi = np.empty(flat[0].size), np.empty(flat[0].size)
+    _UNARY_TWIN(op, *flat, lo, hi)
+    return _make(lo.reshape(shape), hi.reshape(shape))
 
 
 def as_interval(v) -> Interval:
