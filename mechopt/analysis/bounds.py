@@ -474,22 +474,68 @@ class _Cells:
     def split(self, rows, levels: int = 1):
         """The children of ``rows`` after ``levels`` halvings of each side, kept where they
         may meet the task; and the index of each child's parent."""
-        parent = np.arange(len(rows))
-        for _ in range(levels):
-            if self.kind == "box":
-                x0, x1, y0, y1 = rows.T
-                xm, ym = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
-                rows = np.concatenate([np.stack(c, 1) for c in ((x0, xm, y0, ym), (xm, x1, y0, ym),
-                                                                (x0, xm, ym, y1), (xm, x1, ym, y1))])
-                parent = np.tile(parent, 4)
-                keep = self._meets(rows)
-                rows, parent = rows[keep], parent[keep]
-            else:
-                k, t0, t1 = rows.T
-                tm = 0.5 * (t0 + t1)
-                rows = np.concatenate([np.stack([k, t0, tm], 1), np.stack([k, tm, t1], 1)])
-                parent = np.tile(parent, 2)
-        return rows, parent
+        return self.split_each([rows], [levels])[0]
+
+    def split_each(self, rows_list, levels_list):
+        """:meth:`split` of each ``rows`` of ``rows_list`` by its ``levels``, each level's
+        halving and keeping computed once over the distinct rows of all (a row's children
+        and whether they may meet the task are functions of the row alone: the same arrays
+        as one :meth:`split` per ``rows``).
+
+        Parameters
+        ----------
+        rows_list : list of ndarray
+            The cells of each search.
+        levels_list : list of int
+            Per search, the levels of its split.
+
+        Returns
+        -------
+        list of tuple
+            Per search ``(children, parent)``, as :meth:`split`'s.
+        """
+        out = [(np.asarray(r, dtype=float), np.arange(len(r))) for r in rows_list]
+        for level in range(max(levels_list, default=0)):
+            active = [i for i, n in enumerate(levels_list) if n > level]
+            for i, (kids, parent) in zip(active, self._halve_each([out[i][0] for i in active])):
+                out[i] = (kids, out[i][1][parent])
+        return out
+
+    def _halve_each(self, rows_list):
+        """One halving of each ``rows`` (:meth:`split_each`): per ``rows`` the children,
+        quadrant by quadrant (a piece of path: half by half) in the order of ``rows``, kept
+        where they may meet the task, and each child's parent."""
+        rows = np.ascontiguousarray(np.concatenate(rows_list))
+        key = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1])))[:, 0]
+        _, first, where = np.unique(key, return_index=True, return_inverse=True)
+        where = where.ravel()
+        if self.kind == "box":
+            x0, x1, y0, y1 = rows[first].T
+            xm, ym = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+            parts = [np.stack(c, 1) for c in ((x0, xm, y0, ym), (xm, x1, y0, ym), (x0, xm, ym, y1), (xm, x1, ym, y1))]
+            m = len(first)
+            keep = self._meets(np.concatenate(parts))
+            keeps = [keep[q * m:(q + 1) * m] for q in range(4)]
+        else:
+            k, t0, t1 = rows[first].T
+            tm = 0.5 * (t0 + t1)
+            parts = [np.stack([k, t0, tm], 1), np.stack([k, tm, t1], 1)]
+            keeps = [None, None]
+        out, at = [], 0
+        for r in rows_list:
+            idx = where[at:at + len(r)]
+            at += len(r)
+            kids, parent = [], []
+            for part, keep in zip(parts, keeps):
+                if keep is None:
+                    kids.append(part[idx])
+                    parent.append(np.arange(len(idx)))
+                else:
+                    kept = keep[idx]
+                    kids.append(part[idx[kept]])
+                    parent.append(np.flatnonzero(kept))
+            out.append((np.concatenate(kids), np.concatenate(parent)))
+        return out
 
 
 def _take(v, idx):
@@ -864,6 +910,10 @@ def lower_bounds_of_designs(task, designs, budget: int = BUDGET, rtol: float = R
         todo = [s for s in searches if s.step is not None]
         if not todo:
             break
+        # every search's cells split at once (each gets the children of its own split)
+        split = cells.split_each([s.rows[s.step[0]] for s in todo], [s.step[1] for s in todo])
+        for s, (kids, parent) in zip(todo, split):
+            s.step = (s.step[0], kids, parent, s.step[2])
         found = evaluate(todo, lambda s: s.step[1])
         for s in todo:
             pick, k, parent, truncated = s.step
@@ -893,7 +943,8 @@ def lower_bounds_of_designs(task, designs, budget: int = BUDGET, rtol: float = R
 
 def _step(s, cells, budget, rtol):
     """One round of a search: None when it stops (converged, nothing to split, out of
-    budget), else ``(pick, kids, parent, truncated)``."""
+    budget), else ``(pick, levels, truncated)``: the cells to split and how deep (the
+    caller splits, :meth:`_Cells.split_each`)."""
     q, lb, rows = s.q, s.lb, s.rows
     tol = _tol(q, s.ub, rtol)
     low = float(lb.min()) if len(lb) else math.inf
@@ -916,8 +967,7 @@ def _step(s, cells, budget, rtol):
             s.done = True
             return None
         pick = pick[np.argsort(lb[pick], kind="stable")[:room]]
-    kids, parent = cells.split(rows[pick], levels)
-    return pick, kids, parent, truncated
+    return pick, levels, truncated
 
 
 @dataclass
