@@ -172,3 +172,94 @@ def test_few_elements_and_other_layouts_take_the_numpy_path(monkeypatch):
             a * b, a + b, a - b, a / b
             if a is not wide:  # (its own ends: the loop's)
                 a.sqr(), a.sqrt()
+
+
+# ------------------------------------------------------------------ fused expressions
+FUSED = {  # expression: (operands, operation by operation)
+    iv._F_MULADD: (4, lambda a, v, w, b: a * v + w * b),
+    iv._F_SCALE: (3, lambda c, v, d: c * (v * d)),
+    iv._F_SUBMULDIV: (4, lambda a, q, b, v: (a - q * b) / v),
+    iv._F_NEGMULDIV: (3, lambda q, d, v: -(q * d) / v),
+}
+
+
+def _fused_differences(monkeypatch, seed, n=1500):
+    """The expressions (and operands) whose fused loop differs from the NumPy path's
+    operations one by one; checks that the fused loop ran where it should."""
+    rng = np.random.default_rng(seed)
+    bad = []
+    for op, (m, f) in FUSED.items():
+        for shapes in ([(n,)] * m, [(n,), (1,)] + [(n,)] * (m - 2), [(1,)] * (m - 1) + [(n,)],
+                       [(n // 3, 3)] * m):
+            xs = [_interval(rng, s) for s in shapes]
+            if op == iv._F_SCALE:
+                xs[0] = iv.as_interval(rng.choice([2.0, 0.5, -3.0, 1e300]))
+            with np.errstate(all="ignore"):
+                monkeypatch.setattr(jit.Twin, "compiled", staticmethod(lambda: False))
+                ref = f(*xs)
+                monkeypatch.setattr(jit.Twin, "compiled", staticmethod(lambda: True))
+                got = iv._fused(op, *xs)
+            # the loop runs unless a first product has one element (its rounding: nextafter's)
+            first_small = any(max(np.size(xs[j].lo), np.size(xs[j].hi)) == 1 for j in iv._F_FIRST[op][0]) and \
+                all(max(np.size(xs[j].lo), np.size(xs[j].hi)) == 1 for j in iv._F_FIRST[op][0])
+            assert (got is None) == first_small, (op, shapes)
+            if got is not None and not _same(ref, got):
+                bad.append((op, shapes[1]))
+    return bad
+
+
+@needs_numba
+@pytest.mark.parametrize("seed", range(3))
+def test_compiled_fused_expressions_bit_for_bit(monkeypatch, seed):
+    assert _fused_differences(monkeypatch, seed) == []
+
+
+@pytest.fixture
+def python_fused(monkeypatch):
+    for name, loop in (("_MULADD_TWIN", iv._muladd_loop), ("_SCALE_TWIN", iv._scale_loop),
+                       ("_QUOTIENT_TWIN", iv._quotient_loop), ("_BINARY_TWIN", iv._binary_loop),
+                       ("_UNARY_TWIN", iv._unary_loop)):
+        monkeypatch.setattr(iv, name, loop)
+
+
+def test_python_fused_expressions_bit_for_bit(monkeypatch, python_fused):
+    assert _fused_differences(monkeypatch, 7, n=600) == []
+
+
+def test_a_fused_loop_rounding_once_is_caught(monkeypatch, python_fused):
+    """The products rounded only with the sum (one rounding instead of three): tighter,
+    and not the NumPy path's endpoints."""
+    def loop(alo, ahi, vlo, vhi, wlo, whi, blo, bhi, lo, hi):
+        with np.errstate(all="ignore"):
+            p = np.stack(np.broadcast_arrays(alo * vlo, alo * vhi, ahi * vlo, ahi * vhi))
+            q = np.stack(np.broadcast_arrays(wlo * blo, wlo * bhi, whi * blo, whi * bhi))
+            lo[:] = iv._down(p.min(0) + q.min(0))
+            hi[:] = iv._up(p.max(0) + q.max(0))
+    monkeypatch.setattr(iv, "_MULADD_TWIN", loop)
+    assert (iv._F_MULADD, (600,)) in _fused_differences(monkeypatch, 7, n=600)
+
+
+def _gradient_ops(rng, n):
+    """Gradient expressions over ``n`` boxes (two variables; the closure's operations)."""
+    x, y = (iv.Interval(*np.sort(rng.uniform(-50, 150, (2, n)), 0)) for _ in range(2))
+    gx, gy = iv.Gradient.variables(x, y)
+    with np.errstate(all="ignore"):
+        d2 = (gx.sqr() + gy.sqr()).nonneg()
+        u = 1.0 / d2
+        k = 0.5 + 0.5 * ((gx * gy) * u)
+        h, _ = (u * 40000.0 - k.sqr()).sqrt()
+        r = iv.hypot(gx * h - gy, gy / (k + 3.0))
+        return [d2, u, k, h, r, gx / gy, (gx - gy) / (h + 1.0)]
+
+
+@pytest.mark.parametrize("n", [iv._FEW - 1, 700])
+def test_gradient_operations_bit_for_bit(monkeypatch, python_fused, n):
+    """Values and derivatives of Gradient expressions, loops (fused and not) against the
+    NumPy path (fewer than _FEW boxes: the NumPy path both times)."""
+    for compiled in (False, True):
+        monkeypatch.setattr(jit.Twin, "compiled", staticmethod(lambda c=compiled: c))
+        got = _gradient_ops(np.random.default_rng(1), n)
+        if not compiled:
+            ref = got
+    for u, v in zip(ref, got):
+        assert _same(u.v, v.v) and all(_same(a, b) for a, b in zip(u.g, v.g))

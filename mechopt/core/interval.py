@@ -18,7 +18,12 @@ An :class:`Interval` holds two float arrays ``lo <= hi`` of one shape: the set o
   (:class:`mechopt.core.jit.Twin`), ``+ - * /``, ``sqr`` and ``sqrt`` run as one compiled
   loop per operation that performs each element's operations of the NumPy path in its
   order and rounds by the same arithmetic (:func:`_round_down`): the same endpoints bit
-  for bit, so the same argument (tests/test_interval_loops.py compares the two).
+  for bit, so the same argument (tests/test_interval_loops.py compares the two). The
+  derivatives of :class:`Gradient` (``a v + w b``, ``(a - q b) / v``, ``-(q d) / v``,
+  ``2 (v d)``) run as one loop per expression that performs, element by element, each of
+  its operations as above, each rounded outward (no array between, the same endpoints
+  as the operations one by one), where every operation's result has the expression's
+  size (so the same rounding).
 * ``abs``, ``min``, ``max`` and negation are exact in floating point: no rounding.
 * division by an interval that contains 0 gives ``(-inf, inf)`` (unbounded); a NaN
   endpoint (``inf - inf``, ``0 * inf``) is replaced by the infinite endpoint on its
@@ -342,36 +347,90 @@ def _round_up(v):
 _ADD, _SUB, _MUL, _DIV = 0, 1, 2, 3
 
 
+@jitable
+def _mul1(a0, a1, b0, b1):
+    """:meth:`Interval.__mul__` of one element of an array of at least :data:`_FEW`:
+    ``(lo, hi)``."""
+    p, q, r, t = a0 * b0, a0 * b1, a1 * b0, a1 * b1
+    if p != p or q != q or r != r or t != t:  # NaN: unbounded (NumPy's minimum propagates it)
+        return _NINF, _PINF
+    return _round_down(min(min(p, q), min(r, t))), _round_up(max(max(p, q), max(r, t)))
+
+
+@jitable
+def _div1(a0, a1, b0, b1):
+    """:meth:`Interval.__truediv__` of one element (:func:`_mul1`)."""
+    if b0 <= 0.0 and b1 >= 0.0:  # the divisor may vanish: unbounded
+        return _NINF, _PINF
+    p, q, r, t = a0 / b0, a0 / b1, a1 / b0, a1 / b1
+    if p != p or q != q or r != r or t != t:
+        return _NINF, _PINF
+    return _round_down(min(min(p, q), min(r, t))), _round_up(max(max(p, q), max(r, t)))
+
+
 def _binary_loop(op, alo, ahi, blo, bhi, lo, hi):
     """``[alo, ahi] op [blo, bhi]`` into ``lo``, ``hi`` (each operand of ``len(lo)``
     elements or of one, broadcast): :meth:`Interval.__add__`, ``__sub__``, ``__mul__``
     and ``__truediv__`` element by element (compiled, :class:`mechopt.core.jit.Twin`)."""
-    n = lo.shape[0]
     k0 = 1 if alo.shape[0] > 1 else 0
     k1 = 1 if ahi.shape[0] > 1 else 0
     k2 = 1 if blo.shape[0] > 1 else 0
     k3 = 1 if bhi.shape[0] > 1 else 0
-    for i in range(n):
-        a0, a1, b0, b1 = alo[i * k0], ahi[i * k1], blo[i * k2], bhi[i * k3]
-        if op == _ADD:
-            low, high = a0 + b0, a1 + b1
-        elif op == _SUB:
-            low, high = a0 - b1, a1 - b0
+    n = lo.shape[0]
+    if op == _ADD:
+        for i in range(n):
+            lo[i] = _round_down(alo[i * k0] + blo[i * k2])
+            hi[i] = _round_up(ahi[i * k1] + bhi[i * k3])
+    elif op == _SUB:
+        for i in range(n):
+            lo[i] = _round_down(alo[i * k0] - bhi[i * k3])
+            hi[i] = _round_up(ahi[i * k1] - blo[i * k2])
+    elif op == _MUL:
+        for i in range(n):
+            lo[i], hi[i] = _mul1(alo[i * k0], ahi[i * k1], blo[i * k2], bhi[i * k3])
+    else:
+        for i in range(n):
+            lo[i], hi[i] = _div1(alo[i * k0], ahi[i * k1], blo[i * k2], bhi[i * k3])
+
+
+@jitable
+def _step(x):
+    """1 for an operand of the result's elements, 0 for one element (broadcast)."""
+    return 1 if x.shape[0] > 1 else 0
+
+
+def _muladd_loop(alo, ahi, vlo, vhi, wlo, whi, blo, bhi, lo, hi):
+    """``a * v + w * b`` (the product rule) element by element: each operation as
+    :class:`Interval`'s, rounded as there, with no array between (compiled,
+    :class:`mechopt.core.jit.Twin`)."""
+    k = (_step(alo), _step(ahi), _step(vlo), _step(vhi), _step(wlo), _step(whi), _step(blo), _step(bhi))
+    for i in range(lo.shape[0]):
+        p0, p1 = _mul1(alo[i * k[0]], ahi[i * k[1]], vlo[i * k[2]], vhi[i * k[3]])
+        q0, q1 = _mul1(wlo[i * k[4]], whi[i * k[5]], blo[i * k[6]], bhi[i * k[7]])
+        lo[i] = _round_down(p0 + q0)
+        hi[i] = _round_up(p1 + q1)
+
+
+def _scale_loop(c, vlo, vhi, dlo, dhi, lo, hi):
+    """``c * (v * d)`` (a number ``c``; :meth:`Gradient.sqr`) element by element
+    (:func:`_muladd_loop`)."""
+    k = (_step(vlo), _step(vhi), _step(dlo), _step(dhi))
+    for i in range(lo.shape[0]):
+        p0, p1 = _mul1(vlo[i * k[0]], vhi[i * k[1]], dlo[i * k[2]], dhi[i * k[3]])
+        lo[i], hi[i] = _mul1(c, c, p0, p1)
+
+
+def _quotient_loop(neg, alo, ahi, qlo, qhi, blo, bhi, vlo, vhi, lo, hi):
+    """``(a - q * b) / v`` (the quotient rule), or ``-(q * b) / v`` where ``neg``
+    (``a`` unused), element by element (:func:`_muladd_loop`)."""
+    k = (_step(alo), _step(ahi), _step(qlo), _step(qhi), _step(blo), _step(bhi), _step(vlo), _step(vhi))
+    for i in range(lo.shape[0]):
+        p0, p1 = _mul1(qlo[i * k[2]], qhi[i * k[3]], blo[i * k[4]], bhi[i * k[5]])
+        if neg:
+            d0, d1 = -p1, -p0
         else:
-            if op == _MUL:
-                p, q, r, t = a0 * b0, a0 * b1, a1 * b0, a1 * b1
-            else:
-                if b0 <= 0.0 and b1 >= 0.0:  # the divisor may vanish: unbounded
-                    lo[i], hi[i] = _NINF, _PINF
-                    continue
-                p, q, r, t = a0 / b0, a0 / b1, a1 / b0, a1 / b1
-            if p != p or q != q or r != r or t != t:  # NaN: unbounded (NumPy's minimum propagates it)
-                lo[i], hi[i] = _NINF, _PINF
-                continue
-            low = min(min(p, q), min(r, t))
-            high = max(max(p, q), max(r, t))
-        lo[i] = _round_down(low)
-        hi[i] = _round_up(high)
+            d0, d1 = _round_down(alo[i * k[0]] - p1), _round_up(ahi[i * k[1]] - p0)
+        lo[i], hi[i] = _div1(d0, d1, vlo[i * k[6]], vhi[i * k[7]])
 
 
 #: operation codes of :func:`_unary_loop`
@@ -400,6 +459,9 @@ def _unary_loop(op, xlo, xhi, lo, hi):
 
 _BINARY_TWIN = Twin(_binary_loop)
 _UNARY_TWIN = Twin(_unary_loop)
+_MULADD_TWIN = Twin(_muladd_loop)
+_SCALE_TWIN = Twin(_scale_loop)
+_QUOTIENT_TWIN = Twin(_quotient_loop)
 #: the NumPy paths of the operation codes
 _BINARY_NUMPY = {_ADD: _add, _SUB: _sub, _MUL: _mul, _DIV: _div}
 _UNARY_NUMPY = {_SQR: _sqr, _SQRT: _sqrt}
@@ -467,6 +529,53 @@ def _unary(op, x):
     return _make(lo.reshape(shape), hi.reshape(shape))
 
 
+#: expressions of :func:`_fused` (the operands ``x0, x1, ...`` in order)
+_F_MULADD = 0  # x0 * x1 + x2 * x3 (the product rule)
+_F_SCALE = 1  # x0 * (x1 * x2), x0 a number
+_F_SUBMULDIV = 2  # (x0 - x1 * x2) / x3 (the quotient rule)
+_F_NEGMULDIV = 3  # -(x0 * x1) / x2
+#: per expression, the operands of each product whose size is its result's (the first
+#: operations'; for every expression the later results are at least as large)
+_F_FIRST = {_F_MULADD: ((0, 1), (2, 3)), _F_SCALE: ((1, 2),), _F_SUBMULDIV: ((1, 2),), _F_NEGMULDIV: ((0, 1),)}
+
+
+def _fused(op, *xs):
+    """The expression ``op`` (:data:`_F_MULADD`, ...) of the intervals ``xs`` by its
+    compiled loop (:func:`_muladd_loop`, :func:`_scale_loop`, :func:`_quotient_loop`), or None (compute it operation by operation): where the loops
+    run, every operand's ends are of the result's shape or of one element, and each
+    operation's result has the result's size (so its rounding is the loop's: at least
+    :data:`_FEW` elements)."""
+    ends = []
+    for x in xs:
+        ends += (x.lo, x.hi)
+    got = _loop_operands(ends)
+    if got is None or got[1] is None:
+        return None
+    shape, flat = got
+    for pair in _F_FIRST[op]:
+        if max(flat[i].size for j in pair for i in (2 * j, 2 * j + 1)) == 1:
+            return None
+    n = max(f.size for f in flat)
+    lo, hi = np.empty(n), np.empty(n)
+    if op == _F_MULADD:
+        _MULADD_TWIN(*flat, lo, hi)
+    elif op == _F_SCALE:
+        c = flat[0][0]
+        if flat[0].size != 1 or flat[1].size != 1 or flat[1][0] != c:
+            return None
+        _SCALE_TWIN(float(c), *flat[2:], lo, hi)
+    elif op == _F_SUBMULDIV:
+        _QUOTIENT_TWIN(False, *flat, lo, hi)
+    else:
+        _QUOTIENT_TWIN(True, *flat[:2], *flat, lo, hi)
+    return _make(lo.reshape(shape), hi.reshape(shape))
+
+
+def _product_rule(a, v, w, b):
+    """``a * v + w * b`` (intervals), fused where it can be (:func:`_fused`)."""
+    return _fused(_F_MULADD, a, v, w, b) or a * v + w * b
+
+
 def as_interval(v) -> Interval:
     """``v`` as an :class:`Interval` (a number or array: degenerate intervals).
 
@@ -517,7 +626,7 @@ def hypot(a, b):
     zero = tuple(_make(np.zeros(1), np.zeros(1)) for _ in range(n))
     ga, gb = ga or zero, gb or zero
     out = object.__new__(Gradient)
-    out.v, out.g = r, tuple(ua * da + ub * db for da, db in zip(ga, gb))
+    out.v, out.g = r, tuple(_product_rule(ua, da, ub, db) for da, db in zip(ga, gb))
     return out
 
 
@@ -630,6 +739,9 @@ def maximum(a, b) -> Interval:
     return _make(np.maximum(a.lo, b.lo), np.maximum(a.hi, b.hi))
 
 
+#: the constant 2 (:meth:`Gradient.sqr`)
+_TWO = _make(np.asarray(2.0), None)
+_TWO.hi = _TWO.lo
 #: an interval that contains the real number pi (``np.pi`` is below it by less than an ulp)
 PI = _make(np.asarray(np.pi), np.nextafter(np.asarray(np.pi), _PINF))
 
@@ -723,7 +835,7 @@ class Gradient:
         v, g = _parts(other)
         if g is None:
             return self._new(self.v * v, tuple(d * v for d in self.g))
-        return self._new(self.v * v, tuple(a * v + self.v * b for a, b in zip(self.g, g)))
+        return self._new(self.v * v, tuple(_product_rule(a, v, self.v, b) for a, b in zip(self.g, g)))
 
     __rmul__ = __mul__
 
@@ -732,12 +844,12 @@ class Gradient:
         q = self.v / v
         if g is None:
             return self._new(q, tuple(d / v for d in self.g))
-        return self._new(q, tuple((a - q * b) / v for a, b in zip(self.g, g)))
+        return self._new(q, tuple(_fused(_F_SUBMULDIV, a, q, b, v) or (a - q * b) / v for a, b in zip(self.g, g)))
 
     def __rtruediv__(self, other):
         v, _ = _parts(other)
         q = v / self.v
-        return self._new(q, tuple(-(q * d) / self.v for d in self.g))
+        return self._new(q, tuple(_fused(_F_NEGMULDIV, q, d, self.v) or -(q * d) / self.v for d in self.g))
 
     def sqr(self):
         """``x^2``.
@@ -747,7 +859,7 @@ class Gradient:
         Gradient
             Value and derivatives ``2 x dx``.
         """
-        return self._new(self.v.sqr(), tuple(2.0 * (self.v * d) for d in self.g))
+        return self._new(self.v.sqr(), tuple(_fused(_F_SCALE, _TWO, self.v, d) or 2.0 * (self.v * d) for d in self.g))
 
     def sqrt(self):
         """``sqrt(x)`` of the non-negative part, and where ``lo < 0`` (:meth:`Interval.sqrt`).
@@ -760,7 +872,8 @@ class Gradient:
             Where the argument may be negative.
         """
         r, neg = self.v.sqrt()
-        return self._new(r, tuple(d / (2.0 * r) for d in self.g)), neg
+        r2 = 2.0 * r
+        return self._new(r, tuple(d / r2 for d in self.g)), neg
 
     def nonneg(self):
         """The value's lower end raised to 0 (:meth:`Interval.nonneg`), derivatives kept.
