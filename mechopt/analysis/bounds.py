@@ -201,8 +201,9 @@ def _two_smax_squared(m):
 
 
 def _jacobian(A, b, w=(1.0, 1.0)):
-    """Rows ``a_i / (b_i w_i)``: ``diag(w)^-1 J``."""
-    return tuple((A[i][0] / (b[i] * w[i]), A[i][1] / (b[i] * w[i])) for i in range(2))
+    """Rows ``a_i / (b_i w_i)``: ``diag(w)^-1 J`` (each ``b_i w_i`` enclosed once)."""
+    bw = [b[i] * w[i] for i in range(2)]
+    return tuple((A[i][0] / bw[i], A[i][1] / bw[i]) for i in range(2))
 
 
 # ------------------------------------------------------------------ the quantities
