@@ -149,3 +149,30 @@ def test_cells_of_several_searches_split_at_once_as_each_alone(task):
         assert kids.tobytes() == ref_kids.tobytes() and kids.shape == ref_kids.shape
         assert np.array_equal(parent, ref_parent)
     assert cells.kind != "box" or any(len(k) < 4 ** n * len(r) for r, n, (k, _) in zip(picks, levels, together))
+
+
+@pytest.mark.parametrize("n_range", [40, 300])
+def test_enclosure_parts_over_the_cells_their_searches_read(n_range):
+    """A round's closure part is computed over the cells its quantities read and the
+    ranges' part over theirs: each cell's intervals those of the whole batch, bit for bit
+    (a part of fewer than _FEW cells of a larger batch is computed over the whole batch:
+    the rounding's size class)."""
+    cells = B._Cells(TASK)
+    rows, _ = cells.split(cells.rows, 2)
+    rows, _ = cells.split(rows, 1)
+    n = len(rows)
+    assert n >= 2 * iv._FEW
+    rng = np.random.default_rng(4)
+    closure = rng.random(n) < 0.6
+    ranges = np.zeros(n, bool)
+    ranges[rng.choice(n, n_range, replace=False)] = True
+    mech = DESIGNS[0]
+    whole = B._Enclosures(mech, cells, rows, 3.0, -20.0, None, 0.0, True, True)
+    part = B._Enclosures(mech, cells, rows, 3.0, -20.0, None, 0.0, closure, ranges)
+    assert (part._rpos is None) == (n_range < iv._FEW) and part._cpos is not None
+    for q in [B.lci_quantity(), B.type2_quantity(-1.0)] + B.range_quantities(1.0):
+        idx = np.flatnonzero(ranges if q.actuator is not None else closure)
+        a, b = whole.bound(q, idx), part.bound(q, idx)
+        assert a[0].tobytes() == b[0].tobytes() and np.array_equal(a[1], b[1]), q.name
+    if n_range >= iv._FEW:
+        assert len(part.act[0][0].lo) == n_range  # only the ranges' cells

@@ -76,6 +76,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mechopt.core import indices as _ix
+from mechopt.core import interval as _iv
 from mechopt.core.interval import Gradient, Interval, hypot
 from mechopt.analysis.sampling import bad_to
 
@@ -555,6 +556,11 @@ def _take(v, idx):
     return v[idx] if np.ndim(v) else v
 
 
+def _subset(v, idx):
+    """:func:`_take` of ``v`` at ``idx``, or ``v`` itself for ``idx`` None (every cell)."""
+    return v if idx is None else _take(v, idx)
+
+
 def _value(v):
     """The value of a :class:`~mechopt.core.interval.Gradient` (an interval: itself)."""
     return v.v if isinstance(v, Gradient) else v
@@ -574,9 +580,12 @@ class _Enclosures:
     lengths' box) and at its centre; for range quantities, the actuator enclosure over each
     cell and at its centre, and the closure enclosure over the cell. Each cell's
     enclosures are elementwise functions of its own box, so a cell gets the same
-    intervals whichever cells share its batch."""
+    intervals whichever cells share its batch; each part (closure, ranges) is computed
+    over the cells its quantities read (``closure``, ``ranges``: masks of the batch's
+    cells, True for every cell, False for none), in the size class of the whole batch
+    (:meth:`_part`)."""
 
-    def __init__(self, mech, cells, rows, dx, dy, lengths, shift, closure: bool, ranges: bool, fixed=None):
+    def __init__(self, mech, cells, rows, dx, dy, lengths, shift, closure, ranges, fixed=None):
         if np.ndim(dx) or np.ndim(dy):  # per cell (cells of several designs): moved where nonzero,
             X, Y = cells.boxes(rows, 0.0, 0.0)  # as :meth:`_Cells.boxes` moves a design's cells
             moved = (dx != 0) | (dy != 0)
@@ -587,42 +596,75 @@ class _Enclosures:
             X, Y = cells.boxes(rows, dx, dy)
         if shift:  # outward-rounded sums: every point of the cell moved by up to +-shift
             X, Y = X + Interval(-shift, shift), Y + Interval(-shift, shift)
-        self.n, self.X, self.Y = len(rows), X, Y
+        self.n = n = len(rows)
         # the lengths of the cells' designs (constants, each cell its own design's)
-        fixed = {n: Interval(v) for n, v in (fixed or {}).items()}
+        fixed = {k: Interval(v) for k, v in (fixed or {}).items()}
+        plain_of_grad = closure is not False and ranges is not False and not lengths
+        if plain_of_grad:  # the range quantities' closure: the values of the derivatives' (below)
+            closure = True if closure is True or ranges is True else closure | ranges
+        self._cpos, C = self._part(closure)
+        self._rpos, R = self._part(ranges)
         with np.errstate(all="ignore"):
-            if closure:
+            if closure is not False:
+                Xc, Yc, fc = _subset(X, C), _subset(Y, C), {k: _subset(v, C) for k, v in fixed.items()}
                 names = list(lengths or {})
-                boxes = [X, Y] + [Interval(*lengths[n]) for n in names]
-                self.centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
+                boxes = [Xc, Yc] + [Interval(*lengths[k]) for k in names]
+                self.centres = [Xc.mid, Yc.mid] + [float(b.mid) for b in boxes[2:]]
                 self.boxes = boxes
                 v = Gradient.variables(*boxes)
-                kw = {"lengths": {**fixed, **dict(zip(names, v[2:]))}} if names or fixed else {}
+                kw = {"lengths": {**fc, **dict(zip(names, v[2:]))}} if names or fc else {}
                 self.grad = mech.closure_enclosure(v[0], v[1], **kw)
-                at = {"lengths": {**fixed, **{n: Interval(c) for n, c in zip(names, self.centres[2:])}}} \
-                    if names or fixed else {}
+                at = {"lengths": {**fc, **{k: Interval(c) for k, c in zip(names, self.centres[2:])}}} \
+                    if names or fc else {}
                 self.at_centre = mech.closure_enclosure(Interval(self.centres[0]), Interval(self.centres[1]), **at)
-            if ranges:
-                L = {**fixed, **({n: Interval(*lh) for n, lh in lengths.items()} if lengths else {})}
+            if ranges is not False:
+                Xr, Yr, fr = _subset(X, R), _subset(Y, R), {k: _subset(v, R) for k, v in fixed.items()}
+                L = {**fr, **({k: Interval(*lh) for k, lh in lengths.items()} if lengths else {})}
                 kw = {"lengths": L} if L else {}
-                cx, cy = X.mid, Y.mid
-                self.cx, self.cy = cx, cy
-                self.act = mech.actuator_enclosure(X, Y, **kw)
+                cx, cy = Xr.mid, Yr.mid
+                self.rX, self.rY, self.cx, self.cy = Xr, Yr, cx, cy
+                self.act = mech.actuator_enclosure(Xr, Yr, **kw)
                 self.act_centre = mech.actuator_enclosure(Interval(cx), Interval(cy), **kw)
-                if closure and not lengths:  # the values of the closure with derivatives: the same
+                if plain_of_grad:  # the values of the closure with derivatives: the same
                     # interval operations on the same boxes (Gradient's values are Interval's)
-                    A, b, certain = self.grad
+                    A, b, certain = _take(self.grad, self._at(self._cpos, np.arange(n) if R is None else R))
                     self.plain = (tuple(tuple(_value(e) for e in row) for row in A), tuple(_value(e) for e in b),
                                   certain)
                 else:
-                    self.plain = mech.closure_enclosure(X, Y, **kw)
+                    self.plain = mech.closure_enclosure(Xr, Yr, **kw)
+
+    def _part(self, which):
+        """``(positions, cells)`` of a part of the enclosures (closure or ranges): over
+        every cell (``which`` True; positions and cells None), none (False), or the cells
+        of the mask ``which`` (the cells its searches read). A part over fewer than
+        :data:`~mechopt.core.interval._FEW` cells of a batch of more is over every cell:
+        outward rounding depends on the size class of the arrays
+        (:mod:`mechopt.core.interval`), so a part's intervals are those of the whole batch
+        only where both are of one class."""
+        if which is True or which is False:
+            return None, None
+        cells = np.flatnonzero(which)
+        if len(cells) == self.n or (len(cells) < _iv._FEW <= self.n):
+            return None, None
+        pos = np.full(self.n, -1)
+        pos[cells] = np.arange(len(cells))
+        return pos, cells
+
+    @staticmethod
+    def _at(pos, idx):
+        """The positions in a part of the batch's cells ``idx``."""
+        return idx if pos is None else pos[idx]
 
     def bound(self, q, idx):
-        """Lower bounds of ``q`` over the cells ``idx`` and where they may be out of reach."""
-        if len(idx) == self.n and np.array_equal(idx, np.arange(self.n)):
-            idx = slice(None)  # every cell in order: views, no copies
+        """Lower bounds of ``q`` over the cells ``idx`` (of the batch) and where they may be
+        out of reach."""
+        rng = q.actuator is not None
+        idx = self._at(self._rpos if rng else self._cpos, idx)
+        m = len(self.rX.lo) if rng else len(self.boxes[0].lo)
+        if len(idx) == m and np.array_equal(idx, np.arange(m)):
+            idx = slice(None)  # every cell of the part in order: views, no copies
         with np.errstate(all="ignore"):
-            if q.actuator is not None:
+            if rng:
                 return self._range(q, idx)
             return self._closure(q, idx)
 
@@ -634,7 +676,7 @@ class _Enclosures:
         A, b, certain = _take(self.grad, idx)
         Ac, bc, _ = _take(self.at_centre, idx)
         box = list(zip(_take(tuple(self.boxes), idx), _take(tuple(self.centres), idx)))
-        lb = np.full(len(self.X.lo[idx]), np.inf)
+        lb = np.full(len(self.boxes[0].lo[idx]), np.inf)
         for term, at_c in zip(q.terms(A, b), q.terms(Ac, bc)):
             low = np.maximum(term.lo, term.mean_value_lower(at_c, box))
             lb = np.minimum(lb, np.where(np.isnan(low), -np.inf, low))
@@ -650,7 +692,7 @@ class _Enclosures:
         i, s = q.actuator, q.sign
         (qs, certain), (qc, _) = _take(self.act, idx), _take(self.act_centre, idx)
         A, b, smooth = _take(self.plain, idx)
-        X, Y, cx, cy = _take((self.X, self.Y, self.cx, self.cy), idx)
+        X, Y, cx, cy = _take((self.rX, self.rY, self.cx, self.cy), idx)
         val, at_c = (qs[i], qc[i]) if s > 0 else (-qs[i], -qc[i])
         mv = at_c + (s * A[i][0] / b[i]) * (X - cx) + (s * A[i][1] / b[i]) * (Y - cy)
         low = np.where(np.broadcast_to(smooth, val.lo.shape), np.maximum(val.lo, mv.lo), val.lo)
@@ -873,15 +915,21 @@ def lower_bounds_of_designs(task, designs, budget: int = BUDGET, rtol: float = R
                          for n in names}
             else:
                 (dx, dy), fixed = moves[g[0]], None
-            enc = _Enclosures(mechs[g[0]], cells, rows[first], dx, dy, lengths, shift,
-                              any(s.q.actuator is None for s in mine), any(s.q.actuator is not None for s in mine),
-                              fixed)
             # the searches' cells in the batch; one evaluation per kind of quantity
             spans, at = {}, 0
             for s in mine:
                 n = len(rows_of(s))
                 spans[id(s)] = (at, at + n)
                 at += n
+            # the cells the closure's and the ranges' quantities read (each part over its own)
+            parts = []
+            for rng in (False, True):
+                mask = np.zeros(len(first), bool)
+                for s in mine:
+                    if (s.q.actuator is not None) == rng:
+                        mask[where[slice(*spans[id(s)])]] = True
+                parts.append(mask if mask.any() else False)
+            enc = _Enclosures(mechs[g[0]], cells, rows[first], dx, dy, lengths, shift, *parts, fixed)
             kinds = {}
             for s in mine:
                 kinds.setdefault(s.q.key if s.q.key is not None else id(s.q), []).append(s)
