@@ -470,8 +470,9 @@ _UNARY_NUMPY = {_SQR: _sqr, _SQRT: _sqrt}
 def _loop_operands(arrays):
     """``(shape, flat)``: the endpoint arrays as 1-d float arrays for the loops, each of
     the result's ``shape`` (C-ordered) or of one element; None where the NumPy path runs
-    (fewer than :data:`_FEW` elements: ``np.nextafter``'s rounding; other dtypes or
-    layouts); ``(shape, None)`` where it runs because the loops do not run yet."""
+    (fewer than :data:`_FEW` elements: ``np.nextafter``'s rounding; other dtypes;
+    operands of other shapes); ``(shape, None)`` where it runs because the loops do not
+    run yet."""
     shape = None
     for v in arrays:
         if np.size(v) >= _FEW:
@@ -487,10 +488,8 @@ def _loop_operands(arrays):
             v = np.asarray(v)
         if v.dtype != np.float64:
             return None
-        if v.shape == shape:
-            if not v.flags.c_contiguous:
-                return None
-            flat.append(v.reshape(-1))
+        if v.shape == shape:  # (a strided view, e.g. a column of cells, copied: one pass)
+            flat.append(np.ascontiguousarray(v).reshape(-1))
         elif v.size == 1 and v.ndim <= len(shape):
             flat.append(v.reshape(1))
         else:
