@@ -176,3 +176,17 @@ def test_enclosure_parts_over_the_cells_their_searches_read(n_range):
         assert a[0].tobytes() == b[0].tobytes() and np.array_equal(a[1], b[1]), q.name
     if n_range >= iv._FEW:
         assert len(part.act[0][0].lo) == n_range  # only the ranges' cells
+
+
+def test_a_search_without_cells_in_a_round_gets_no_bounds():
+    """A search whose cells' children all miss the task has no cells in the round, so its
+    part of the enclosures is not computed: its bounds are empty."""
+    cells = B._Cells(TASK)
+    rows = cells.rows
+    only_ranges = np.ones(len(rows), bool)
+    enc = B._Enclosures(DESIGNS[0], cells, rows, 0.0, 0.0, None, 0.0, False, only_ranges)
+    for q in (B.lci_quantity(), B.range_quantity(0, 1.0, 1.0)):
+        lb, unk = enc.bound(q, np.zeros(0, int))
+        assert lb.shape == unk.shape == (0,) and lb.dtype == float and unk.dtype == bool
+    lb, _ = enc.bound(B.range_quantity(0, 1.0, 1.0), np.arange(len(rows)))
+    assert lb.shape == (len(rows),)

@@ -658,6 +658,8 @@ class _Enclosures:
     def bound(self, q, idx):
         """Lower bounds of ``q`` over the cells ``idx`` (of the batch) and where they may be
         out of reach."""
+        if not len(idx):  # a search without cells this round (its part may not be computed)
+            return np.empty(0), np.zeros(0, bool)
         rng = q.actuator is not None
         idx = self._at(self._rpos if rng else self._cpos, idx)
         m = len(self.rX.lo) if rng else len(self.boxes[0].lo)
