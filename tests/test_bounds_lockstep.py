@@ -107,3 +107,86 @@ def test_lock_step_groups_designs_that_differ_in_lengths_only():
     assert B._alike(DESIGNS[0], DESIGNS[1], ("r1", "r2", "r3"))
     assert not B._alike(DESIGNS[0], DESIGNS[3], ("r1", "r2", "r3"))  # the mode
     assert not B._alike(DESIGNS[0], DESIGNS[1], ("r1", "r2"))  # r3 differs and is not batched
+
+
+def _split_reference(task, rows, levels):
+    """Each level: every cell's four quarters (quarter by quarter, cells in order), kept
+    where the task's signed distance at the centre is at least minus the half diagonal
+    (and the margin); a piece of path's two halves."""
+    parent = np.arange(len(rows))
+    for _ in range(levels):
+        if rows.shape[1] == 4:
+            x0, x1, y0, y1 = rows.T
+            xm, ym = (x0 + x1) / 2, (y0 + y1) / 2
+            quads = [(x0, xm, y0, ym), (xm, x1, y0, ym), (x0, xm, ym, y1), (xm, x1, ym, y1)]
+            kids = np.concatenate([np.stack(q, 1) for q in quads])
+            c = kids.T
+            sd = task.signed_distance((c[0] + c[1]) / 2, (c[2] + c[3]) / 2)
+            keep = sd >= -np.hypot(c[1] - c[0], c[3] - c[2]) / 2 - B._KEEP_MARGIN * task.diameter
+            rows, parent = kids[keep], np.tile(parent, 4)[keep]
+        else:
+            k, t0, t1 = rows.T
+            tm = (t0 + t1) / 2
+            rows, parent = np.concatenate([np.stack([k, t0, tm], 1), np.stack([k, tm, t1], 1)]), np.tile(parent, 2)
+    return rows, parent
+
+
+@pytest.mark.parametrize("task", [Task.polygon([(-50, 150), (50, 140), (10, 220), (-30, 200)]),
+                                  Task.path([(-50, 150), (50, 140), (10, 220)])], ids=["polygon", "path"])
+def test_cells_of_several_searches_split_at_once_as_each_alone(task):
+    """The rounds split every search's cells in one call (each distinct cell once): each
+    search gets the children and parents of its own split, in its order."""
+    cells = B._Cells(task)
+    rng = np.random.default_rng(2)
+    grown, _ = cells.split(cells.rows, 2)
+    grown, _ = cells.split(grown, 1)
+    # overlapping picks of the same cells, in other orders, with repeats, one and two levels
+    picks = [grown[rng.choice(len(grown), n, replace=bool(n % 2) or n > len(grown))] for n in (5, 40, len(grown), 17, 1)]
+    levels = [1, 2, 1, 2, 2]
+    together = cells.split_each(picks, levels)
+    for rows, n, (kids, parent) in zip(picks, levels, together):
+        ref_kids, ref_parent = _split_reference(task, rows, n)
+        assert kids.tobytes() == ref_kids.tobytes() and kids.shape == ref_kids.shape
+        assert np.array_equal(parent, ref_parent)
+    assert cells.kind != "box" or any(len(k) < 4 ** n * len(r) for r, n, (k, _) in zip(picks, levels, together))
+
+
+@pytest.mark.parametrize("n_range", [40, 300])
+def test_enclosure_parts_over_the_cells_their_searches_read(n_range):
+    """A round's closure part is computed over the cells its quantities read and the
+    ranges' part over theirs: each cell's intervals those of the whole batch, bit for bit
+    (a part of fewer than _FEW cells of a larger batch is computed over the whole batch:
+    the rounding's size class)."""
+    cells = B._Cells(TASK)
+    rows, _ = cells.split(cells.rows, 2)
+    rows, _ = cells.split(rows, 1)
+    n = len(rows)
+    assert n >= 2 * iv._FEW
+    rng = np.random.default_rng(4)
+    closure = rng.random(n) < 0.6
+    ranges = np.zeros(n, bool)
+    ranges[rng.choice(n, n_range, replace=False)] = True
+    mech = DESIGNS[0]
+    whole = B._Enclosures(mech, cells, rows, 3.0, -20.0, None, 0.0, True, True)
+    part = B._Enclosures(mech, cells, rows, 3.0, -20.0, None, 0.0, closure, ranges)
+    assert (part._rpos is None) == (n_range < iv._FEW) and part._cpos is not None
+    for q in [B.lci_quantity(), B.type2_quantity(-1.0)] + B.range_quantities(1.0):
+        idx = np.flatnonzero(ranges if q.actuator is not None else closure)
+        a, b = whole.bound(q, idx), part.bound(q, idx)
+        assert a[0].tobytes() == b[0].tobytes() and np.array_equal(a[1], b[1]), q.name
+    if n_range >= iv._FEW:
+        assert len(part.act[0][0].lo) == n_range  # only the ranges' cells
+
+
+def test_a_search_without_cells_in_a_round_gets_no_bounds():
+    """A search whose cells' children all miss the task has no cells in the round, so its
+    part of the enclosures is not computed: its bounds are empty."""
+    cells = B._Cells(TASK)
+    rows = cells.rows
+    only_ranges = np.ones(len(rows), bool)
+    enc = B._Enclosures(DESIGNS[0], cells, rows, 0.0, 0.0, None, 0.0, False, only_ranges)
+    for q in (B.lci_quantity(), B.range_quantity(0, 1.0, 1.0)):
+        lb, unk = enc.bound(q, np.zeros(0, int))
+        assert lb.shape == unk.shape == (0,) and lb.dtype == float and unk.dtype == bool
+    lb, _ = enc.bound(B.range_quantity(0, 1.0, 1.0), np.arange(len(rows)))
+    assert lb.shape == (len(rows),)

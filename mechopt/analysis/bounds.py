@@ -76,6 +76,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mechopt.core import indices as _ix
+from mechopt.core import interval as _iv
 from mechopt.core.interval import Gradient, Interval, hypot
 from mechopt.analysis.sampling import bad_to
 
@@ -201,8 +202,9 @@ def _two_smax_squared(m):
 
 
 def _jacobian(A, b, w=(1.0, 1.0)):
-    """Rows ``a_i / (b_i w_i)``: ``diag(w)^-1 J``."""
-    return tuple((A[i][0] / (b[i] * w[i]), A[i][1] / (b[i] * w[i])) for i in range(2))
+    """Rows ``a_i / (b_i w_i)``: ``diag(w)^-1 J`` (each ``b_i w_i`` enclosed once)."""
+    bw = [b[i] * w[i] for i in range(2)]
+    return tuple((A[i][0] / bw[i], A[i][1] / bw[i]) for i in range(2))
 
 
 # ------------------------------------------------------------------ the quantities
@@ -474,22 +476,68 @@ class _Cells:
     def split(self, rows, levels: int = 1):
         """The children of ``rows`` after ``levels`` halvings of each side, kept where they
         may meet the task; and the index of each child's parent."""
-        parent = np.arange(len(rows))
-        for _ in range(levels):
-            if self.kind == "box":
-                x0, x1, y0, y1 = rows.T
-                xm, ym = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
-                rows = np.concatenate([np.stack(c, 1) for c in ((x0, xm, y0, ym), (xm, x1, y0, ym),
-                                                                (x0, xm, ym, y1), (xm, x1, ym, y1))])
-                parent = np.tile(parent, 4)
-                keep = self._meets(rows)
-                rows, parent = rows[keep], parent[keep]
-            else:
-                k, t0, t1 = rows.T
-                tm = 0.5 * (t0 + t1)
-                rows = np.concatenate([np.stack([k, t0, tm], 1), np.stack([k, tm, t1], 1)])
-                parent = np.tile(parent, 2)
-        return rows, parent
+        return self.split_each([rows], [levels])[0]
+
+    def split_each(self, rows_list, levels_list):
+        """:meth:`split` of each ``rows`` of ``rows_list`` by its ``levels``, each level's
+        halving and keeping computed once over the distinct rows of all (a row's children
+        and whether they may meet the task are functions of the row alone: the same arrays
+        as one :meth:`split` per ``rows``).
+
+        Parameters
+        ----------
+        rows_list : list of ndarray
+            The cells of each search.
+        levels_list : list of int
+            Per search, the levels of its split.
+
+        Returns
+        -------
+        list of tuple
+            Per search ``(children, parent)``, as :meth:`split`'s.
+        """
+        out = [(np.asarray(r, dtype=float), np.arange(len(r))) for r in rows_list]
+        for level in range(max(levels_list, default=0)):
+            active = [i for i, n in enumerate(levels_list) if n > level]
+            for i, (kids, parent) in zip(active, self._halve_each([out[i][0] for i in active])):
+                out[i] = (kids, out[i][1][parent])
+        return out
+
+    def _halve_each(self, rows_list):
+        """One halving of each ``rows`` (:meth:`split_each`): per ``rows`` the children,
+        quadrant by quadrant (a piece of path: half by half) in the order of ``rows``, kept
+        where they may meet the task, and each child's parent."""
+        rows = np.ascontiguousarray(np.concatenate(rows_list))
+        key = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1])))[:, 0]
+        _, first, where = np.unique(key, return_index=True, return_inverse=True)
+        where = where.ravel()
+        if self.kind == "box":
+            x0, x1, y0, y1 = rows[first].T
+            xm, ym = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+            parts = [np.stack(c, 1) for c in ((x0, xm, y0, ym), (xm, x1, y0, ym), (x0, xm, ym, y1), (xm, x1, ym, y1))]
+            m = len(first)
+            keep = self._meets(np.concatenate(parts))
+            keeps = [keep[q * m:(q + 1) * m] for q in range(4)]
+        else:
+            k, t0, t1 = rows[first].T
+            tm = 0.5 * (t0 + t1)
+            parts = [np.stack([k, t0, tm], 1), np.stack([k, tm, t1], 1)]
+            keeps = [None, None]
+        out, at = [], 0
+        for r in rows_list:
+            idx = where[at:at + len(r)]
+            at += len(r)
+            kids, parent = [], []
+            for part, keep in zip(parts, keeps):
+                if keep is None:
+                    kids.append(part[idx])
+                    parent.append(np.arange(len(idx)))
+                else:
+                    kept = keep[idx]
+                    kids.append(part[idx[kept]])
+                    parent.append(np.flatnonzero(kept))
+            out.append((np.concatenate(kids), np.concatenate(parent)))
+        return out
 
 
 def _take(v, idx):
@@ -506,6 +554,11 @@ def _take(v, idx):
             lo, hi = np.broadcast_arrays(lo, hi)
         return _pair(lo[idx], hi[idx]) if np.ndim(lo) else v
     return v[idx] if np.ndim(v) else v
+
+
+def _subset(v, idx):
+    """:func:`_take` of ``v`` at ``idx``, or ``v`` itself for ``idx`` None (every cell)."""
+    return v if idx is None else _take(v, idx)
 
 
 def _value(v):
@@ -527,9 +580,12 @@ class _Enclosures:
     lengths' box) and at its centre; for range quantities, the actuator enclosure over each
     cell and at its centre, and the closure enclosure over the cell. Each cell's
     enclosures are elementwise functions of its own box, so a cell gets the same
-    intervals whichever cells share its batch."""
+    intervals whichever cells share its batch; each part (closure, ranges) is computed
+    over the cells its quantities read (``closure``, ``ranges``: masks of the batch's
+    cells, True for every cell, False for none), in the size class of the whole batch
+    (:meth:`_part`)."""
 
-    def __init__(self, mech, cells, rows, dx, dy, lengths, shift, closure: bool, ranges: bool, fixed=None):
+    def __init__(self, mech, cells, rows, dx, dy, lengths, shift, closure, ranges, fixed=None):
         if np.ndim(dx) or np.ndim(dy):  # per cell (cells of several designs): moved where nonzero,
             X, Y = cells.boxes(rows, 0.0, 0.0)  # as :meth:`_Cells.boxes` moves a design's cells
             moved = (dx != 0) | (dy != 0)
@@ -540,42 +596,77 @@ class _Enclosures:
             X, Y = cells.boxes(rows, dx, dy)
         if shift:  # outward-rounded sums: every point of the cell moved by up to +-shift
             X, Y = X + Interval(-shift, shift), Y + Interval(-shift, shift)
-        self.n, self.X, self.Y = len(rows), X, Y
+        self.n = n = len(rows)
         # the lengths of the cells' designs (constants, each cell its own design's)
-        fixed = {n: Interval(v) for n, v in (fixed or {}).items()}
+        fixed = {k: Interval(v) for k, v in (fixed or {}).items()}
+        plain_of_grad = closure is not False and ranges is not False and not lengths
+        if plain_of_grad:  # the range quantities' closure: the values of the derivatives' (below)
+            closure = True if closure is True or ranges is True else closure | ranges
+        self._cpos, C = self._part(closure)
+        self._rpos, R = self._part(ranges)
         with np.errstate(all="ignore"):
-            if closure:
+            if closure is not False:
+                Xc, Yc, fc = _subset(X, C), _subset(Y, C), {k: _subset(v, C) for k, v in fixed.items()}
                 names = list(lengths or {})
-                boxes = [X, Y] + [Interval(*lengths[n]) for n in names]
-                self.centres = [X.mid, Y.mid] + [float(b.mid) for b in boxes[2:]]
+                boxes = [Xc, Yc] + [Interval(*lengths[k]) for k in names]
+                self.centres = [Xc.mid, Yc.mid] + [float(b.mid) for b in boxes[2:]]
                 self.boxes = boxes
                 v = Gradient.variables(*boxes)
-                kw = {"lengths": {**fixed, **dict(zip(names, v[2:]))}} if names or fixed else {}
+                kw = {"lengths": {**fc, **dict(zip(names, v[2:]))}} if names or fc else {}
                 self.grad = mech.closure_enclosure(v[0], v[1], **kw)
-                at = {"lengths": {**fixed, **{n: Interval(c) for n, c in zip(names, self.centres[2:])}}} \
-                    if names or fixed else {}
+                at = {"lengths": {**fc, **{k: Interval(c) for k, c in zip(names, self.centres[2:])}}} \
+                    if names or fc else {}
                 self.at_centre = mech.closure_enclosure(Interval(self.centres[0]), Interval(self.centres[1]), **at)
-            if ranges:
-                L = {**fixed, **({n: Interval(*lh) for n, lh in lengths.items()} if lengths else {})}
+            if ranges is not False:
+                Xr, Yr, fr = _subset(X, R), _subset(Y, R), {k: _subset(v, R) for k, v in fixed.items()}
+                L = {**fr, **({k: Interval(*lh) for k, lh in lengths.items()} if lengths else {})}
                 kw = {"lengths": L} if L else {}
-                cx, cy = X.mid, Y.mid
-                self.cx, self.cy = cx, cy
-                self.act = mech.actuator_enclosure(X, Y, **kw)
+                cx, cy = Xr.mid, Yr.mid
+                self.rX, self.rY, self.cx, self.cy = Xr, Yr, cx, cy
+                self.act = mech.actuator_enclosure(Xr, Yr, **kw)
                 self.act_centre = mech.actuator_enclosure(Interval(cx), Interval(cy), **kw)
-                if closure and not lengths:  # the values of the closure with derivatives: the same
+                if plain_of_grad:  # the values of the closure with derivatives: the same
                     # interval operations on the same boxes (Gradient's values are Interval's)
-                    A, b, certain = self.grad
+                    A, b, certain = _take(self.grad, self._at(self._cpos, np.arange(n) if R is None else R))
                     self.plain = (tuple(tuple(_value(e) for e in row) for row in A), tuple(_value(e) for e in b),
                                   certain)
                 else:
-                    self.plain = mech.closure_enclosure(X, Y, **kw)
+                    self.plain = mech.closure_enclosure(Xr, Yr, **kw)
+
+    def _part(self, which):
+        """``(positions, cells)`` of a part of the enclosures (closure or ranges): over
+        every cell (``which`` True; positions and cells None), none (False), or the cells
+        of the mask ``which`` (the cells its searches read). A part over fewer than
+        :data:`~mechopt.core.interval._FEW` cells of a batch of more is over every cell:
+        outward rounding depends on the size class of the arrays
+        (:mod:`mechopt.core.interval`), so a part's intervals are those of the whole batch
+        only where both are of one class."""
+        if which is True or which is False:
+            return None, None
+        cells = np.flatnonzero(which)
+        if len(cells) == self.n or (len(cells) < _iv._FEW <= self.n):
+            return None, None
+        pos = np.full(self.n, -1)
+        pos[cells] = np.arange(len(cells))
+        return pos, cells
+
+    @staticmethod
+    def _at(pos, idx):
+        """The positions in a part of the batch's cells ``idx``."""
+        return idx if pos is None else pos[idx]
 
     def bound(self, q, idx):
-        """Lower bounds of ``q`` over the cells ``idx`` and where they may be out of reach."""
-        if len(idx) == self.n and np.array_equal(idx, np.arange(self.n)):
-            idx = slice(None)  # every cell in order: views, no copies
+        """Lower bounds of ``q`` over the cells ``idx`` (of the batch) and where they may be
+        out of reach."""
+        if not len(idx):  # a search without cells this round (its part may not be computed)
+            return np.empty(0), np.zeros(0, bool)
+        rng = q.actuator is not None
+        idx = self._at(self._rpos if rng else self._cpos, idx)
+        m = len(self.rX.lo) if rng else len(self.boxes[0].lo)
+        if len(idx) == m and np.array_equal(idx, np.arange(m)):
+            idx = slice(None)  # every cell of the part in order: views, no copies
         with np.errstate(all="ignore"):
-            if q.actuator is not None:
+            if rng:
                 return self._range(q, idx)
             return self._closure(q, idx)
 
@@ -587,7 +678,7 @@ class _Enclosures:
         A, b, certain = _take(self.grad, idx)
         Ac, bc, _ = _take(self.at_centre, idx)
         box = list(zip(_take(tuple(self.boxes), idx), _take(tuple(self.centres), idx)))
-        lb = np.full(len(self.X.lo[idx]), np.inf)
+        lb = np.full(len(self.boxes[0].lo[idx]), np.inf)
         for term, at_c in zip(q.terms(A, b), q.terms(Ac, bc)):
             low = np.maximum(term.lo, term.mean_value_lower(at_c, box))
             lb = np.minimum(lb, np.where(np.isnan(low), -np.inf, low))
@@ -603,7 +694,7 @@ class _Enclosures:
         i, s = q.actuator, q.sign
         (qs, certain), (qc, _) = _take(self.act, idx), _take(self.act_centre, idx)
         A, b, smooth = _take(self.plain, idx)
-        X, Y, cx, cy = _take((self.X, self.Y, self.cx, self.cy), idx)
+        X, Y, cx, cy = _take((self.rX, self.rY, self.cx, self.cy), idx)
         val, at_c = (qs[i], qc[i]) if s > 0 else (-qs[i], -qc[i])
         mv = at_c + (s * A[i][0] / b[i]) * (X - cx) + (s * A[i][1] / b[i]) * (Y - cy)
         low = np.where(np.broadcast_to(smooth, val.lo.shape), np.maximum(val.lo, mv.lo), val.lo)
@@ -826,15 +917,21 @@ def lower_bounds_of_designs(task, designs, budget: int = BUDGET, rtol: float = R
                          for n in names}
             else:
                 (dx, dy), fixed = moves[g[0]], None
-            enc = _Enclosures(mechs[g[0]], cells, rows[first], dx, dy, lengths, shift,
-                              any(s.q.actuator is None for s in mine), any(s.q.actuator is not None for s in mine),
-                              fixed)
             # the searches' cells in the batch; one evaluation per kind of quantity
             spans, at = {}, 0
             for s in mine:
                 n = len(rows_of(s))
                 spans[id(s)] = (at, at + n)
                 at += n
+            # the cells the closure's and the ranges' quantities read (each part over its own)
+            parts = []
+            for rng in (False, True):
+                mask = np.zeros(len(first), bool)
+                for s in mine:
+                    if (s.q.actuator is not None) == rng:
+                        mask[where[slice(*spans[id(s)])]] = True
+                parts.append(mask if mask.any() else False)
+            enc = _Enclosures(mechs[g[0]], cells, rows[first], dx, dy, lengths, shift, *parts, fixed)
             kinds = {}
             for s in mine:
                 kinds.setdefault(s.q.key if s.q.key is not None else id(s.q), []).append(s)
@@ -864,6 +961,10 @@ def lower_bounds_of_designs(task, designs, budget: int = BUDGET, rtol: float = R
         todo = [s for s in searches if s.step is not None]
         if not todo:
             break
+        # every search's cells split at once (each gets the children of its own split)
+        split = cells.split_each([s.rows[s.step[0]] for s in todo], [s.step[1] for s in todo])
+        for s, (kids, parent) in zip(todo, split):
+            s.step = (s.step[0], kids, parent, s.step[2])
         found = evaluate(todo, lambda s: s.step[1])
         for s in todo:
             pick, k, parent, truncated = s.step
@@ -893,7 +994,8 @@ def lower_bounds_of_designs(task, designs, budget: int = BUDGET, rtol: float = R
 
 def _step(s, cells, budget, rtol):
     """One round of a search: None when it stops (converged, nothing to split, out of
-    budget), else ``(pick, kids, parent, truncated)``."""
+    budget), else ``(pick, levels, truncated)``: the cells to split and how deep (the
+    caller splits, :meth:`_Cells.split_each`)."""
     q, lb, rows = s.q, s.lb, s.rows
     tol = _tol(q, s.ub, rtol)
     low = float(lb.min()) if len(lb) else math.inf
@@ -916,8 +1018,7 @@ def _step(s, cells, budget, rtol):
             s.done = True
             return None
         pick = pick[np.argsort(lb[pick], kind="stable")[:room]]
-    kids, parent = cells.split(rows[pick], levels)
-    return pick, kids, parent, truncated
+    return pick, levels, truncated
 
 
 @dataclass
