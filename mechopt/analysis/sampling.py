@@ -29,6 +29,13 @@ import numpy as np
 __all__ = ["Sampling", "samples", "bad_to", "region_mins", "leg_ranges", "minimise", "compiled_region_min"]
 
 
+#: the zoom (module doc): starts per search, and per search its levels and points per
+#: level (the boundary's along the arc, the interior's per side of its square)
+ZOOM_STARTS = 3
+BOUNDARY_LEVELS, BOUNDARY_POINTS = 4, 17
+INTERIOR_LEVELS, INTERIOR_POINTS = 3, 9
+
+
 @dataclass(frozen=True)
 class Sampling:
     """Sample counts of one evaluation: boundary points, interior grid per side.
@@ -176,7 +183,7 @@ def _own_blocks(V, m):
     return V.reshape(m, m, -1)[np.arange(m), np.arange(m)].ravel()
 
 
-def _boundary_search(ctx, vals, refine, k=3, levels=4, n=17):
+def _boundary_search(ctx, vals, refine, k=ZOOM_STARTS, levels=BOUNDARY_LEVELS, n=BOUNDARY_POINTS):
     """Minimum over the task's boundary of each row of ``vals`` (a function's values at
     the boundary samples, one function per row), refined by zooming (module doc) around
     each row's ``k`` lowest samples. A generator run by :func:`minimise`: it yields the
@@ -200,7 +207,7 @@ def _boundary_search(ctx, vals, refine, k=3, levels=4, n=17):
     return [float(b) for b in best]
 
 
-def _interior_search(ctx, vals, refine, k=3, levels=3, n=9):
+def _interior_search(ctx, vals, refine, k=ZOOM_STARTS, levels=INTERIOR_LEVELS, n=INTERIOR_POINTS):
     """Minimum over the task's interior grid of each row of ``vals`` (a function's
     values there, one function per row), refined by zooming (module doc) around each
     row's ``k`` lowest grid points; a generator run by :func:`minimise`, as
@@ -320,7 +327,7 @@ def _boundary_offset_rows(size, levels, n):
     return _readonly(np.stack(_boundary_offsets(size, levels, n)))[0]
 
 
-def compiled_region_min(ctx, kernel, scale, bad, vals, k=3):
+def compiled_region_min(ctx, kernel, scale, bad, vals, k=ZOOM_STARTS):
     """The minima over the boundary and over the interior of one function,
     ``scale * f`` with ``NaN -> bad``, by the compiled zoom
     (:func:`mechopt.core.zoom.zoom_minimum`) of a mechanism's point kernel ``f``
@@ -359,13 +366,13 @@ def compiled_region_min(ctx, kernel, scale, bad, vals, k=3):
     vx, vy, wy, ex, ey, L2, L, cum = task.edges
     if vb.size and ctx["tb"].size:
         t0 = ctx["tb"][_lowest(vb, k)]
-        offsets = _boundary_offset_rows(ctx["tb"].size, 4, 17)
+        offsets = _boundary_offset_rows(ctx["tb"].size, BOUNDARY_LEVELS, BOUNDARY_POINTS)
     else:
-        t0, offsets = np.zeros(0), np.zeros((0, 17))
-    GX, GY = _interior_offsets(9)
+        t0, offsets = np.zeros(0), np.zeros((0, BOUNDARY_POINTS))
+    GX, GY = _interior_offsets(INTERIOR_POINTS)
     if ctx["ix"].size:
         order = _lowest(vi, k)
-        px0, py0, levels = ctx["ix"][order], ctx["iy"][order], 3
+        px0, py0, levels = ctx["ix"][order], ctx["iy"][order], INTERIOR_LEVELS
     else:
         px0, py0, levels = np.zeros(0), np.zeros(0), 0
     return kernel.run(float(scale), float(bad), tb_best, t0, offsets, task.is_path, vx, vy, wy, ex, ey, L, L2, cum,
@@ -409,9 +416,10 @@ def leg_ranges(ctx, legs, refine, bad=(np.inf, np.inf), kernel=None):
     task = ctx["task"]
     if kernel is not None and refine and ctx["tb"].size and vals.shape[1] and task.kind != "circle":
         vx, vy, _, ex, ey, _, L, cum = task.edges
-        t0 = ctx["tb"][np.concatenate([_lowest(v, 3) for v in vals])]  # as _boundary_search
+        t0 = ctx["tb"][np.concatenate([_lowest(v, ZOOM_STARTS) for v in vals])]  # as _boundary_search
         m = [float(v) for v in kernel.run(float(bad[0]), float(bad[1]), vals.min(axis=1), t0,
-                                          _boundary_offset_rows(ctx["tb"].size, 4, 17), task.is_path,
+                                          _boundary_offset_rows(ctx["tb"].size, BOUNDARY_LEVELS, BOUNDARY_POINTS),
+                                          task.is_path,
                                           vx, vy, ex, ey, L, cum)]
     else:
         m = minimise(rows, [_boundary_search(ctx, vals, refine)], task)[0]
