@@ -149,6 +149,9 @@ def test_task_boundary_and_contains_bit_for_bit(seed, n):
                                 [0.0, 0.0, np.nan]])
             assert_same_bits(*both(mp, lambda: task.contains(x, y)))
             assert_same_bits(*both(mp, lambda: task.contains(x[:6].reshape(3, 2), 170.0)))
+            # the grid's containment row by row (Task.grid), every size of the samplings
+            for m in (13, 37, 61):
+                assert_same_bits(*both(mp, lambda: task.grid(m)))
             if task.is_region:
                 got = task.contains(x, y)
                 assert got[:300].any() and not got[:300].all()  # both verdicts occur

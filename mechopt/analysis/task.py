@@ -25,7 +25,7 @@ import numpy as np
 
 from mechopt.core import validation as _v
 from mechopt.core.jit import Twin
-from mechopt.core.zoom import polygon_contains, polygon_point
+from mechopt.core.zoom import grid_contains, polygon_contains, polygon_point
 
 __all__ = ["Task", "parse_task", "read_points", "UNITS", "PLACEMENTS"]
 
@@ -390,12 +390,12 @@ class Task:
         ``L = |e|`` and ``cum`` the arc-length fractions of the vertices (``cum[-1] = 1``).
         A path's edges join its consecutive points (no closing edge)."""
         v = self.pts[:-1] if self.is_path else self.vertices
-        w = self.pts[1:] if self.is_path else np.roll(v, -1, 0)
+        w = self.pts[1:] if self.is_path else np.concatenate((v[1:], v[:1]))  # np.roll(v, -1, 0)
         e = w - v
         ex, ey = e[:, 0].copy(), e[:, 1].copy()
         L = np.hypot(ex, ey)
         return (v[:, 0].copy(), v[:, 1].copy(), w[:, 1].copy(), ex, ey, ex * ex + ey * ey, L,
-                np.r_[0.0, np.cumsum(L)] / L.sum())
+                np.concatenate(([0.0], np.cumsum(L))) / L.sum())
 
     @property
     def inside_tolerance(self) -> float:
@@ -559,8 +559,14 @@ class Task:
         if not self.is_region:
             return self.pts[:, 0].copy(), self.pts[:, 1].copy(), 0.0
         x0, x1, y0, y1 = self.bbox
-        gx, gy = np.meshgrid(np.linspace(x0, x1, n), np.linspace(y0, y1, n))
-        keep = self.contains(gx, gy)
+        xs, ys = np.linspace(x0, x1, n), np.linspace(y0, y1, n)
+        gx, gy = np.meshgrid(xs, ys)
+        if Twin.compiled() and self.kind != "circle":  # a polygon: its rows' crossings once
+            vx, vy, wy, ex, ey, L2, _, _ = self.edges
+            keep = np.empty(gx.shape, dtype=np.bool_)
+            _GRID_TWIN(xs, ys, vx, vy, wy, ex, ey, L2, self.inside_tolerance, keep.reshape(-1))
+        else:
+            keep = self.contains(gx, gy)
         return gx[keep], gy[keep], max(x1 - x0, y1 - y0) / (n - 1)
 
     @classmethod
@@ -770,5 +776,12 @@ def _contains_loop(x, y, vx, vy, wy, ex, ey, L2, tol, out):
         out[i] = polygon_contains(x[i], y[i], vx, vy, wy, ex, ey, L2, tol)
 
 
+def _grid_loop(xs, ys, vx, vy, wy, ex, ey, L2, tol, out):
+    """:meth:`Task.contains` of a polygon at the nodes of :meth:`Task.grid` into ``out``
+    (:func:`mechopt.core.zoom.grid_contains`)."""
+    grid_contains(xs, ys, vx, vy, wy, ex, ey, L2, tol, out)
+
+
 _BOUNDARY_TWIN = Twin(_boundary_loop)
+_GRID_TWIN = Twin(_grid_loop)
 _CONTAINS_TWIN = Twin(_contains_loop)

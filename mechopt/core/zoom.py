@@ -35,7 +35,7 @@ from mechopt.core import jit
 from mechopt.core.jit import jitable
 from mechopt.core.protocol import POINT_MAX
 
-__all__ = ["ZoomKernel", "point_in_reach", "polygon_point", "polygon_contains", "zoom_minimum", "zoom_ranges"]
+__all__ = ["ZoomKernel", "point_in_reach", "polygon_point", "polygon_contains", "grid_contains", "zoom_minimum", "zoom_ranges"]
 
 
 @dataclass(frozen=True)
@@ -166,14 +166,27 @@ def polygon_contains(px, py, vx, vy, wy, ex, ey, L2, tol):
             n += 1
     if n % 2 == 1:
         return True
-    # no NaN can arise (a finite point, edges of positive length): the first edge within
-    # tol decides, as the minimum over all would; and an edge whose box, widened by 2 tol
-    # and by 1e-14 times the magnitudes involved (~45 ulps: more than the rounding of
-    # the distance computed below and of the box's corner v + e), does not hold the
-    # point is farther than tol in computed distance too, so it cannot decide
-    early = np.isfinite(px) and np.isfinite(py)
-    for j in range(vx.size):
-        early = early and L2[j] > 0.0
+    return _near_boundary(px, py, vx, vy, wy, ex, ey, L2, tol, _no_nan(px, py, L2))
+
+
+@jitable
+def _no_nan(px, py, L2):
+    """No NaN can arise in :func:`_near_boundary`: a finite point, edges of positive length."""
+    ok = np.isfinite(px) and np.isfinite(py)
+    for j in range(L2.size):
+        ok = ok and L2[j] > 0.0
+    return ok
+
+
+@jitable
+def _near_boundary(px, py, vx, vy, wy, ex, ey, L2, tol, early):
+    """Whether the smallest distance from ``(px, py)`` to the edges is at most ``tol``
+    (:meth:`mechopt.analysis.task.Task._distance`; NaN propagating as in NumPy's clip,
+    hypot and min). With ``early`` (:func:`_no_nan`) the first edge within tol decides,
+    as the minimum over all would, and an edge whose box, widened by 2 tol and by 1e-14
+    times the magnitudes involved (~45 ulps: more than the rounding of the distance
+    computed below and of the box's corner v + e), does not hold the point is farther
+    than tol in computed distance too, so it cannot decide."""
     best = np.inf
     for j in range(vx.size):
         if early:
@@ -193,6 +206,44 @@ def polygon_contains(px, py, vx, vy, wy, ex, ey, L2, tol):
             return True
         best = np.minimum(best, d)
     return best <= tol
+
+
+@jitable
+def grid_contains(xs, ys, vx, vy, wy, ex, ey, L2, tol, out):
+    """:func:`polygon_contains` at every node of the grid ``xs x ys`` into ``out``
+    (row ``r``, column ``i`` at ``r * xs.size + i``: ``np.meshgrid(xs, ys)`` ravelled),
+    each row's crossing abscissae ``ex (y - vy) / ey + vx`` computed once (the same
+    floats as per point, so the same parity).
+
+    Parameters
+    ----------
+    xs, ys : ndarray
+        The grid's abscissae and ordinates [unit].
+    vx, vy, wy, ex, ey, L2 : ndarray
+        The edges (:attr:`mechopt.analysis.task.Task.edges`).
+    tol : float
+        :attr:`mechopt.analysis.task.Task.inside_tolerance` [unit].
+    out : ndarray
+        Booleans, ``ys.size * xs.size``.
+    """
+    xc = np.empty(vx.size)
+    for r in range(ys.size):
+        py = ys[r]
+        k = 0
+        for j in range(vx.size):
+            if (vy[j] > py) != (wy[j] > py):
+                xc[k] = ex[j] * (py - vy[j]) / ey[j] + vx[j]
+                k += 1
+        for i in range(xs.size):
+            px = xs[i]
+            n = 0
+            for q in range(k):
+                if px < xc[q]:
+                    n += 1
+            if n % 2 == 1:
+                out[r * xs.size + i] = True
+            else:
+                out[r * xs.size + i] = _near_boundary(px, py, vx, vy, wy, ex, ey, L2, tol, _no_nan(px, py, L2))
 
 
 @jitable
