@@ -155,18 +155,23 @@ def _elbows_loop(x, y, legs, out, ok):
         out[0, i], out[1, i], out[2, i], out[3, i], ok[i] = _elbows_at(x[i], y[i], legs)
 
 
+@jitable
+def _closure_at(x, y, legs):
+    """:func:`legs_closure` at one point (compiled kernels; ``legs = [r3, a1, c1, s1, a2,
+    c2, s2]``): ``(a1x, a1y, a2x, a2y, b1, b2, ok)``, ``A``'s rows and ``B``'s diagonal by
+    the NumPy path's operations, NaN where unreachable."""
+    r3 = legs[0]
+    b1x, b1y, b2x, b2y, ok = _elbows_at(x, y, legs)
+    a1x, a1y, a2x, a2y = x - b1x, y - b1y, x - b2x, y - b2y
+    return a1x, a1y, a2x, a2y, (b1x + r3) * a1y - b1y * a1x, (b2x - r3) * a2y - b2y * a2x, ok
+
+
 def _closure_loop(x, y, legs, A, b, ok):
     """:func:`legs_closure` point by point (compiled, :class:`mechopt.core.jit.Twin`;
-    ``legs = [r3, a1, c1, s1, a2, c2, s2]``): its ``A`` (shape ``(n, 2, 2)``), ``b``
-    (``(n, 2)``) and reachability, each entry by the NumPy path's operations."""
-    r3 = legs[0]
+    :func:`_closure_at`): its ``A`` (shape ``(n, 2, 2)``), ``b`` (``(n, 2)``) and
+    reachability."""
     for i in range(x.size):
-        px, py = x[i], y[i]
-        b1x, b1y, b2x, b2y, ok[i] = _elbows_at(px, py, legs)
-        a1x, a1y, a2x, a2y = px - b1x, py - b1y, px - b2x, py - b2y
-        A[i, 0, 0], A[i, 0, 1], A[i, 1, 0], A[i, 1, 1] = a1x, a1y, a2x, a2y
-        b[i, 0] = (b1x + r3) * a1y - b1y * a1x
-        b[i, 1] = (b2x - r3) * a2y - b2y * a2x
+        A[i, 0, 0], A[i, 0, 1], A[i, 1, 0], A[i, 1, 1], b[i, 0], b[i, 1], ok[i] = _closure_at(x[i], y[i], legs)
 
 
 @jitable
@@ -222,15 +227,10 @@ def _ik_loop(x, y, legs, k1, k2, ok):
 @jitable
 def _lci_at(legs, x, y):
     """The LCI of the Jacobian at one point, 0 where unreachable: ``FiveBar.lci`` of
-    the protocol (``J = A / b`` row by row from :func:`_closure_loop`'s ``A, b``, then
+    the protocol (``J = A / b`` row by row from :func:`_closure_at`, then
     :func:`mechopt.core.indices.lci_of_matrix`), the zoom's point kernel
     (:meth:`FiveBar.zoom_kernel`; ``legs = [r3, a1, c1, s1, a2, c2, s2]``)."""
-    x, y = point_in_reach(x), point_in_reach(y)
-    r3 = legs[0]
-    b1x, b1y, b2x, b2y, _ = _elbows_at(x, y, legs)
-    a1x, a1y, a2x, a2y = x - b1x, y - b1y, x - b2x, y - b2y
-    k1 = (b1x + r3) * a1y - b1y * a1x
-    k2 = (b2x - r3) * a2y - b2y * a2x
+    a1x, a1y, a2x, a2y, k1, k2, _ = _closure_at(point_in_reach(x), point_in_reach(y), legs)
     return lci_of_matrix(a1x / k1, a1y / k1, a2x / k2, a2y / k2)
 
 
@@ -240,7 +240,14 @@ def _type2_at(legs, x, y):
     point kernel (``legs = [r3, a1, c1, s1, a2, c2, s2]``, ``c1 = r2``)."""
     x, y = point_in_reach(x), point_in_reach(y)
     b1x, b1y, b2x, b2y, _ = _elbows_at(x, y, legs)
-    return ((x - b1x) * (y - b2y) - (y - b1y) * (x - b2x)) / (legs[2] * legs[2])
+    return _type2_of(x, y, b1x, b1y, b2x, b2y, legs[2])
+
+
+@jitable
+def _type2_of(x, y, b1x, b1y, b2x, b2y, r2):
+    """``(a1 x a2) / r2^2`` with ``a_i = P - B_i`` (:meth:`FiveBar.type2_function`; arrays
+    or, compiled, floats)."""
+    return ((x - b1x) * (y - b2y) - (y - b1y) * (x - b2x)) / (r2 * r2)
 
 
 # one entry per kernel, each naming its kernel: numba's cache keeps a function that calls
@@ -1335,7 +1342,7 @@ class FiveBar(PlanarMechanism):
         """
         x, y = as_points(x, y)
         b1x, b1y, b2x, b2y, _ = self.elbows(x, y)
-        return ((x - b1x) * (y - b2y) - (y - b1y) * (x - b2x)) / (self.r2 * self.r2)
+        return _type2_of(x, y, b1x, b1y, b2x, b2y, self.r2)
 
     def explicit_workspace(self):
         """The explicit MIC (closed-form serial clearance, explicit type-II locus; Le 2013
