@@ -28,12 +28,13 @@ byte for byte), so a floor is the most a byte-identical speed-up can reach.
 from __future__ import annotations
 
 import argparse
+import json
 import resource
 import subprocess
 import sys
 import tempfile
 import time
-from collections import Counter, defaultdict
+from collections import Counter
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -59,26 +60,28 @@ def startup_cpu() -> float:
 
 
 class Meter:
-    """Counts evaluations and times stages, evaluations and compiled loops (CPU s)."""
+    """Counts evaluations and times stages, evaluations and compiled loops (CPU s) while
+    it is entered (``with Meter() as meter:``): it wraps the stages' functions,
+    :meth:`DesignEvaluator.evaluate <mechopt.analysis.design_eval.DesignEvaluator.evaluate>`
+    and :meth:`Twin.__call__ <mechopt.core.jit.Twin.__call__>`, and puts them back on exit."""
 
     def __init__(self):
-        self.reset()
-        self.install()
-
-    def reset(self):
         self.stage = ["other"]
         self.stage_cpu = Counter()
         self.evals = Counter()
         self.eval_cpu = Counter()
         self.compiled_cpu = Counter()
         self.depth = 0
+        self._saved = []
 
-    def install(self):
+    def __enter__(self):
         import mechopt.run.runner as runner
         import mechopt.workflows.design as wd
         from mechopt.analysis.design_eval import DesignEvaluator
+        from mechopt.analysis.sampling import Sampling
         from mechopt.core.jit import Twin
 
+        fine = Sampling.fine()
         meter = self
 
         def staged(name, fn):
@@ -95,74 +98,91 @@ class Meter:
                         meter.stage_cpu[meter.stage[-1]] -= dt
             return wrapper
 
-        for module, attr, name in ((runner, "optimize", "search"), (wd, "_polish_front", "polish"),
-                                   (wd, "certify", "certification"), (wd, "_certificate", "certificate")):
-            setattr(module, attr, staged(name, getattr(module, attr)))
+        def counted(evaluate):
+            def wrapper(ev, v, sampling=None):
+                fine_counts = sampling is not None and (sampling.n_boundary, sampling.n_interior) == (
+                    fine.n_boundary, fine.n_interior)
+                kind = ("fine" if fine_counts else "search") + (" (settled)" if sampling and sampling.settle else "")
+                key = (meter.stage[-1], kind)
+                meter.evals[key] += 1
+                meter.depth += 1
+                t0 = cpu()
+                try:
+                    return evaluate(ev, v, sampling)
+                finally:
+                    meter.eval_cpu[key] += cpu() - t0
+                    meter.depth -= 1
+            return wrapper
 
-        evaluate = DesignEvaluator.evaluate
+        def timed(call):
+            def wrapper(twin, *args):
+                t0 = cpu()
+                try:
+                    return call(twin, *args)
+                finally:
+                    meter.compiled_cpu[(meter.stage[-1], meter.depth > 0)] += cpu() - t0
+            return wrapper
 
-        def counted(ev, v, sampling=None):
-            kind = "search" if sampling is None or sampling.n_interior < 61 else "fine"
-            kind += " (settled)" if sampling is not None and sampling.settle else ""
-            key = (meter.stage[-1], kind)
-            meter.evals[key] += 1
-            meter.depth += 1
-            t0 = cpu()
-            try:
-                return evaluate(ev, v, sampling)
-            finally:
-                meter.eval_cpu[key] += cpu() - t0
-                meter.depth -= 1
+        for owner, attr, wrap in ((runner, "optimize", lambda f: staged("search", f)),
+                                  (wd, "_polish_front", lambda f: staged("polish", f)),
+                                  (wd, "certify", lambda f: staged("certification", f)),
+                                  (wd, "_certificate", lambda f: staged("certificate", f)),
+                                  (DesignEvaluator, "evaluate", counted), (Twin, "__call__", timed)):
+            original = getattr(owner, attr)
+            self._saved.append((owner, attr, original))
+            setattr(owner, attr, wrap(original))
+        return self
 
-        DesignEvaluator.evaluate = counted
-        call = Twin.__call__
-
-        def timed(twin, *args):
-            t0 = cpu()
-            try:
-                return call(twin, *args)
-            finally:
-                meter.compiled_cpu[(meter.stage[-1], meter.depth > 0)] += cpu() - t0
-
-        Twin.__call__ = timed
+    def __exit__(self, *exc):
+        for owner, attr, original in reversed(self._saved):
+            setattr(owner, attr, original)
+        self._saved.clear()
 
 
-def measure(case: str, meter: Meter) -> dict:
-    """One in-process run of ``case`` after a warming run: the meter's counts and the
-    total CPU [s]."""
+def measure(case: str, extra=(), warm=True) -> dict:
+    """One in-process run of ``case`` (with the further options ``extra``), after a
+    warming run with ``warm``: its :class:`Meter`, total CPU time [s] and the search's
+    evaluations as run.json reports them."""
     from mechopt.cli import main
 
     with tempfile.TemporaryDirectory() as d:
-        args = ["design", *CASES[case], "--n-jobs", "1", "--quiet"]
-        main([*args, "--out", str(Path(d) / "warm")])
-        meter.reset()
-        t0 = cpu()
-        main([*args, "--out", str(Path(d) / "run")])
-        total = cpu() - t0
-    return {"meter": meter, "total": total}
+        args = ["design", *CASES[case], *extra, "--n-jobs", "1", "--quiet"]
+        if warm:
+            main([*args, "--out", str(Path(d) / "warm")])
+        with Meter() as meter:
+            t0 = cpu()
+            main([*args, "--out", str(Path(d) / "run")])
+            total = cpu() - t0
+        reported = json.loads((Path(d) / "run" / "run.json").read_text())["evaluations"]
+    return {"meter": meter, "total": total, "search_evaluations": reported}
 
 
-def report(case: str, m: dict, start: float, baseline: float | None):
+def summarise(m: dict, start: float) -> dict:
+    """The figures of a :func:`measure` run with ``start`` [s] of start-up: total CPU,
+    CPU per stage, ``(count, CPU)`` per stage and kind of evaluation, the evaluations'
+    CPU and the compiled loops' inside and outside them, and the two floors [s]."""
     meter, total = m["meter"], m["total"]
     stages = dict(meter.stage_cpu)
-    print(f"{case}: CPU {total + start:.2f} s (start-up {start:.2f}, the command {total:.2f})")
-    evals_by_stage = defaultdict(list)
-    for (stage, kind), n in sorted(meter.evals.items()):
-        evals_by_stage[stage].append((kind, n, meter.eval_cpu[(stage, kind)]))
-    eval_total = sum(meter.eval_cpu.values())
-    compiled_in = sum(v for (s, inside), v in meter.compiled_cpu.items() if inside)
-    for stage in ("search", "polish", "certification", "certificate"):
+    stages["other"] = total - sum(v for k, v in stages.items() if k != "other")
+    evals = {k: (n, meter.eval_cpu[k]) for k, n in sorted(meter.evals.items())}
+    eval_cpu = sum(meter.eval_cpu.values())
+    inside = sum(v for (_, within), v in meter.compiled_cpu.items() if within)
+    return {"total": total + start, "start": start, "stages": stages, "evals": evals, "eval_cpu": eval_cpu,
+            "compiled_in_evaluations": inside,
+            "compiled_elsewhere": sum(v for (_, within), v in meter.compiled_cpu.items() if not within),
+            "floors": {"compiled only": total + start - eval_cpu + inside, "free evaluations": total + start - eval_cpu}}
+
+
+def report(case: str, s: dict, baseline: float | None):
+    print(f"{case}: CPU {s['total']:.2f} s (start-up {s['start']:.2f})")
+    for stage in ("search", "polish", "certification", "certificate", "other"):
         parts = "; ".join(f"{n} {kind} evaluations {t:.2f} s ({1e3 * t / n:.2f} ms each)"
-                          for kind, n, t in evals_by_stage.get(stage, []))
-        print(f"  {stage:14s} {stages.get(stage, 0.0):6.2f} s  {parts}")
-    print(f"  {'other':14s} {total - sum(stages.values()):6.2f} s  (set-up, the front's table and files but the "
-          f"certificate's)")
-    print(f"  evaluations: {sum(meter.evals.values())}, {eval_total:.2f} s, of which compiled loops "
-          f"{compiled_in:.2f} s; compiled loops outside evaluations (bounds) "
-          f"{sum(v for (s, inside), v in meter.compiled_cpu.items() if not inside):.2f} s")
-    floors = {"compiled only": total + start - eval_total + compiled_in,
-              "free evaluations": total + start - eval_total}
-    for name, f in floors.items():
+                          for (st, kind), (n, t) in s["evals"].items() if st == stage)
+        print(f"  {stage:14s} {s['stages'].get(stage, 0.0):6.2f} s  {parts}")
+    print(f"  evaluations: {sum(n for n, _ in s['evals'].values())}, {s['eval_cpu']:.2f} s, of which compiled "
+          f"loops {s['compiled_in_evaluations']:.2f} s; compiled loops outside evaluations (bounds) "
+          f"{s['compiled_elsewhere']:.2f} s")
+    for name, f in s["floors"].items():
         ratio = f"; baseline {baseline:.2f} s / floor = {baseline / f:.2f}x at most" if baseline else ""
         print(f"  floor, {name:17s} {f:6.2f} s{ratio}")
 
@@ -177,12 +197,11 @@ def main(argv=None):
         if c not in CASES:
             ap.error(f"unknown case {c!r}; known: {', '.join(CASES)}")
     start = startup_cpu()
-    meter = Meter()
     for c in names:
         baseline = run(args.baseline, CASES[c], 1)["cpu_s"] if args.baseline else None
         t0 = time.perf_counter()
-        m = measure(c, meter)
-        report(c, m, start, baseline)
+        m = measure(c)
+        report(c, summarise(m, start), baseline)
         print(f"  (measured in {time.perf_counter() - t0:.0f} s)", flush=True)
 
 
