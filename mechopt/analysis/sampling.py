@@ -26,6 +26,8 @@ from functools import lru_cache
 
 import numpy as np
 
+from mechopt.core.protocol import mark_in_reach
+
 __all__ = ["Sampling", "samples", "bad_to", "region_mins", "leg_ranges", "minimise", "compiled_region_min"]
 
 
@@ -129,7 +131,7 @@ def samples(task, s: Sampling) -> dict:
         bx, by = task.pts[:, 0].copy(), task.pts[:, 1].copy()
         ix, iy, step = np.zeros(0), np.zeros(0), 0.0
     allx, ally = np.concatenate([bx, ix]), np.concatenate([by, iy])
-    _readonly(tb, bx, by, ix, iy, allx, ally)
+    mark_in_reach(*_readonly(tb, bx, by, ix, iy, allx, ally))  # every evaluation's kinematics read them
     return dict(task=task, tb=tb, gap=gap, bx=bx, by=by, ix=ix, iy=iy, step=step, allx=allx, ally=ally)
 
 

@@ -18,6 +18,7 @@ All methods broadcast over NumPy arrays of points; scalars give 0-d arrays.
 """
 from __future__ import annotations
 
+import weakref
 from abc import ABC, abstractmethod
 
 import numpy as np
@@ -26,7 +27,8 @@ from mechopt.core import indices as _ix
 from mechopt.core import validation as _v
 from mechopt.core.quadrature import RASTER_CELLS
 
-__all__ = ["PlanarMechanism", "Parameter", "REQUIRED", "PARAMETER_KINDS", "ASSEMBLY_MODES", "as_points"]
+__all__ = ["PlanarMechanism", "Parameter", "REQUIRED", "PARAMETER_KINDS", "ASSEMBLY_MODES", "as_points",
+           "mark_in_reach"]
 
 #: the two assembly modes of the forward problem of a two-legged mechanism: which side
 #: of the line through its two distal joints (or base joints) the platform point lies on
@@ -103,8 +105,36 @@ class Parameter:
 POINT_MAX = 1e3 * _v.LENGTH_MAX
 
 
+#: read-only float arrays already found within :data:`POINT_MAX` (no NaN), by identity:
+#: ``id -> weak reference``, an entry leaving with its array. A design evaluation hands
+#: the task's samples to a dozen kinematic calls, each of which would check them again
+#: (two reductions a call: a tenth of a search evaluation).
+_IN_REACH = {}
+
+
+def mark_in_reach(*arrays):
+    """Check the read-only float arrays ``arrays`` once: those within
+    :data:`POINT_MAX` (every coordinate finite) are passed on unchecked by
+    :func:`as_points` from then on, while they live.
+
+    Parameters
+    ----------
+    *arrays : ndarray
+        Read-only float64 arrays (the task's samples of an evaluation); a writeable one
+        is not marked (it could change after the check).
+    """
+    for v in arrays:
+        if (type(v) is np.ndarray and v.dtype == np.float64 and not v.flags.writeable
+                and (not v.size or (v.max() <= POINT_MAX and v.min() >= -POINT_MAX))):
+            key = id(v)
+            _IN_REACH[key] = weakref.ref(v, lambda _, key=key: _IN_REACH.pop(key, None))
+
+
 def _within_reach(v):
     """``v`` (a float array) with the coordinates beyond :data:`POINT_MAX` set to NaN."""
+    ref = _IN_REACH.get(id(v))
+    if ref is not None and ref() is v:  # checked when marked (mark_in_reach)
+        return v
     if v.size and not (v.max() <= POINT_MAX and v.min() >= -POINT_MAX):  # NaN or far away
         v = np.where(np.abs(v) > POINT_MAX, np.nan, v)
     return v
