@@ -25,7 +25,7 @@ import numpy as np
 
 from mechopt.core import validation as _v
 from mechopt.core.jit import Twin
-from mechopt.core.zoom import grid_contains, polygon_contains, polygon_point
+from mechopt.core.zoom import contains_points, polygon_points
 
 __all__ = ["Task", "parse_task", "read_points", "UNITS", "PLACEMENTS"]
 
@@ -561,10 +561,11 @@ class Task:
         x0, x1, y0, y1 = self.bbox
         xs, ys = np.linspace(x0, x1, n), np.linspace(y0, y1, n)
         gx, gy = np.meshgrid(xs, ys)
-        if Twin.compiled() and self.kind != "circle":  # a polygon: its rows' crossings once
+        if Twin.compiled() and self.kind != "circle":  # a polygon: each row's crossings once
             vx, vy, wy, ex, ey, L2, _, _ = self.edges
             keep = np.empty(gx.shape, dtype=np.bool_)
-            _GRID_TWIN(xs, ys, vx, vy, wy, ex, ey, L2, self.inside_tolerance, keep.reshape(-1))
+            _CONTAINS_TWIN(gx.reshape(-1), gy.reshape(-1), vx, vy, wy, ex, ey, L2, self.inside_tolerance,
+                           keep.reshape(-1))
         else:
             keep = self.contains(gx, gy)
         return gx[keep], gy[keep], max(x1 - x0, y1 - y0) / (n - 1)
@@ -763,25 +764,17 @@ def parse_task(text: str, unit: str = "mm") -> Task:
 # operations point by point, so the same values bit for bit) -----------------------------
 def _boundary_loop(t, is_path, vx, vy, ex, ey, L, cum, bx, by):
     """:meth:`Task.boundary_at` of a polygon or path at each ``t`` into ``bx, by``
-    (:func:`mechopt.core.zoom.polygon_point`)."""
-    for i in range(t.size):
-        bx[i], by[i] = polygon_point(t[i], is_path, vx, vy, ex, ey, L, cum)
+    (:func:`mechopt.core.zoom.polygon_points`)."""
+    polygon_points(t, is_path, vx, vy, ex, ey, L, cum, bx, by)
 
 
 def _contains_loop(x, y, vx, vy, wy, ex, ey, L2, tol, out):
     """:meth:`Task.contains` of a polygon at each point into ``out``
-    (:func:`mechopt.core.zoom.polygon_contains`: the even-odd rule of :meth:`Task._inside`,
-    else the distance of :meth:`Task._distance` within ``tol``)."""
-    for i in range(x.size):
-        out[i] = polygon_contains(x[i], y[i], vx, vy, wy, ex, ey, L2, tol)
-
-
-def _grid_loop(xs, ys, vx, vy, wy, ex, ey, L2, tol, out):
-    """:meth:`Task.contains` of a polygon at the nodes of :meth:`Task.grid` into ``out``
-    (:func:`mechopt.core.zoom.grid_contains`)."""
-    grid_contains(xs, ys, vx, vy, wy, ex, ey, L2, tol, out)
+    (:func:`mechopt.core.zoom.contains_points`: the even-odd rule of :meth:`Task._inside`,
+    else the distance of :meth:`Task._distance` within ``tol``; a grid's rows share
+    their crossings)."""
+    contains_points(x, y, vx, vy, wy, ex, ey, L2, tol, out)
 
 
 _BOUNDARY_TWIN = Twin(_boundary_loop)
-_GRID_TWIN = Twin(_grid_loop)
 _CONTAINS_TWIN = Twin(_contains_loop)

@@ -21,7 +21,7 @@ by the caller, with NumPy, as there. Tests compare the two searches bit for bit
 
 The polygon's boundary points and its inside test are the per-point formulas of
 :meth:`mechopt.analysis.task.Task.boundary_at` and :meth:`~mechopt.analysis.task.Task.contains`
-(:func:`polygon_point`, :func:`polygon_contains`), which that module's compiled twins
+(:func:`polygon_points`, :func:`contains_points`), which that module's compiled twins
 call too. A circle's boundary needs ``cos`` and ``sin`` (NumPy's and the C library's
 differ in the last bit), so a circle task keeps the NumPy search.
 """
@@ -35,7 +35,7 @@ from mechopt.core import jit
 from mechopt.core.jit import jitable
 from mechopt.core.protocol import POINT_MAX
 
-__all__ = ["ZoomKernel", "point_in_reach", "polygon_point", "polygon_contains", "grid_contains", "zoom_minimum", "zoom_ranges"]
+__all__ = ["ZoomKernel", "point_in_reach", "polygon_points", "contains_points", "zoom_minimum", "zoom_ranges"]
 
 
 @dataclass(frozen=True)
@@ -111,139 +111,106 @@ def point_in_reach(v):
     return np.nan if abs(v) > POINT_MAX else v
 
 
+# The polygon's per-point formulas are written once each, inside loops over a batch of
+# points (polygon_points, contains_points): a compiled helper called per point with the
+# edge arrays pays numba's reference counting of each array argument at every call
+# (about 8 ns an array, ten times the arithmetic of a boundary point).
 @jitable
-def polygon_point(t, is_path, vx, vy, ex, ey, L, cum):
-    """The point at arc-length fraction ``t`` of a polygon's boundary (mod 1) or of a
-    path (clipped to [0, 1]): :meth:`mechopt.analysis.task.Task.boundary_at` at one
-    point.
+def polygon_points(t, is_path, vx, vy, ex, ey, L, cum, bx, by):
+    """The points at the arc-length fractions ``t`` of a polygon's boundary (mod 1) or
+    of a path (clipped to [0, 1]), into ``bx, by``:
+    :meth:`mechopt.analysis.task.Task.boundary_at` point by point.
 
     Parameters
     ----------
-    t : float
-        The arc-length fraction.
+    t : ndarray
+        The arc-length fractions.
     is_path : bool
         A path (two ends) rather than a closed polygon.
     vx, vy, ex, ey, L, cum : ndarray
         The edges (:attr:`mechopt.analysis.task.Task.edges`): start points, vectors
         [unit], lengths [unit] and the vertices' arc-length fractions.
-
-    Returns
-    -------
-    x, y : float
-        The point [unit].
+    bx, by : ndarray
+        The points [unit], ``t.size`` each (written).
     """
     last = vx.size - 1
-    ti = min(max(t, 0.0), 1.0) if is_path else np.mod(t, 1.0)
-    k = min(max(np.searchsorted(cum, ti, side="right") - 1, 0), last)
-    s = (ti - cum[k]) / ((cum[k + 1] - cum[k]) if L[k] > 0 else 1.0)
-    return vx[k] + s * ex[k], vy[k] + s * ey[k]
+    for i in range(t.size):
+        ti = min(max(t[i], 0.0), 1.0) if is_path else np.mod(t[i], 1.0)
+        k = min(max(np.searchsorted(cum, ti, side="right") - 1, 0), last)
+        s = (ti - cum[k]) / ((cum[k + 1] - cum[k]) if L[k] > 0 else 1.0)
+        bx[i], by[i] = vx[k] + s * ex[k], vy[k] + s * ey[k]
 
 
 @jitable
-def polygon_contains(px, py, vx, vy, wy, ex, ey, L2, tol):
-    """Whether ``(px, py)`` lies inside a polygon or within ``tol`` of its boundary:
-    :meth:`mechopt.analysis.task.Task.contains` at one point (the even-odd rule, then
-    the distance to the edges; NaN propagating as in NumPy's clip, hypot and min).
+def contains_points(x, y, vx, vy, wy, ex, ey, L2, tol, out):
+    """Whether each point ``(x[i], y[i])`` lies inside a polygon or within ``tol`` of its
+    boundary, into ``out``: :meth:`mechopt.analysis.task.Task.contains` point by point.
+
+    The even-odd rule first: the crossing abscissae ``ex (y - vy) / ey + vx`` of the
+    edges with one end above the point's line, computed again only when the ordinate
+    changes (a grid's row shares them: the same floats, so the same parity); then, for a
+    point outside, the distance to the edges (:meth:`Task._distance
+    <mechopt.analysis.task.Task._distance>`; NaN propagating as in NumPy's clip, hypot
+    and min). Where no NaN can arise (a finite point, edges of positive length) the
+    first edge within ``tol`` decides, as the minimum over all would, and an edge whose
+    box, widened by 2 tol and by 1e-14 times the magnitudes involved (~45 ulps: more
+    than the rounding of the distance computed below and of the box's corner v + e),
+    does not hold the point is farther than ``tol`` in computed distance too, so it
+    cannot decide.
 
     Parameters
     ----------
-    px, py : float
-        The point [unit].
+    x, y : ndarray
+        The points [unit].
     vx, vy, wy, ex, ey, L2 : ndarray
         The edges (:attr:`mechopt.analysis.task.Task.edges`): start points, the next
         vertex's ordinate, vectors and squared lengths [unit, unit^2].
     tol : float
         :attr:`mechopt.analysis.task.Task.inside_tolerance` [unit].
-
-    Returns
-    -------
-    bool
-        Inside or on the boundary.
-    """
-    n = 0
-    for j in range(vx.size):
-        if ((vy[j] > py) != (wy[j] > py)) and (px < ex[j] * (py - vy[j]) / ey[j] + vx[j]):
-            n += 1
-    if n % 2 == 1:
-        return True
-    return _near_boundary(px, py, vx, vy, wy, ex, ey, L2, tol, _no_nan(px, py, L2))
-
-
-@jitable
-def _no_nan(px, py, L2):
-    """No NaN can arise in :func:`_near_boundary`: a finite point, edges of positive length."""
-    ok = np.isfinite(px) and np.isfinite(py)
-    for j in range(L2.size):
-        ok = ok and L2[j] > 0.0
-    return ok
-
-
-@jitable
-def _near_boundary(px, py, vx, vy, wy, ex, ey, L2, tol, early):
-    """Whether the smallest distance from ``(px, py)`` to the edges is at most ``tol``
-    (:meth:`mechopt.analysis.task.Task._distance`; NaN propagating as in NumPy's clip,
-    hypot and min). With ``early`` (:func:`_no_nan`) the first edge within tol decides,
-    as the minimum over all would, and an edge whose box, widened by 2 tol and by 1e-14
-    times the magnitudes involved (~45 ulps: more than the rounding of the distance
-    computed below and of the box's corner v + e), does not hold the point is farther
-    than tol in computed distance too, so it cannot decide."""
-    best = np.inf
-    for j in range(vx.size):
-        if early:
-            wx = vx[j] + ex[j]
-            m = 2.0 * tol + 1e-14 * (abs(px) + abs(py) + abs(vx[j]) + abs(vy[j]) + abs(ex[j]) + abs(ey[j]))
-            if (px < min(vx[j], wx) - m or px > max(vx[j], wx) + m
-                    or py < min(vy[j], wy[j]) - m or py > max(vy[j], wy[j]) + m):
-                continue
-        dx, dy = px - vx[j], py - vy[j]
-        s = (dx * ex[j] + dy * ey[j]) / L2[j]
-        if s < 0.0:
-            s = 0.0
-        elif s > 1.0:
-            s = 1.0
-        d = np.hypot(dx - s * ex[j], dy - s * ey[j])
-        if early and d <= tol:
-            return True
-        best = np.minimum(best, d)
-    return best <= tol
-
-
-@jitable
-def grid_contains(xs, ys, vx, vy, wy, ex, ey, L2, tol, out):
-    """:func:`polygon_contains` at every node of the grid ``xs x ys`` into ``out``
-    (row ``r``, column ``i`` at ``r * xs.size + i``: ``np.meshgrid(xs, ys)`` ravelled),
-    each row's crossing abscissae ``ex (y - vy) / ey + vx`` computed once (the same
-    floats as per point, so the same parity).
-
-    Parameters
-    ----------
-    xs, ys : ndarray
-        The grid's abscissae and ordinates [unit].
-    vx, vy, wy, ex, ey, L2 : ndarray
-        The edges (:attr:`mechopt.analysis.task.Task.edges`).
-    tol : float
-        :attr:`mechopt.analysis.task.Task.inside_tolerance` [unit].
     out : ndarray
-        Booleans, ``ys.size * xs.size``.
+        Booleans, ``x.size`` (written).
     """
+    edges_ok = True
+    for j in range(L2.size):
+        edges_ok = edges_ok and L2[j] > 0.0
     xc = np.empty(vx.size)
-    for r in range(ys.size):
-        py = ys[r]
-        k = 0
+    k, row_y = 0, np.nan
+    for i in range(x.size):
+        px, py = x[i], y[i]
+        if not py == row_y:  # a new row (a NaN ordinate: every time)
+            k, row_y = 0, py
+            for j in range(vx.size):
+                if (vy[j] > py) != (wy[j] > py):
+                    xc[k] = ex[j] * (py - vy[j]) / ey[j] + vx[j]
+                    k += 1
+        n = 0
+        for q in range(k):
+            if px < xc[q]:
+                n += 1
+        if n % 2 == 1:
+            out[i] = True
+            continue
+        early = edges_ok and np.isfinite(px) and np.isfinite(py)
+        best, near = np.inf, False
         for j in range(vx.size):
-            if (vy[j] > py) != (wy[j] > py):
-                xc[k] = ex[j] * (py - vy[j]) / ey[j] + vx[j]
-                k += 1
-        for i in range(xs.size):
-            px = xs[i]
-            n = 0
-            for q in range(k):
-                if px < xc[q]:
-                    n += 1
-            if n % 2 == 1:
-                out[r * xs.size + i] = True
-            else:
-                out[r * xs.size + i] = _near_boundary(px, py, vx, vy, wy, ex, ey, L2, tol, _no_nan(px, py, L2))
+            if early:
+                wx = vx[j] + ex[j]
+                m = 2.0 * tol + 1e-14 * (abs(px) + abs(py) + abs(vx[j]) + abs(vy[j]) + abs(ex[j]) + abs(ey[j]))
+                if (px < min(vx[j], wx) - m or px > max(vx[j], wx) + m
+                        or py < min(vy[j], wy[j]) - m or py > max(vy[j], wy[j]) + m):
+                    continue
+            dx, dy = px - vx[j], py - vy[j]
+            s = (dx * ex[j] + dy * ey[j]) / L2[j]
+            if s < 0.0:
+                s = 0.0
+            elif s > 1.0:
+                s = 1.0
+            d = np.hypot(dx - s * ex[j], dy - s * ey[j])
+            if early and d <= tol:
+                near = True
+                break
+            best = np.minimum(best, d)
+        out[i] = near or best <= tol
 
 
 @jitable
@@ -333,13 +300,16 @@ def zoom_minimum(f, p, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex
     # boundary
     t = t0.copy()
     best_b = tb_best
+    ts, bx, by = np.empty(offsets.shape[1]), np.empty(offsets.shape[1]), np.empty(offsets.shape[1])
     for lev in range(offsets.shape[0]):
         level_min, level_nan = np.inf, False
         for r in range(t.size):
+            for j in range(offsets.shape[1]):
+                ts[j] = t[r] + offsets[lev, j]
+            polygon_points(ts, is_path, vx, vy, ex, ey, L, cum, bx, by)
             amin, imin, seen_nan = np.inf, 0, False
             for j in range(offsets.shape[1]):
-                x, y = polygon_point(t[r] + offsets[lev, j], is_path, vx, vy, ex, ey, L, cum)
-                v = _value(f, p, scale, bad, x, y)
+                v = _value(f, p, scale, bad, bx[j], by[j])
                 amin, imin, seen_nan = _first_min(v, j, amin, imin, seen_nan)
             level_min, level_nan = _level(level_min, level_nan, amin, seen_nan)
             t[r] = t[r] + offsets[lev, imin]
@@ -349,16 +319,16 @@ def zoom_minimum(f, p, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex
     px, py = px0.copy(), py0.copy()
     h = h0
     best_i = in_best
+    xs, ys, inside = np.empty(gx.size), np.empty(gx.size), np.empty(gx.size, dtype=np.bool_)
     for _ in range(in_levels):
         level_min, level_nan = np.inf, False
         for r in range(px.size):
+            for j in range(gx.size):
+                xs[j], ys[j] = px[r] + h * gx[j], py[r] + h * gy[j]
+            contains_points(xs, ys, vx, vy, wy, ex, ey, L2, tol, inside)
             amin, imin, seen_nan = np.inf, 0, False
             for j in range(gx.size):
-                x, y = px[r] + h * gx[j], py[r] + h * gy[j]
-                if polygon_contains(x, y, vx, vy, wy, ex, ey, L2, tol):
-                    v = _value(f, p, scale, bad, x, y)
-                else:
-                    v = np.inf
+                v = _value(f, p, scale, bad, xs[j], ys[j]) if inside[j] else np.inf
                 amin, imin, seen_nan = _first_min(v, j, amin, imin, seen_nan)
             level_min, level_nan = _level(level_min, level_nan, amin, seen_nan)
             px[r], py[r] = px[r] + h * gx[imin], py[r] + h * gy[imin]
@@ -411,12 +381,15 @@ def zoom_ranges(arguments, angles, p, bad_lo, bad_hi, best, t0, offsets, is_path
     m = t.size * n
     k1, k2, y1, x1, y2, x2 = np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m)
     ok = np.empty(m, dtype=np.bool_)
+    ts, bx, by = np.empty(n), np.empty(n), np.empty(n)
     for lev in range(offsets.shape[0]):
         for s in range(t.size):
             for j in range(n):
+                ts[j] = t[s] + offsets[lev, j]
+            polygon_points(ts, is_path, vx, vy, ex, ey, L, cum, bx, by)
+            for j in range(n):
                 i = s * n + j
-                x, y = polygon_point(t[s] + offsets[lev, j], is_path, vx, vy, ex, ey, L, cum)
-                k1[i], k2[i], y1[i], x1[i], y2[i], x2[i], ok[i] = arguments(p, x, y)
+                k1[i], k2[i], y1[i], x1[i], y2[i], x2[i], ok[i] = arguments(p, bx[j], by[j])
         with jit.objmode(a1="float64[:]", a2="float64[:]", b1="float64[:]", b2="float64[:]"):
             a1, a2, b1, b2 = np.arccos(k1), np.arccos(k2), np.arctan2(y1, x1), np.arctan2(y2, x2)
         for r in range(4):

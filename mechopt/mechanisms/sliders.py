@@ -121,11 +121,26 @@ def _closure_at(p, via_positions, px, py):
     return u1, c1, u2, c2, True
 
 
+@jitable
+def _params_of(p):
+    """The closure's parameters ``p`` (10) as a tuple (compiled loops): passed by value to
+    :func:`_closure_at`, where an array would be reference-counted at every call."""
+    return p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9]
+
+
+@jitable
+def _kernel_params_of(kp):
+    """A zoom kernel's parameters ``kp`` (12: the closure's, the flag, the row) as a
+    tuple (:func:`_params_of`)."""
+    return kp[0], kp[1], kp[2], kp[3], kp[4], kp[5], kp[6], kp[7], kp[8], kp[9], kp[10], kp[11]
+
+
 def _closure_loop(x, y, p, via_positions, A, b, ok):
     """:meth:`TwoSliderMechanism.closure` point by point (compiled,
     :class:`mechopt.core.jit.Twin`; :func:`_closure_at`)."""
+    pt = _params_of(p)
     for i in range(x.size):
-        u1, c1, u2, c2, ok[i] = _closure_at(p, via_positions, x[i], y[i])
+        u1, c1, u2, c2, ok[i] = _closure_at(pt, via_positions, x[i], y[i])
         A[i, 0, 0], A[i, 0, 1], A[i, 1, 0], A[i, 1, 1] = u1, c1, u2, c2
         b[i, 0], b[i, 1] = c1, c2
 
@@ -166,17 +181,17 @@ def _box_at(kp, x, y):
 # global kernel, not one that receives it as an argument)
 def _lci_zoom_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_lci_at` (compiled, :class:`Twin`)."""
-    return zoom_minimum(_lci_at, p, *search)
+    return zoom_minimum(_lci_at, _kernel_params_of(p), *search)
 
 
 def _type2_zoom_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_type2_at` (compiled, :class:`Twin`)."""
-    return zoom_minimum(_type2_at, p, *search)
+    return zoom_minimum(_type2_at, _kernel_params_of(p), *search)
 
 
 def _box_zoom_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_box_at` (compiled, :class:`Twin`)."""
-    return zoom_minimum(_box_at, p, *search)
+    return zoom_minimum(_box_at, _kernel_params_of(p), *search)
 
 
 _CLOSURE_TWIN = Twin(_closure_loop)

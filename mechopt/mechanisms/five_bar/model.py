@@ -119,6 +119,14 @@ def _twin_legs(r3, legs):
 
 
 @jitable
+def _legs_of(p):
+    """``[r3, a1, c1, s1, a2, c2, s2]`` as a tuple (compiled loops and zooms): a tuple is
+    passed by value to the per-point formulas, an array is reference-counted at every
+    call (:mod:`mechopt.core.zoom`)."""
+    return p[0], p[1], p[2], p[3], p[4], p[5], p[6]
+
+
+@jitable
 def _leg_elbow(ax, a, c, s, x, y):
     """Elbow ``(bx, by, reachable)`` of the leg on ``A = (ax, 0)`` with crank ``a``, link
     ``c`` and elbow sign ``s`` at the point ``(x, y)`` (:func:`legs_elbows`; arrays or, in
@@ -151,8 +159,9 @@ def _elbows_loop(x, y, legs, out, ok):
     """:func:`legs_elbows` point by point (compiled, :class:`mechopt.core.jit.Twin`;
     ``legs = [r3, a1, c1, s1, a2, c2, s2]``): the elbows into the rows of ``out``
     (``b1x, b1y, b2x, b2y``), reachability into ``ok``."""
+    lp = _legs_of(legs)
     for i in range(x.size):
-        out[0, i], out[1, i], out[2, i], out[3, i], ok[i] = _elbows_at(x[i], y[i], legs)
+        out[0, i], out[1, i], out[2, i], out[3, i], ok[i] = _elbows_at(x[i], y[i], lp)
 
 
 @jitable
@@ -170,8 +179,9 @@ def _closure_loop(x, y, legs, A, b, ok):
     """:func:`legs_closure` point by point (compiled, :class:`mechopt.core.jit.Twin`;
     :func:`_closure_at`): its ``A`` (shape ``(n, 2, 2)``), ``b`` (``(n, 2)``) and
     reachability."""
+    lp = _legs_of(legs)
     for i in range(x.size):
-        A[i, 0, 0], A[i, 0, 1], A[i, 1, 0], A[i, 1, 1], b[i, 0], b[i, 1], ok[i] = _closure_at(x[i], y[i], legs)
+        A[i, 0, 0], A[i, 0, 1], A[i, 1, 0], A[i, 1, 1], b[i, 0], b[i, 1], ok[i] = _closure_at(x[i], y[i], lp)
 
 
 @jitable
@@ -220,8 +230,9 @@ def _ik_from(legs, alpha1, alpha2, beta1, beta2, ok):
 def _ik_loop(x, y, legs, k1, k2, ok):
     """:func:`legs_ik` up to its angles, point by point (compiled, :class:`mechopt.core.jit.Twin`;
     :func:`_ik_cosines_at`): the clipped cosines into ``k1, k2``, the reachability into ``ok``."""
+    lp = _legs_of(legs)
     for i in range(x.size):
-        k1[i], k2[i], ok[i] = _ik_cosines_at(legs, x[i], y[i])
+        k1[i], k2[i], ok[i] = _ik_cosines_at(lp, x[i], y[i])
 
 
 @jitable
@@ -255,18 +266,18 @@ def _type2_of(x, y, b1x, b1y, b2x, b2y, r2):
 # every process)
 def _lci_zoom_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_lci_at` (compiled, :class:`Twin`)."""
-    return zoom_minimum(_lci_at, p, *search)
+    return zoom_minimum(_lci_at, _legs_of(p), *search)
 
 
 def _type2_zoom_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_minimum` of :func:`_type2_at` (compiled, :class:`Twin`)."""
-    return zoom_minimum(_type2_at, p, *search)
+    return zoom_minimum(_type2_at, _legs_of(p), *search)
 
 
 def _ik_ranges_loop(p, search):
     """:func:`mechopt.core.zoom.zoom_ranges` of the crank angles (:func:`_ik_arguments`,
     :func:`_ik_from`; compiled, :class:`Twin`)."""
-    return zoom_ranges(_ik_arguments, _ik_from, p, *search)
+    return zoom_ranges(_ik_arguments, _ik_from, _legs_of(p), *search)
 
 
 _ELBOWS_TWIN = Twin(_elbows_loop)
