@@ -98,11 +98,17 @@ def test_asymmetric_legs_bit_for_bit(lengths, r3, seed):
             assert_same_bits(*both(mp, f))
 
 
+@pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")  # entries near the largest double
 @settings(max_examples=80, deadline=None)
-@given(st.integers(0, 2**31), st.sampled_from([1e-300, 1e-160, 1e-5, 1.0, 1e5, 1e160, 1e300]))
+@given(st.integers(0, 2**31), st.sampled_from([1e-300, 1e-160, 1e-5, 1.0, 1e5, 1e160, 1e300, "mixed"]))
 def test_lci_and_row_norms_of_matrices_bit_for_bit(seed, scale):
     rng = np.random.default_rng(seed)
-    J = rng.normal(size=(200, 2, 2)) * scale
+    if scale == "mixed":  # every entry its own magnitude, from subnormal to near the largest double
+        J = rng.normal(size=(200, 2, 2)) * 10.0 ** rng.uniform(-320, 307.5, size=(200, 2, 2))
+        J[6] = [[1.7e308, -1.6e308], [3.0, 1e-300]]  # the largest entry's power of two 2^1024
+        J[7] = [[3e-310, 1e-320], [-2e-315, 5e-324]]  # subnormal entries only
+    else:
+        J = rng.normal(size=(200, 2, 2)) * scale
     J[0] = 0.0
     J[1, 0, 0] = np.nan
     J[2, 1, 1] = np.inf

@@ -204,7 +204,13 @@ def lci_of_matrix(a, b, c, d):
         e = 0
     else:  # 0 or NaN: np.frexp(1.0)
         e = 1
-    v = lci_of_entries(math.ldexp(a, -e), math.ldexp(b, -e), math.ldexp(c, -e), math.ldexp(d, -e))
+    if e >= -1023:
+        # 2^-e is a double (normal, or subnormal down to 2^-1025), so a * 2^-e is the exact
+        # product rounded once, as ldexp(a, -e) is: one ldexp instead of four
+        f = math.ldexp(1.0, -e)
+        v = lci_of_entries(a * f, b * f, c * f, d * f)
+    else:
+        v = lci_of_entries(math.ldexp(a, -e), math.ldexp(b, -e), math.ldexp(c, -e), math.ldexp(d, -e))
     return v if math.isfinite(v) else 0.0
 
 
