@@ -26,6 +26,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from mechopt.core.jit import Twin
 from mechopt.core.protocol import mark_in_reach
 
 __all__ = ["Sampling", "samples", "bad_to", "region_mins", "leg_ranges", "minimise", "compiled_region_min"]
@@ -156,18 +157,58 @@ def _interior_offsets(n):
 
 def _lowest(vals, k):
     """The indices of the ``k`` lowest values, the set of ``np.argsort(vals)[:k]``,
-    without sorting them all: by a partition when the ``k``-th lowest value is below the
+    without sorting them all: by a partition (compiled: one pass keeping the ``k + 1``
+    lowest, :func:`_lowest_loop`) when the ``k``-th lowest value is below the
     ``(k + 1)``-th (the set is then unique; ties inside it leave its order to the partial
     sort, which no search depends on: each start zooms on its own and the searches take
     the minimum over all); when a tie straddles the ``k``-th place (or with NaN) by the
     full sort, whose choice among equal values the zoom has always started from."""
     if vals.size > k + 1:
-        part = np.argpartition(vals, k)[:k + 1]  # the k + 1 lowest, in no order
-        o = np.argsort(vals[part])
-        low = vals[part][o]
-        if low[k - 1] < low[k]:  # False with NaN
-            return part[o[:k]]
+        if Twin.compiled():  # one pass, no sort (about 1 us instead of 7 for the fine samples)
+            out = np.empty(k, dtype=np.intp)
+            if _LOWEST_TWIN(vals, k, out):
+                return out
+        else:
+            part = np.argpartition(vals, k)[:k + 1]  # the k + 1 lowest, in no order
+            o = np.argsort(vals[part])
+            low = vals[part][o]
+            if low[k - 1] < low[k]:  # False with NaN
+                return part[o[:k]]
     return np.argsort(vals)[:k]
+
+
+def _lowest_loop(vals, k, out):
+    """:func:`_lowest`'s partition in one pass (compiled, :class:`mechopt.core.jit.Twin`):
+    the ``k + 1`` lowest values kept in order (an equal value after them does not enter);
+    when the ``k``-th is below the ``(k + 1)``-th, their indices into ``out`` and True
+    (the set is then unique), else False (a NaN among the values, a tie across the
+    ``k``-th place: the caller sorts). ``vals`` has more than ``k + 1`` values."""
+    m = k + 1
+    bv, bi = np.empty(m), np.empty(m, dtype=np.intp)
+    c = 0
+    for i in range(vals.size):
+        v = vals[i]
+        if v != v:
+            return False
+        if c < m:
+            j = c
+            c += 1
+        elif v < bv[m - 1]:
+            j = m - 1
+        else:
+            continue
+        while j > 0 and bv[j - 1] > v:
+            bv[j], bi[j] = bv[j - 1], bi[j - 1]
+            j -= 1
+        bv[j], bi[j] = v, i
+    if not bv[k - 1] < bv[k]:
+        return False
+    for j in range(k):
+        out[j] = bi[j]
+    return True
+
+
+_LOWEST_TWIN = Twin(_lowest_loop)
 
 
 def _keep_lower(best, v):
