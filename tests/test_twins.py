@@ -136,7 +136,8 @@ def _random_polygon(rng, n):
 def test_task_boundary_and_contains_bit_for_bit(seed, n):
     rng = np.random.default_rng(seed)
     tasks = [parse_task("rect:100,60@0,180"), parse_task(STAR), _random_polygon(rng, n),
-             Task.path(np.array([[0.0, 0.0], [10.0, 5.0], [20.0, -3.0], [40.0, 0.0]]))]
+             Task.path(np.array([[0.0, 0.0], [10.0, 5.0], [20.0, -3.0], [40.0, 0.0]])),
+             parse_task(STAR).moved_to(*rng.uniform(-60.0, 60.0, 2))]  # a placement's samples
     t = np.concatenate([rng.uniform(-2.0, 3.0, 300), np.linspace(-1.0, 2.0, 61), [-0.0, 0.0, 1.0, np.nan]])
     with pytest.MonkeyPatch.context() as mp:
         for task in tasks:
@@ -155,9 +156,12 @@ def test_task_boundary_and_contains_bit_for_bit(seed, n):
                                 [0.0, 0.0, np.nan]])
             assert_same_bits(*both(mp, lambda: task.contains(x, y)))
             assert_same_bits(*both(mp, lambda: task.contains(x[:6].reshape(3, 2), 170.0)))
-            # the grid's containment row by row (Task.grid), every size of the samplings
-            for m in (13, 37, 61):
+            # the grid (Task.grid: np.linspace's nodes, containment row by row) and the
+            # boundary's parameters, every size of the samplings and smaller ones
+            for m in (2, 3, 13, 37, 61):
                 assert_same_bits(*both(mp, lambda: task.grid(m)))
+            for m in (8, 11, 192, 2048):
+                assert_same_bits(*both(mp, lambda: task.boundary_params(m)))
             if task.is_region:
                 got = task.contains(x, y)
                 assert got[:300].any() and not got[:300].all()  # both verdicts occur

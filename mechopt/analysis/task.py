@@ -25,7 +25,7 @@ import numpy as np
 
 from mechopt.core import validation as _v
 from mechopt.core.jit import Twin
-from mechopt.core.zoom import contains_points, polygon_points
+from mechopt.core.zoom import arc_params, contains_points, polygon_grid, polygon_points
 
 __all__ = ["Task", "parse_task", "read_points", "UNITS", "PLACEMENTS"]
 
@@ -454,6 +454,8 @@ class Task:
             return t, 2 * self.radius * math.sin(math.pi / n)
         L, cum = self.edges[6], self.edges[7]
         total = L.sum()
+        if Twin.compiled():
+            return _PARAMS_TWIN(n, self.is_path, L, cum, total)
         # m_i samples on edge i at fractions cum_i + (cum_{i+1} - cum_i) k / m_i, k < m_i
         m = np.maximum(1, np.ceil(n * L / total).astype(int))
         k = np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m)
@@ -559,16 +561,14 @@ class Task:
         if not self.is_region:
             return self.pts[:, 0].copy(), self.pts[:, 1].copy(), 0.0
         x0, x1, y0, y1 = self.bbox
-        xs, ys = np.linspace(x0, x1, n), np.linspace(y0, y1, n)
-        gx, gy = np.meshgrid(xs, ys)
-        if Twin.compiled() and self.kind != "circle":  # a polygon: each row's crossings once
+        step = max(x1 - x0, y1 - y0) / (n - 1)
+        if Twin.compiled() and self.kind != "circle":  # a polygon: in one compiled call
             vx, vy, wy, ex, ey, L2, _, _ = self.edges
-            keep = np.empty(gx.shape, dtype=np.bool_)
-            _CONTAINS_TWIN(gx.reshape(-1), gy.reshape(-1), vx, vy, wy, ex, ey, L2, self.inside_tolerance,
-                           keep.reshape(-1))
-        else:
-            keep = self.contains(gx, gy)
-        return gx[keep], gy[keep], max(x1 - x0, y1 - y0) / (n - 1)
+            gx, gy = _GRID_TWIN(x0, x1, y0, y1, int(n), vx, vy, wy, ex, ey, L2, self.inside_tolerance)
+            return gx, gy, step
+        gx, gy = np.meshgrid(np.linspace(x0, x1, n), np.linspace(y0, y1, n))
+        keep = self.contains(gx, gy)
+        return gx[keep], gy[keep], step
 
     @classmethod
     def from_dict(cls, d: dict) -> "Task":
@@ -776,5 +776,17 @@ def _contains_loop(x, y, vx, vy, wy, ex, ey, L2, tol, out):
     contains_points(x, y, vx, vy, wy, ex, ey, L2, tol, out)
 
 
+def _params_loop(n, is_path, L, cum, total):
+    """:meth:`Task.boundary_params` of a polygon or path (:func:`mechopt.core.zoom.arc_params`)."""
+    return arc_params(n, is_path, L, cum, total)
+
+
+def _grid_loop(x0, x1, y0, y1, n, vx, vy, wy, ex, ey, L2, tol):
+    """:meth:`Task.grid` of a polygon (:func:`mechopt.core.zoom.polygon_grid`)."""
+    return polygon_grid(x0, x1, y0, y1, n, vx, vy, wy, ex, ey, L2, tol)
+
+
 _BOUNDARY_TWIN = Twin(_boundary_loop)
+_PARAMS_TWIN = Twin(_params_loop)
+_GRID_TWIN = Twin(_grid_loop)
 _CONTAINS_TWIN = Twin(_contains_loop)

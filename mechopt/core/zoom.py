@@ -35,7 +35,8 @@ from mechopt.core import jit
 from mechopt.core.jit import jitable
 from mechopt.core.protocol import POINT_MAX
 
-__all__ = ["ZoomKernel", "point_in_reach", "polygon_points", "contains_points", "zoom_minimum", "zoom_ranges"]
+__all__ = ["ZoomKernel", "point_in_reach", "polygon_points", "contains_points", "arc_params", "polygon_grid",
+           "zoom_minimum", "zoom_ranges"]
 
 
 @dataclass(frozen=True)
@@ -139,6 +140,103 @@ def polygon_points(t, is_path, vx, vy, ex, ey, L, cum, bx, by):
         k = min(max(np.searchsorted(cum, ti, side="right") - 1, 0), last)
         s = (ti - cum[k]) / ((cum[k + 1] - cum[k]) if L[k] > 0 else 1.0)
         bx[i], by[i] = vx[k] + s * ex[k], vy[k] + s * ey[k]
+
+
+@jitable
+def arc_params(n, is_path, L, cum, total):
+    """:meth:`mechopt.analysis.task.Task.boundary_params` of a polygon or path: ``m_i =
+    max(1, ceil(n L_i / total))`` samples on edge ``i`` at the fractions ``cum_i +
+    (cum_{i+1} - cum_i) k / m_i``, ``k < m_i`` (a path's last point too), and the largest
+    gap ``max(L_i / m_i)``; NumPy's operations on each element, so the same floats.
+
+    Parameters
+    ----------
+    n : int
+        Requested number of samples (at least 8).
+    is_path : bool
+        A path (two ends) rather than a closed polygon.
+    L, cum : ndarray
+        The edges' lengths [unit] and the vertices' arc-length fractions
+        (:attr:`mechopt.analysis.task.Task.edges`).
+    total : float
+        ``L.sum()`` (NumPy's pairwise sum) [unit].
+
+    Returns
+    -------
+    t : ndarray
+        The arc-length fractions.
+    gap : float
+        The largest distance between neighbouring samples [unit] (0 if NaN).
+    """
+    m = np.empty(L.size, dtype=np.int64)
+    size = 1 if is_path else 0
+    for i in range(L.size):
+        m[i] = max(1, np.int64(np.ceil(n * L[i] / total)))
+        size += m[i]
+    t = np.empty(size)
+    j = 0
+    gap, nan = -np.inf, False
+    for i in range(L.size):
+        d = cum[i + 1] - cum[i]
+        for k in range(m[i]):
+            t[j] = cum[i] + d * k / m[i]
+            j += 1
+        g = L[i] / m[i]
+        nan = nan or g != g
+        gap = g if g > gap else gap
+    if is_path:
+        t[j] = 1.0
+    return t, (gap if gap > 0.0 and not nan else 0.0)
+
+
+@jitable
+def _linspace(start, stop, n, out):
+    """``np.linspace(start, stop, n)`` into ``out``: NumPy 2's floats (``i * step +
+    start``, the last one ``stop``; ``i / div * delta + start`` where the step is 0)."""
+    div = n - 1
+    delta = stop - start
+    if div > 0:
+        step = delta / div
+        for i in range(n):
+            out[i] = ((i / div) * delta if step == 0 else i * step) + start
+        out[n - 1] = stop
+    else:
+        for i in range(n):
+            out[i] = i * delta + start
+
+
+@jitable
+def polygon_grid(x0, x1, y0, y1, n, vx, vy, wy, ex, ey, L2, tol):
+    """The nodes of the ``n x n`` grid over ``[x0, x1] x [y0, y1]`` (``np.linspace`` each
+    way, in ``np.meshgrid``'s order: row after row of constant ordinate) that
+    :func:`contains_points` keeps: :meth:`mechopt.analysis.task.Task.grid` of a polygon.
+
+    Parameters
+    ----------
+    x0, x1, y0, y1 : float
+        The bounding box [unit].
+    n : int
+        Nodes per side.
+    vx, vy, wy, ex, ey, L2 : ndarray
+        The edges (:attr:`mechopt.analysis.task.Task.edges`).
+    tol : float
+        :attr:`mechopt.analysis.task.Task.inside_tolerance` [unit].
+
+    Returns
+    -------
+    x, y : ndarray
+        The nodes kept [unit].
+    """
+    xs, ys = np.empty(n), np.empty(n)
+    _linspace(x0, x1, n, xs)
+    _linspace(y0, y1, n, ys)
+    gx, gy = np.empty(n * n), np.empty(n * n)
+    for r in range(n):
+        for c in range(n):
+            gx[r * n + c], gy[r * n + c] = xs[c], ys[r]
+    keep = np.empty(n * n, dtype=np.bool_)
+    contains_points(gx, gy, vx, vy, wy, ex, ey, L2, tol, keep)
+    return gx[keep], gy[keep]
 
 
 @jitable
