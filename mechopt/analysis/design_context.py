@@ -123,8 +123,9 @@ class DesignContext:
 
     @cached_property
     def lci(self) -> np.ndarray:
-        """LCI at every sample (0 where unreachable)."""
-        return _s.bad_to(_ix.lci(self.jacobian), 0.0)
+        """LCI at every sample (0 where unreachable: :func:`mechopt.core.indices.lci` maps a
+        NaN Jacobian to 0)."""
+        return _ix.lci(self.jacobian)
 
     # --- searches over the task ------------------------------------------------------------
     def refines(self, name) -> bool:
