@@ -136,8 +136,18 @@ def polygon_points(t, is_path, vx, vy, ex, ey, L, cum, bx, by):
     """
     last = vx.size - 1
     for i in range(t.size):
-        ti = min(max(t[i], 0.0), 1.0) if is_path else np.mod(t[i], 1.0)
-        k = min(max(np.searchsorted(cum, ti, side="right") - 1, 0), last)
+        # t mod 1 as np.mod computes it (fmod is exact, so t - floor(t) is the same float)
+        ti = min(max(t[i], 0.0), 1.0) if is_path else t[i] - np.floor(t[i])
+        # np.searchsorted(cum, ti, side="right") - 1: the last vertex at or before ti (a
+        # NaN ti gives a NaN point whatever the edge)
+        lo, hi = 0, cum.size
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if cum[mid] <= ti:
+                lo = mid + 1
+            else:
+                hi = mid
+        k = min(max(lo - 1, 0), last)
         s = (ti - cum[k]) / ((cum[k + 1] - cum[k]) if L[k] > 0 else 1.0)
         bx[i], by[i] = vx[k] + s * ex[k], vy[k] + s * ey[k]
 
@@ -236,7 +246,12 @@ def polygon_grid(x0, x1, y0, y1, n, vx, vy, wy, ex, ey, L2, tol):
             gx[r * n + c], gy[r * n + c] = xs[c], ys[r]
     keep = np.empty(n * n, dtype=np.bool_)
     contains_points(gx, gy, vx, vy, wy, ex, ey, L2, tol, keep)
-    return gx[keep], gy[keep]
+    m = 0
+    for i in range(n * n):
+        if keep[i]:
+            gx[m], gy[m] = gx[i], gy[i]
+            m += 1
+    return gx[:m].copy(), gy[:m].copy()
 
 
 @jitable
