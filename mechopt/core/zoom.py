@@ -327,6 +327,15 @@ def contains_points(x, y, vx, vy, wy, ex, ey, L2, tol, out):
 
 
 @jitable
+def _offset_points(t, offsets, is_path, vx, vy, ex, ey, L, cum, ts, bx, by):
+    """The boundary points at the fractions ``t + offsets`` (a zoom level around one
+    start) into ``bx, by`` (:func:`polygon_points`; ``ts`` holds the fractions)."""
+    for j in range(offsets.size):
+        ts[j] = t + offsets[j]
+    polygon_points(ts, is_path, vx, vy, ex, ey, L, cum, bx, by)
+
+
+@jitable
 def _value(f, p, scale, bad, x, y):
     """``scale * f(p, x, y)``, ``bad`` where that is not finite (``bad_to``)."""
     v = scale * f(p, x, y)
@@ -417,9 +426,7 @@ def zoom_minimum(f, p, scale, bad, tb_best, t0, offsets, is_path, vx, vy, wy, ex
     for lev in range(offsets.shape[0]):
         level_min, level_nan = np.inf, False
         for r in range(t.size):
-            for j in range(offsets.shape[1]):
-                ts[j] = t[r] + offsets[lev, j]
-            polygon_points(ts, is_path, vx, vy, ex, ey, L, cum, bx, by)
+            _offset_points(t[r], offsets[lev], is_path, vx, vy, ex, ey, L, cum, ts, bx, by)
             amin, imin, seen_nan = np.inf, 0, False
             for j in range(offsets.shape[1]):
                 v = _value(f, p, scale, bad, bx[j], by[j])
@@ -497,9 +504,7 @@ def zoom_ranges(arguments, angles, p, bad_lo, bad_hi, best, t0, offsets, is_path
     ts, bx, by = np.empty(n), np.empty(n), np.empty(n)
     for lev in range(offsets.shape[0]):
         for s in range(t.size):
-            for j in range(n):
-                ts[j] = t[s] + offsets[lev, j]
-            polygon_points(ts, is_path, vx, vy, ex, ey, L, cum, bx, by)
+            _offset_points(t[s], offsets[lev], is_path, vx, vy, ex, ey, L, cum, ts, bx, by)
             for j in range(n):
                 i = s * n + j
                 k1[i], k2[i], y1[i], x1[i], y2[i], x2[i], ok[i] = arguments(p, bx[j], by[j])
