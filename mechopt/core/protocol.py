@@ -135,6 +135,8 @@ def _within_reach(v):
     ref = _IN_REACH.get(id(v))
     if ref is not None and ref() is v:  # checked when marked (mark_in_reach)
         return v
+    if v.size == 1 and -POINT_MAX <= v.item() <= POINT_MAX:  # one point: no reductions
+        return v
     if v.size and not (v.max() <= POINT_MAX and v.min() >= -POINT_MAX):  # NaN or far away
         v = np.where(np.abs(v) > POINT_MAX, np.nan, v)
     return v
